@@ -1,0 +1,243 @@
+#include "app/simulation.hpp"
+
+#include <petscsys.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "cases/registry.hpp"
+#include "solvers/registry.hpp"
+#include "src/core/options.hpp"
+#include "src/io/csv_writer.hpp"
+#include "src/io/json_file.hpp"
+#include "src/io/particle_writer.hpp"
+#include "src/run/diagnostics.hpp"
+#include "src/run/progress.hpp"
+
+namespace sph {
+
+namespace {
+
+// Linear-solver iteration statistics over a run.
+struct StepStats {
+  long solves = 0, total_iterations = 0;
+  int max_iterations = 0;
+  void add(const StepReport& r) {
+    if (r.linear_iterations < 0) return;
+    ++solves, total_iterations += r.linear_iterations;
+    max_iterations = std::max(max_iterations, r.linear_iterations);
+  }
+  double mean_iterations() const { return solves ? double(total_iterations) / solves : 0.0; }
+};
+
+struct DriverOptions {
+  PetscReal t_end = 1.0;
+  PetscReal dt = 0.0;               // 0: from the solver's stability limits
+  PetscInt max_steps = -1;          // -1: no limit
+  PetscReal output_interval = -1;   // -1: t_end / 20
+  PetscInt kernel = static_cast<PetscInt>(KernelType::WendlandC2);
+  PetscReal h_over_dx = -1;         // -1: support radius = 3 dx
+  PetscReal skin = 0.2;             // Verlet skin as a fraction of the support radius
+  PetscBool progress = PETSC_TRUE;
+  char output_dir[PETSC_MAX_PATH_LEN] = "";
+};
+
+PetscErrorCode read_driver_options(DriverOptions* o) {
+  PetscFunctionBeginUser;
+  std::vector<const char*> kernels;
+  for (const auto& k : kernel_names()) kernels.push_back(k.c_str());
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Run control, kernel and output", "sph");
+  PetscCall(PetscOptionsReal("-t_end", "End time", "", o->t_end, &o->t_end, nullptr));
+  PetscCall(PetscOptionsReal("-dt", "Fixed time step (0: from the solver's stability limits)", "", o->dt, &o->dt, nullptr));
+  PetscCall(PetscOptionsInt("-max_steps", "Stop after this many steps (-1: no limit)", "", o->max_steps, &o->max_steps, nullptr));
+  PetscCall(PetscOptionsReal("-output_interval", "Time between VTK frames (-1: t_end/20, 0: first and last only)", "",
+                             o->output_interval, &o->output_interval, nullptr));
+  PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/<case>-<solver>-<nx>)", "", o->output_dir,
+                               o->output_dir, sizeof(o->output_dir), nullptr));
+  PetscCall(PetscOptionsEList("-kernel", "Smoothing kernel", "", kernels.data(), static_cast<PetscInt>(kernels.size()),
+                              kernels[o->kernel], &o->kernel, nullptr));
+  PetscCall(PetscOptionsReal("-h_over_dx", "Smoothing length over particle spacing (-1: support radius 3 dx)", "",
+                             o->h_over_dx, &o->h_over_dx, nullptr));
+  PetscCall(PetscOptionsReal("-neighbour_skin", "Verlet-list skin as a fraction of the kernel support", "", o->skin,
+                             &o->skin, nullptr));
+  PetscCall(PetscOptionsBool("-progress", "Print a progress line on stderr about once a second", "", o->progress,
+                             &o->progress, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+template <int D> struct Run {
+  std::unique_ptr<Case<D>> scene_case;
+  std::unique_ptr<Solver<D>> solver;
+  DriverOptions opt;
+  RunOptions names;
+  std::string output_dir;
+
+  void configure() {
+    scene_case->set_from_options();
+    solver->set_from_options();
+    opt.t_end = scene_case->default_t_end();
+    SPH_PETSC(read_driver_options(&opt));
+    require(opt.t_end > 0, "-t_end", "positive", opt.t_end);
+    require(opt.dt >= 0, "-dt", "non-negative", opt.dt);
+    require(opt.h_over_dx == -1 || opt.h_over_dx > 0, "-h_over_dx", "positive", opt.h_over_dx);
+    require(opt.skin >= 0 && opt.skin <= 1, "-neighbour_skin", "in [0, 1]", opt.skin);
+    if (opt.output_interval < 0) opt.output_interval = opt.t_end / 20;
+    output_dir = opt.output_dir[0] ? std::string(opt.output_dir)
+                                   : "out/" + names.case_name + "-" + names.solver_name + "-" +
+                                         std::to_string(scene_case->resolution());
+    check_unused_options();
+  }
+
+  void execute();
+};
+
+template <int D> void Run<D>::execute() {
+  const auto wall_start = std::chrono::steady_clock::now();
+  Particles<D> P;
+  Domain<D> domain;
+  scene_case->create(P, domain);
+  assign_global_indices(P);
+
+  const KernelType ktype = static_cast<KernelType>(opt.kernel);
+  const double dx = scene_case->spacing();
+  const double h_over_dx = opt.h_over_dx > 0 ? opt.h_over_dx : 3.0 / Kernel<D>::support_factor(ktype);
+  const Kernel<D> kernel(ktype, h_over_dx * dx);
+  Neighbourhood<D> nh(domain, kernel.support_radius(), opt.skin * kernel.support_radius());
+  Scene<D> scene{P, nh, kernel, scene_case->physics(), dx};
+  solver->setup(scene);
+
+  ParticleWriter<D> writer(output_dir);
+  const std::vector<std::string> error_names = [&] {
+    std::vector<std::string> v;
+    for (const auto& e : scene_case->errors(P, 0.0)) v.push_back(e.first);
+    return v;
+  }();
+  std::vector<std::string> columns = {"step", "t", "dt", "kinetic_energy"};
+  for (int a = 0; a < D; ++a) columns.push_back(std::string("momentum_") + "xyz"[a]);
+  columns.insert(columns.end(), {"ksp_iterations", "ksp_reason"});
+  columns.insert(columns.end(), error_names.begin(), error_names.end());
+  CsvWriter series(output_dir + "/timeseries.csv", columns);
+
+  nlohmann::json summary;
+  summary["case"] = names.case_name;
+  summary["solver"] = names.solver_name;
+  summary["dim"] = D;
+  summary["n_particles"] = P.n_global;
+  summary["dx"] = dx;
+  summary["kernel"] = {{"type", kernel.name()}, {"h", kernel.h()}, {"h_over_dx", h_over_dx}};
+  summary["t_end"] = opt.t_end;
+  summary["parameters"] = scene_case->parameters();
+  summary["physics"] = scene.physics.describe();
+  PetscMPIInt ranks;
+  MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+  summary["mpi_ranks"] = ranks;
+
+  double t = 0.0;
+  long step = 0;
+  StepStats stats;
+  Progress progress(opt.progress, opt.t_end);
+  double next_output = opt.output_interval > 0 ? opt.output_interval : opt.t_end;
+  writer.write(P, t);
+  bool warned_dt = false;
+  const auto loop_start = std::chrono::steady_clock::now();
+  auto finish = [&](const std::string& status, const std::string& failure) {
+    const double loop_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
+    summary["status"] = status;
+    if (!failure.empty()) summary["failure"] = failure;
+    summary["steps"] = step;
+    summary["t_final"] = t;
+    summary["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    summary["time_per_particle_step_s"] = step > 0 ? loop_s / (double(step) * double(P.n_global)) : 0.0;
+    nlohmann::json solver_info = solver->describe();
+    summary["models"] = solver_info["models"];
+    if (solver_info.contains("ksp")) {
+      summary["ksp"] = solver_info["ksp"];
+      summary["ksp"]["iterations_mean"] = stats.mean_iterations();
+      summary["ksp"]["iterations_max"] = stats.max_iterations;
+    }
+    for (auto it = solver_info.begin(); it != solver_info.end(); ++it)
+      if (it.key() != "models" && it.key() != "ksp") summary["solver_parameters"][it.key()] = it.value();
+    summary["errors"] = nlohmann::json::object();
+    for (const auto& e : scene_case->errors(P, t)) summary["errors"][e.first] = e.second;
+    write_json_file(output_dir + "/summary.json", summary);
+  };
+
+  try {
+    while (t < opt.t_end * (1.0 - 1e-12) && (opt.max_steps < 0 || step < opt.max_steps)) {
+      const double stable = solver->stable_dt();
+      double dt = opt.dt > 0 ? opt.dt : stable;
+      if (opt.dt > stable && !warned_dt) {
+        PetscFPrintf(PETSC_COMM_WORLD, stderr,
+                     "sph: warning: -dt %g exceeds the scheme's stability limit %g; the run may blow up\n", opt.dt, stable);
+        warned_dt = true;
+      }
+      // Equal steps that land on t_end: a last sliver of a step would be a different discretisation
+      // (ISPH's pressure scales with 1/dt).
+      const double remaining = opt.t_end - t;
+      dt = remaining / std::ceil(remaining / dt * (1.0 - 1e-12));
+      const StepReport report = solver->step(dt);
+      t += dt;
+      ++step;
+      stats.add(report);
+      check_health(P, step, t);
+
+      const Totals<D> tot = totals(P);
+      std::vector<double> row = {double(step), t, dt, tot.kinetic_energy};
+      for (int a = 0; a < D; ++a) row.push_back(tot.momentum[a]);
+      row.push_back(report.linear_iterations);
+      row.push_back(report.linear_reason);
+      for (const auto& e : scene_case->errors(P, t)) row.push_back(e.second);
+      series.row(row);
+      progress.update(step, t, dt, report.linear_iterations);
+      if (t >= next_output * (1.0 - 1e-12) || t >= opt.t_end * (1.0 - 1e-12)) {
+        writer.write(P, t);
+        while (next_output <= t * (1.0 + 1e-12)) next_output += opt.output_interval > 0 ? opt.output_interval : opt.t_end;
+      }
+    }
+  } catch (const Error& e) {
+    std::ostringstream msg;
+    msg << "step " << step + 1 << " (t = " << t << "): " << e.what();
+    finish("failed", msg.str());
+    throw Error(msg.str() + " [last good output kept in " + output_dir + "]");
+  }
+  progress.done(step, t);
+  finish("completed", "");
+  finish_options_check();
+}
+
+template <int D> void run_in_dim(const RunOptions& names) {
+  Run<D> run;
+  run.names = names;
+  run.scene_case = create_case<D>(names.case_name);
+  run.solver = create_solver<D>(names.solver_name);
+  run.configure();
+  run.execute();
+}
+
+}  // namespace
+
+void print_all_options(int dim) {
+  // Reading an options block with -help set prints it; values are not used.
+  for (const auto& entry : case_registry()) {
+    if (entry.make2) entry.make2()->set_from_options();
+    else if (entry.make1) entry.make1()->set_from_options();
+    else if (entry.make3) entry.make3()->set_from_options();
+  }
+  for (const auto& name : solver_names()) create_solver<2>(name)->set_from_options();
+  DriverOptions opt;
+  SPH_PETSC(read_driver_options(&opt));
+}
+
+void run_simulation(const RunOptions& opts, int dim) {
+  switch (dim) {
+    case 1: run_in_dim<1>(opts); break;
+    case 2: run_in_dim<2>(opts); break;
+    case 3: run_in_dim<3>(opts); break;
+    default: throw Error("-dim must be 1, 2 or 3 (got " + std::to_string(dim) + ")");
+  }
+}
+
+}  // namespace sph

@@ -1,0 +1,20 @@
+#pragma once
+// The driver of one run: builds the scene from a case, hands it to a solver, advances it to t_end,
+// and writes the outputs (VTK frames + .pvd, timeseries.csv, summary.json).
+#include <string>
+
+namespace sph {
+
+struct RunOptions {
+  std::string case_name = "taylor_green";
+  std::string solver_name = "isph";
+};
+
+// Prints every component's options (for -help).
+void print_all_options(int dim);
+
+// Runs the case with the solver in dimension `dim`; throws sph::Error on bad input or a failed run
+// (after writing the failed run's summary and keeping the last good output).
+void run_simulation(const RunOptions& opts, int dim);
+
+}  // namespace sph

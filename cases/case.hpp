@@ -1,0 +1,36 @@
+#pragma once
+// A scene: initial particles, the box, the physics it needs, and (where one exists) the reference
+// solution its errors are measured against. Cases use core types only.
+#include <map>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "src/core/domain.hpp"
+#include "src/core/physics.hpp"
+#include "src/particles/particles.hpp"
+
+namespace sph {
+
+template <int D> class Case {
+ public:
+  virtual ~Case() = default;
+  virtual std::string name() const = 0;
+
+  // Reads the case's options (PETSc options block) and checks their values (throws sph::Error).
+  virtual void set_from_options() = 0;
+
+  // Owned particles of this rank (the whole scene on one rank) and the box.
+  virtual void create(Particles<D>& P, Domain<D>& domain) const = 0;
+  virtual double spacing() const = 0;      // initial particle spacing dx
+  virtual int resolution() const = 0;      // particles per unit length label (nx)
+  virtual Physics<D> physics() const = 0;
+  virtual double default_t_end() const = 0;
+
+  // Error norms against the reference at time t, reduced over all ranks; empty without a reference.
+  virtual std::map<std::string, double> errors(const Particles<D>& P, double t) const { return {}; }
+  virtual nlohmann::json parameters() const = 0;
+};
+
+}  // namespace sph

@@ -1,0 +1,40 @@
+#include "cases/registry.hpp"
+
+#include "cases/taylor_green/taylor_green.hpp"
+#include "src/core/error.hpp"
+
+namespace sph {
+
+const std::vector<CaseEntry>& case_registry() {
+  static const std::vector<CaseEntry> entries = {
+      {"taylor_green", "decaying Taylor-Green vortex, periodic unit square, analytic reference", 2, nullptr,
+       [] { return std::make_unique<TaylorGreen>(); }, nullptr},
+  };
+  return entries;
+}
+
+const CaseEntry& find_case(const std::string& name) {
+  std::string list;
+  for (const auto& e : case_registry()) {
+    if (e.name == name) return e;
+    list += (list.empty() ? "" : ", ") + e.name;
+  }
+  throw Error("unknown case '" + name + "'; choose -case from: " + list);
+}
+
+template <int D> std::unique_ptr<Case<D>> create_case(const std::string& name) {
+  const CaseEntry& e = find_case(name);
+  std::function<std::unique_ptr<Case<D>>()> make;
+  if constexpr (D == 1) make = e.make1;
+  if constexpr (D == 2) make = e.make2;
+  if constexpr (D == 3) make = e.make3;
+  if (!make) throw Error("case '" + name + "' has no " + std::to_string(D) + "D form; use -dim " +
+                         std::to_string(e.default_dim));
+  return make();
+}
+
+template std::unique_ptr<Case<1>> create_case<1>(const std::string&);
+template std::unique_ptr<Case<2>> create_case<2>(const std::string&);
+template std::unique_ptr<Case<3>> create_case<3>(const std::string&);
+
+}  // namespace sph

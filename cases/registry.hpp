@@ -1,0 +1,25 @@
+#pragma once
+// The cases the sph program knows, chosen by name with -case.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cases/case.hpp"
+
+namespace sph {
+
+struct CaseEntry {
+  std::string name;
+  std::string description;
+  int default_dim;
+  std::function<std::unique_ptr<Case<1>>()> make1;  // empty where the case has no 1D form
+  std::function<std::unique_ptr<Case<2>>()> make2;
+  std::function<std::unique_ptr<Case<3>>()> make3;
+};
+
+const std::vector<CaseEntry>& case_registry();
+const CaseEntry& find_case(const std::string& name);  // throws sph::Error listing the known cases
+template <int D> std::unique_ptr<Case<D>> create_case(const std::string& name);
+
+}  // namespace sph

@@ -1,0 +1,95 @@
+#include "cases/taylor_green/taylor_green.hpp"
+
+#include <cmath>
+
+#include "src/core/options.hpp"
+
+namespace sph {
+
+namespace {
+PetscErrorCode read_options(PetscInt* nx, PetscReal* re, PetscReal* U, PetscReal* rho0) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Taylor-Green vortex (-case taylor_green)", "Case");
+  PetscCall(PetscOptionsInt("-nx", "Particles per side of the unit square", "", *nx, nx, nullptr));
+  PetscCall(PetscOptionsReal("-re", "Reynolds number U L / nu", "", *re, re, nullptr));
+  PetscCall(PetscOptionsReal("-U", "Initial velocity amplitude", "", *U, U, nullptr));
+  PetscCall(PetscOptionsReal("-rho0", "Density", "", *rho0, rho0, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+}  // namespace
+
+void TaylorGreen::set_from_options() {
+  SPH_PETSC(read_options(&nx_, &re_, &U_, &rho0_));
+  require(nx_ >= 4, "-nx", "at least 4", nx_);
+  require(re_ > 0, "-re", "positive", re_);
+  require(U_ > 0, "-U", "positive", U_);
+  require(rho0_ > 0, "-rho0", "positive", rho0_);
+}
+
+double TaylorGreen::decay_rate() const { return -8.0 * M_PI * M_PI / re_; }
+
+Vector<2> TaylorGreen::velocity(const Vector<2>& x, double t) const {
+  const double a = U_ * std::exp(decay_rate() * t), k = 2.0 * M_PI;
+  return {-a * std::cos(k * x[0]) * std::sin(k * x[1]), a * std::sin(k * x[0]) * std::cos(k * x[1])};
+}
+
+double TaylorGreen::pressure(const Vector<2>& x, double t) const {
+  const double k = 4.0 * M_PI;
+  return -0.25 * rho0_ * U_ * U_ * std::exp(2.0 * decay_rate() * t) * (std::cos(k * x[0]) + std::cos(k * x[1]));
+}
+
+Physics<2> TaylorGreen::physics() const {
+  Physics<2> phys;
+  phys.rho0 = rho0_;
+  phys.nu = U_ * 1.0 / re_;
+  phys.U = U_;
+  return phys;
+}
+
+void TaylorGreen::create(Particles<2>& P, Domain<2>& domain) const {
+  domain.lo = Vector<2>::Zero();
+  domain.hi = Vector<2>::Ones();
+  domain.periodic = {true, true};
+  PetscMPIInt rank, size;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  // Each rank creates an equal contiguous share of the lattice.
+  const long n = static_cast<long>(nx_) * nx_;
+  const long begin = n * rank / size, end = n * (rank + 1) / size;
+  const double dx = spacing(), mass = rho0_ * dx * dx;
+  for (long k = begin; k < end; ++k) {
+    const Vector<2> x((k % nx_ + 0.5) * dx, (k / nx_ + 0.5) * dx);
+    P.add(x, velocity(x, 0.0), mass, rho0_, pressure(x, 0.0));
+  }
+}
+
+std::map<std::string, double> TaylorGreen::errors(const Particles<2>& P, double t) const {
+  const double amp = U_ * std::exp(decay_rate() * t);
+  // sums: |du|, count, p, p_exact ; maxima: |du|, |u|
+  double sum[4] = {0, 0, 0, 0}, mx[2] = {0, 0};
+  std::vector<double> p_exact(P.n_owned);
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    const double du = (P.v[i] - velocity(P.x[i], t)).norm();
+    p_exact[i] = pressure(P.x[i], t);
+    sum[0] += du, sum[1] += 1.0, sum[2] += P.p[i], sum[3] += p_exact[i];
+    mx[0] = std::max(mx[0], du), mx[1] = std::max(mx[1], P.v[i].norm());
+  }
+  MPI_Allreduce(MPI_IN_PLACE, sum, 4, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, mx, 2, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+  const double mean_p = sum[2] / sum[1], mean_pe = sum[3] / sum[1];
+  double dp = 0.0;
+  for (std::size_t i = 0; i < P.n_owned; ++i) dp += std::abs((P.p[i] - mean_p) - (p_exact[i] - mean_pe));
+  MPI_Allreduce(MPI_IN_PLACE, &dp, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  const double p_scale = 0.5 * rho0_ * amp * amp;
+  return {{"l1_velocity", sum[0] / sum[1] / amp},
+          {"linf_velocity", mx[0] / amp},
+          {"decay_rel", std::abs(mx[1] - amp) / amp},
+          {"l1_pressure", dp / sum[1] / p_scale}};
+}
+
+nlohmann::json TaylorGreen::parameters() const {
+  return {{"nx", nx_}, {"re", re_}, {"U", U_}, {"rho0", rho0_}};
+}
+
+}  // namespace sph

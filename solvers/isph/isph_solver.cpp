@@ -1,0 +1,151 @@
+#include "solvers/isph/isph_solver.hpp"
+
+#include <cmath>
+
+#include "src/core/options.hpp"
+#include "src/sph/operators.hpp"
+
+namespace sph {
+
+namespace {
+const char* const gradient_names[] = {"corrected", "difference", "symmetric"};
+
+PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscReal* shift_A, PetscInt* gradient) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "ISPH projection solver (-solver isph)", "Solver");
+  PetscCall(PetscOptionsReal("-cfl", "Advective Courant number: dt <= cfl h / U", "", *cfl, cfl, nullptr));
+  PetscCall(PetscOptionsBool("-shifting", "Particle shifting (Lind et al. 2012)", "", *shifting, shifting, nullptr));
+  PetscCall(PetscOptionsReal("-shift_coefficient", "Shifting diffusion factor A in D = A h U dt", "", *shift_A,
+                             shift_A, nullptr));
+  PetscCall(PetscOptionsEList("-pressure_gradient",
+                              "Pressure gradient: corrected (Bonet & Lok), difference, symmetric (Monaghan)", "",
+                              gradient_names, 3, gradient_names[*gradient], gradient, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+}  // namespace
+
+template <int D> void IsphSolver<D>::set_from_options() {
+  PetscReal cfl = cfl_, A = shifting_model_.A;
+  PetscInt gradient = static_cast<PetscInt>(gradient_);
+  SPH_PETSC(read_options(&cfl, &shifting_, &A, &gradient));
+  require(cfl > 0 && cfl <= 1.0, "-cfl", "in (0, 1]", cfl);
+  require(A >= 0, "-shift_coefficient", "non-negative", A);
+  cfl_ = cfl, shifting_model_.A = A, gradient_ = static_cast<PressureGradient>(gradient);
+  ppe_.set_from_options();
+}
+
+template <int D> void IsphSolver<D>::setup(Scene<D>& scene) {
+  scene_ = &scene;
+  Particles<D>& P = scene.particles;
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    if (P.kind[i] != kFluid) throw Error("the ISPH solver has no wall boundary treatment yet; use a periodic case");
+    P.rho[i] = scene.physics.rho0;  // divergence-free ISPH: density stays at its reference value
+  }
+  scene.neighbourhood.update(P, true);
+}
+
+template <int D> double IsphSolver<D>::max_speed() const {
+  const Particles<D>& P = scene_->particles;
+  double u2 = 0.0;
+  for (std::size_t i = 0; i < P.n_owned; ++i) u2 = std::max(u2, P.v[i].squaredNorm());
+  MPI_Allreduce(MPI_IN_PLACE, &u2, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+  return std::sqrt(u2);
+}
+
+template <int D> double IsphSolver<D>::stable_dt() const {
+  const double h = scene_->kernel.h();
+  const Physics<D>& phys = scene_->physics;
+  // The reference speed bounds the step too, so a fluid at rest does not take an unbounded step.
+  double dt = cfl_ * h / std::max(max_speed(), phys.U);
+  if (phys.viscous()) dt = std::min(dt, viscous_dt_factor_ * h * h / phys.nu);  // Morris et al. (1997)
+  return dt;
+}
+
+template <int D> std::vector<Vector<D>> IsphSolver<D>::pressure_gradient() const {
+  const Particles<D>& P = scene_->particles;
+  const NeighbourList<D>& nl = scene_->neighbourhood.list();
+  const Kernel<D>& K = scene_->kernel;
+  switch (gradient_) {
+    case PressureGradient::Corrected:
+      return gradient_corrected(P, nl, K, correction_matrices(P, nl, K), P.p);
+    case PressureGradient::Difference: return gradient_difference(P, nl, K, P.p);
+    case PressureGradient::Symmetric: return gradient_symmetric(P, nl, K, P.p);
+  }
+  return {};
+}
+
+template <int D> StepReport IsphSolver<D>::step(double dt) {
+  Particles<D>& P = scene_->particles;
+  Neighbourhood<D>& nh = scene_->neighbourhood;
+  const Kernel<D>& K = scene_->kernel;
+  const Physics<D>& phys = scene_->physics;
+  const std::size_t n = P.n_owned;
+  nh.update(P);
+
+  // Prediction with the non-pressure forces at x^n.
+  const std::vector<Vector<D>> u_old(P.v.begin(), P.v.begin() + n);
+  std::vector<Vector<D>> u_star = P.v;
+  if (phys.viscous()) {
+    std::vector<Vector<D>> lap = laplacian_morris(P, nh.list(), K, P.v);
+    for (std::size_t i = 0; i < n; ++i) u_star[i] += dt * phys.nu * lap[i];
+  }
+  if (phys.has_body_force())
+    for (std::size_t i = 0; i < n; ++i) u_star[i] += dt * phys.gravity;
+
+  // Advect to x* = x^n + dt u^n, where the projection is made: the pressure then balances this
+  // step's motion (Cummins & Rudman 1999; Lind et al. 2012) instead of lagging a step behind.
+  for (std::size_t i = 0; i < n; ++i) P.x[i] += dt * u_old[i];
+  nh.update(P);
+  nh.halo().update(u_star);
+
+  // Projection: div(grad p / rho) = div(u*) / dt.
+  std::vector<double> source = divergence(P, nh.list(), K, u_star);
+  for (double& s : source) s /= dt;
+  ppe_.assemble(P, nh, K);
+  // The first solve starts from zero: the case's initial pressure is not the projection's.
+  const StepReport report = ppe_.solve(source, P.m, P.p, solves_ > 0);
+  ++solves_;
+  nh.halo().update(P.p);
+
+  // Correction, and the trapezoidal position update x^{n+1} = x^n + dt (u^n + u^{n+1}) / 2.
+  const std::vector<Vector<D>> grad_p = pressure_gradient();
+  for (std::size_t i = 0; i < n; ++i) {
+    P.v[i] = u_star[i] - (dt / P.rho[i]) * grad_p[i];
+    P.x[i] += (0.5 * dt) * (P.v[i] - u_old[i]);
+  }
+  if (shifting_) shift(dt);
+  return report;
+}
+
+template <int D> void IsphSolver<D>::shift(double dt) {
+  Particles<D>& P = scene_->particles;
+  Neighbourhood<D>& nh = scene_->neighbourhood;
+  const Kernel<D>& K = scene_->kernel;
+  nh.update(P);  // shifting works on the new positions
+  const NeighbourList<D>& nl = nh.list();
+  const std::vector<Vector<D>> dr = shifting_model_.displacement(P, nl, K, scene_->dx, max_speed(), dt);
+  // Taylor correction: the velocity at the shifted position, u + (dr . grad) u.
+  const std::vector<Tensor<D>> grad_u = vector_gradient_corrected(P, nl, K, correction_matrices(P, nl, K), P.v);
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    P.x[i] += dr[i];
+    P.v[i] += grad_u[i].transpose() * dr[i];
+  }
+}
+
+template <int D> nlohmann::json IsphSolver<D>::describe() const {
+  const Physics<D>& phys = scene_->physics;
+  nlohmann::json models = nlohmann::json::object();
+  models["pressure_laplacian"] = "CumminsRudman";
+  models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
+  if (phys.viscous()) models["viscosity"] = {{"model", "MorrisViscosity"}, {"nu", phys.nu}};
+  if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
+  if (shifting_) models["shifting"] = shifting_model_.describe();
+  return {{"models", models}, {"cfl", cfl_}, {"ksp", ppe_.describe()}};
+}
+
+template class IsphSolver<1>;
+template class IsphSolver<2>;
+template class IsphSolver<3>;
+
+}  // namespace sph

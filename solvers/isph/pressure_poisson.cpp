@@ -1,0 +1,150 @@
+#include "solvers/isph/pressure_poisson.hpp"
+
+#include <sstream>
+
+#include "src/core/error.hpp"
+
+namespace sph {
+
+template <int D> PressurePoisson<D>::~PressurePoisson() {
+  destroy_system();
+  if (ksp_) KSPDestroy(&ksp_);
+}
+
+template <int D> void PressurePoisson<D>::destroy_system() {
+  if (nullspace_) MatNullSpaceDestroy(&nullspace_);
+  if (A_) MatDestroy(&A_);
+  if (b_) VecDestroy(&b_);
+  if (x_) VecDestroy(&x_);
+}
+
+template <int D> void PressurePoisson<D>::set_from_options() {
+  if (ksp_) return;
+  SPH_PETSC(KSPCreate(PETSC_COMM_WORLD, &ksp_));
+  SPH_PETSC(KSPSetType(ksp_, KSPCG));
+  PC pc;
+  SPH_PETSC(KSPGetPC(ksp_, &pc));
+  SPH_PETSC(PCSetType(pc, PCHYPRE));
+  SPH_PETSC(PCHYPRESetType(pc, "boomeramg"));
+  SPH_PETSC(KSPSetTolerances(ksp_, 1e-8, 1e-50, PETSC_DEFAULT, 1000));
+  // The previous step's pressure is a good first guess.
+  SPH_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
+  SPH_PETSC(KSPSetFromOptions(ksp_));
+}
+
+template <int D>
+void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K) {
+  const NeighbourList<D>& nl = nh.list();
+  const Halo<D>& halo = nh.halo();
+  PetscMPIInt rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+
+  // Exact preallocation: one diagonal entry plus one per distinct-particle pair inside the support,
+  // split by whether the column's particle is owned by this rank.
+  const std::size_t n = P.n_owned;
+  std::vector<PetscInt> d_nnz(n, 1), o_nnz(n, 0);
+  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>&) {
+    if (P.gid[j] == P.gid[i]) return;
+    const bool local = static_cast<std::size_t>(j) < n || halo.owner_rank(j - n) == rank;
+    ++(local ? d_nnz[i] : o_nnz[i]);
+  });
+  for (std::size_t i = 0; i < n; ++i) d_nnz[i] = std::min<PetscInt>(d_nnz[i], n);
+
+  destroy_system();
+  SPH_PETSC(MatCreateAIJ(PETSC_COMM_WORLD, n, n, PETSC_DETERMINE, PETSC_DETERMINE, 0, d_nnz.data(), 0,
+                         o_nnz.data(), &A_));
+  SPH_PETSC(MatSetOption(A_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+
+  std::vector<PetscInt> cols;
+  std::vector<PetscScalar> vals;
+  std::size_t current = 0;
+  double diag = 0.0;
+  auto flush_row = [&](std::size_t i) {
+    const PetscInt row = P.gid[i];
+    cols.push_back(row);
+    vals.push_back(diag);
+    SPH_PETSC(MatSetValues(A_, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(), vals.data(), ADD_VALUES));
+    cols.clear(), vals.clear(), diag = 0.0;
+  };
+  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+    while (current < static_cast<std::size_t>(i)) flush_row(current++);
+    if (P.gid[j] == P.gid[i]) return;  // a periodic image of i itself: p_i - p_i = 0
+    const double c = P.m[i] * ppe_pair_coefficient(P.m[j], P.rho[i], P.rho[j], morris_factor(g, K.h()));
+    cols.push_back(P.gid[j]);
+    vals.push_back(c);
+    diag -= c;
+  });
+  while (current < n) flush_row(current++);
+  SPH_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
+  SPH_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
+
+  SPH_PETSC(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_TRUE, 0, nullptr, &nullspace_));
+  SPH_PETSC(MatSetNullSpace(A_, nullspace_));
+  SPH_PETSC(MatSetTransposeNullSpace(A_, nullspace_));
+  SPH_PETSC(MatCreateVecs(A_, &x_, &b_));
+  SPH_PETSC(KSPSetOperators(ksp_, A_, A_));
+}
+
+template <int D>
+StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const std::vector<double>& mass,
+                                     std::vector<double>& p, bool use_guess) {
+  PetscScalar *b, *x;
+  PetscInt n;
+  SPH_PETSC(VecGetLocalSize(b_, &n));
+  SPH_PETSC(VecGetArray(b_, &b));
+  SPH_PETSC(VecGetArray(x_, &x));
+  for (PetscInt i = 0; i < n; ++i) b[i] = -mass[i] * source[i], x[i] = use_guess ? p[i] : 0.0;
+  SPH_PETSC(VecRestoreArray(b_, &b));
+  SPH_PETSC(VecRestoreArray(x_, &x));
+  // The discrete divergence of u* need not sum to zero exactly: project out the part of the
+  // right-hand side that no pressure can produce.
+  SPH_PETSC(MatNullSpaceRemove(nullspace_, b_));
+  SPH_PETSC(KSPSolve(ksp_, b_, x_));
+  SPH_PETSC(MatNullSpaceRemove(nullspace_, x_));
+
+  StepReport report;
+  KSPConvergedReason reason;
+  PetscInt its;
+  SPH_PETSC(KSPGetConvergedReason(ksp_, &reason));
+  SPH_PETSC(KSPGetIterationNumber(ksp_, &its));
+  SPH_PETSC(KSPGetResidualNorm(ksp_, &report.linear_residual));
+  report.linear_iterations = static_cast<int>(its);
+  report.linear_reason = static_cast<int>(reason);
+  if (reason < 0) {
+    std::ostringstream msg;
+    msg << "pressure Poisson solve did not converge (" << KSPConvergedReasons[reason] << " after " << its
+        << " iterations, residual " << report.linear_residual
+        << "); try -ksp_max_it, another -ksp_type/-pc_type, or a smaller -cfl";
+    throw Error(msg.str());
+  }
+  const PetscScalar* xs;
+  SPH_PETSC(VecGetArrayRead(x_, &xs));
+  for (PetscInt i = 0; i < n; ++i) p[i] = xs[i];
+  SPH_PETSC(VecRestoreArrayRead(x_, &xs));
+  return report;
+}
+
+template <int D> nlohmann::json PressurePoisson<D>::describe() const {
+  KSPType ktype;
+  PCType ptype;
+  PC pc;
+  PetscReal rtol, abstol, dtol;
+  PetscInt maxit;
+  SPH_PETSC(KSPGetType(ksp_, &ktype));
+  SPH_PETSC(KSPGetPC(ksp_, &pc));
+  SPH_PETSC(PCGetType(pc, &ptype));
+  SPH_PETSC(KSPGetTolerances(ksp_, &rtol, &abstol, &dtol, &maxit));
+  nlohmann::json j{{"type", ktype ? ktype : ""}, {"pc_type", ptype ? ptype : ""}, {"rtol", rtol}, {"max_it", maxit}};
+  if (ptype && std::string(ptype) == PCHYPRE) {
+    const char* htype = nullptr;
+    SPH_PETSC(PCHYPREGetType(pc, &htype));
+    if (htype) j["pc_hypre_type"] = htype;
+  }
+  return j;
+}
+
+template class PressurePoisson<1>;
+template class PressurePoisson<2>;
+template class PressurePoisson<3>;
+
+}  // namespace sph

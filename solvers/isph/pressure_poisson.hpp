@@ -1,0 +1,56 @@
+#pragma once
+// The pressure Poisson equation of the ISPH projection, assembled into a PETSc matrix and solved with
+// a PETSc KSP (default: CG + hypre BoomerAMG; every KSP/PC choice can be changed with the ordinary
+// -ksp_* / -pc_* options).
+//
+// Discretisation: the Laplacian of Cummins & Rudman (1999),
+//   div(grad p / rho)_i = sum_j c_ij (p_i - p_j),  c_ij = 8 m_j F_ij / (rho_i + rho_j)^2,
+// with row i multiplied by -m_i. Because m_i c_ij = m_j c_ji the matrix is symmetric, and since
+// F_ij < 0 it is a positive semi-definite M-matrix: CG with AMG applies. With no Dirichlet rows
+// (periodic or closed domains) the constant vector spans its null space; it is attached with
+// MatSetNullSpace and removed from the right-hand side, which makes the singular system consistent.
+// Rows and columns use global particle indices, so the same code assembles a distributed matrix.
+#include <petscksp.h>
+
+#include <string>
+#include <vector>
+
+#include "solvers/solver.hpp"
+#include "src/sph/pair_terms.hpp"
+
+namespace sph {
+
+template <int D> class PressurePoisson {
+ public:
+  PressurePoisson() = default;
+  ~PressurePoisson();
+  PressurePoisson(const PressurePoisson&) = delete;
+  PressurePoisson& operator=(const PressurePoisson&) = delete;
+
+  // Creates the KSP with the defaults above, then applies the user's -ksp_*/-pc_* options.
+  void set_from_options();
+
+  // Builds the matrix for the current particle positions (owned rows, global column indices).
+  void assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K);
+
+  // Solves div(grad p / rho) = source (one value per owned particle). With use_guess, p holds the
+  // initial guess on entry (the previous step's pressure: a good one); otherwise the KSP starts from
+  // zero. On exit p holds the solution, with zero mean. Throws sph::Error when the KSP does not
+  // converge.
+  StepReport solve(const std::vector<double>& source, const std::vector<double>& mass, std::vector<double>& p,
+                   bool use_guess = true);
+
+  ::Mat matrix() const { return A_; }
+  KSP ksp() const { return ksp_; }
+  nlohmann::json describe() const;
+
+ private:
+  void destroy_system();
+
+  KSP ksp_ = nullptr;
+  ::Mat A_ = nullptr;
+  ::Vec b_ = nullptr, x_ = nullptr;
+  MatNullSpace nullspace_ = nullptr;
+};
+
+}  // namespace sph

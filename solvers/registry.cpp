@@ -1,0 +1,24 @@
+#include "solvers/registry.hpp"
+
+#include "solvers/isph/isph_solver.hpp"
+#include "src/core/error.hpp"
+
+namespace sph {
+
+const std::vector<std::string>& solver_names() {
+  static const std::vector<std::string> names = {"isph"};
+  return names;
+}
+
+template <int D> std::unique_ptr<Solver<D>> create_solver(const std::string& name) {
+  if (name == "isph") return std::make_unique<IsphSolver<D>>();
+  std::string list;
+  for (const auto& n : solver_names()) list += (list.empty() ? "" : ", ") + n;
+  throw Error("unknown solver '" + name + "'; choose -solver from: " + list);
+}
+
+template std::unique_ptr<Solver<1>> create_solver<1>(const std::string&);
+template std::unique_ptr<Solver<2>> create_solver<2>(const std::string&);
+template std::unique_ptr<Solver<3>> create_solver<3>(const std::string&);
+
+}  // namespace sph

@@ -1,0 +1,44 @@
+#pragma once
+// The interface every scheme implements (one folder per scheme under solvers/). A solver reads its
+// options, takes the scene once, then advances it by one time step at a time.
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "src/core/physics.hpp"
+#include "src/kernels/kernel.hpp"
+#include "src/neighbours/neighbourhood.hpp"
+
+namespace sph {
+
+// What a step reports beyond the new particle state (linear solver figures, for implicit schemes).
+struct StepReport {
+  int linear_iterations = -1;   // -1: no linear solve in this scheme
+  int linear_reason = 0;        // PETSc KSPConvergedReason
+  double linear_residual = 0.0;
+};
+
+// The scene a solver works on; owned by the driver, outliving the solver's steps.
+template <int D> struct Scene {
+  Particles<D>& particles;
+  Neighbourhood<D>& neighbourhood;
+  const Kernel<D>& kernel;
+  Physics<D> physics;
+  double dx;  // initial particle spacing
+};
+
+template <int D> class Solver {
+ public:
+  virtual ~Solver() = default;
+  virtual std::string name() const = 0;
+  // Reads the solver's options (PETSc options block; -help lists them) and checks them.
+  virtual void set_from_options() = 0;
+  virtual void setup(Scene<D>& scene) = 0;
+  // Largest time step the scheme's stability limits allow for the current state.
+  virtual double stable_dt() const = 0;
+  virtual StepReport step(double dt) = 0;
+  // Active models and their parameters, linear solver settings: goes into summary.json.
+  virtual nlohmann::json describe() const = 0;
+};
+
+}  // namespace sph

@@ -1,0 +1,30 @@
+#pragma once
+// Fixed-radius neighbour lists from a nanoflann k-d tree, in compressed-row form.
+// Queries are the owned particles; candidates are owned and ghost particles, so periodic images and
+// (on several ranks) halo particles are found by the same plain Euclidean search.
+#include <vector>
+
+#include "src/core/types.hpp"
+
+namespace sph {
+
+template <int D> class NeighbourList {
+ public:
+  // Lists, for each of the first n_query points, every other point closer than `radius`,
+  // in increasing index order (deterministic loops, reproducible sums).
+  void build(const std::vector<Vector<D>>& x, std::size_t n_query, double radius);
+
+  std::size_t size() const { return offset_.empty() ? 0 : offset_.size() - 1; }
+  const int* begin(std::size_t i) const { return index_.data() + offset_[i]; }
+  const int* end(std::size_t i) const { return index_.data() + offset_[i + 1]; }
+  std::size_t count(std::size_t i) const { return offset_[i + 1] - offset_[i]; }
+  std::size_t total() const { return index_.size(); }
+  double radius() const { return radius_; }
+
+ private:
+  std::vector<std::size_t> offset_;
+  std::vector<int> index_;
+  double radius_ = 0.0;
+};
+
+}  // namespace sph

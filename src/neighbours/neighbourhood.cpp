@@ -1,0 +1,35 @@
+#include "src/neighbours/neighbourhood.hpp"
+
+#include <mpi.h>
+
+namespace sph {
+
+template <int D> bool Neighbourhood<D>::update(Particles<D>& P, bool force) {
+  bool rebuild = force || x_at_build_.size() != P.n_owned;
+  if (!rebuild) {
+    double max_disp2 = 0.0;
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      max_disp2 = std::max(max_disp2, (P.x[i] - x_at_build_[i]).squaredNorm());
+    MPI_Allreduce(MPI_IN_PLACE, &max_disp2, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+    // Two particles each moving skin/2 towards each other is the worst case the skin covers.
+    rebuild = 2.0 * std::sqrt(max_disp2) >= skin_;
+  }
+  if (!rebuild) {
+    halo_.update_positions(P.x);
+    halo_.update(P.v);
+    return false;
+  }
+  for (std::size_t i = 0; i < P.n_owned; ++i) P.x[i] = domain_.wrap(P.x[i]);
+  const double radius = support_ + skin_;
+  halo_.build(P, domain_, radius);
+  list_.build(P.x, P.n_owned, radius);
+  x_at_build_.assign(P.x.begin(), P.x.begin() + P.n_owned);
+  ++rebuilds_;
+  return true;
+}
+
+template class Neighbourhood<1>;
+template class Neighbourhood<2>;
+template class Neighbourhood<3>;
+
+}  // namespace sph

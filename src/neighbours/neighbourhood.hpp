@@ -1,0 +1,35 @@
+#pragma once
+// Ghost layer + neighbour lists kept valid as particles move (a Verlet list with a skin).
+// Lists are built with radius (support + skin); between rebuilds the pair loops evaluate the kernel
+// at current positions, so a list stays exact while no particle has moved more than skin/2.
+#include "src/neighbours/halo.hpp"
+#include "src/neighbours/neighbour_list.hpp"
+
+namespace sph {
+
+template <int D> class Neighbourhood {
+ public:
+  Neighbourhood(const Domain<D>& domain, double support_radius, double skin)
+      : domain_(domain), support_(support_radius), skin_(skin) {}
+
+  // Call after owned positions changed. Rebuilds (wrapping owned particles back into a periodic box,
+  // re-making ghosts and lists) when needed or forced; otherwise refreshes ghost positions and
+  // velocities. Returns true when it rebuilt; the ghost count may then have changed.
+  bool update(Particles<D>& P, bool force = false);
+
+  const NeighbourList<D>& list() const { return list_; }
+  const Halo<D>& halo() const { return halo_; }
+  const Domain<D>& domain() const { return domain_; }
+  double support_radius() const { return support_; }
+  long rebuilds() const { return rebuilds_; }
+
+ private:
+  Domain<D> domain_;
+  double support_, skin_;
+  Halo<D> halo_;
+  NeighbourList<D> list_;
+  std::vector<Vector<D>> x_at_build_;
+  long rebuilds_ = 0;
+};
+
+}  // namespace sph

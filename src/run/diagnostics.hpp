@@ -1,0 +1,51 @@
+#pragma once
+// Whole-system figures and run-health checks, reduced over all ranks.
+#include <cmath>
+#include <sstream>
+
+#include "src/core/error.hpp"
+#include "src/particles/particles.hpp"
+
+namespace sph {
+
+// Gives owned particles contiguous global indices, rank by rank (PETSc's row ownership).
+template <int D> void assign_global_indices(Particles<D>& P) {
+  GlobalIndex n = static_cast<GlobalIndex>(P.n_owned), first = 0, total = 0;
+  MPI_Exscan(&n, &first, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
+  MPI_Allreduce(&n, &total, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
+  PetscMPIInt rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank == 0) first = 0;  // MPI_Exscan leaves rank 0's result undefined
+  P.first_gid = first;
+  P.n_global = total;
+  for (std::size_t i = 0; i < P.n_owned; ++i) P.gid[i] = first + static_cast<GlobalIndex>(i);
+}
+
+template <int D> struct Totals {
+  double kinetic_energy = 0.0;
+  Vector<D> momentum = Vector<D>::Zero();
+};
+
+template <int D> Totals<D> totals(const Particles<D>& P) {
+  double buf[D + 1] = {};
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    buf[0] += 0.5 * P.m[i] * P.v[i].squaredNorm();
+    for (int a = 0; a < D; ++a) buf[1 + a] += P.m[i] * P.v[i][a];
+  }
+  MPI_Allreduce(MPI_IN_PLACE, buf, D + 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  Totals<D> t;
+  t.kinetic_energy = buf[0];
+  for (int a = 0; a < D; ++a) t.momentum[a] = buf[1 + a];
+  return t;
+}
+
+// Stops a run whose state is no longer a number.
+template <int D> void check_health(const Particles<D>& P, long step, double t) {
+  int bad = 0;
+  for (std::size_t i = 0; i < P.n_owned && !bad; ++i)
+    if (!P.x[i].allFinite() || !P.v[i].allFinite() || !std::isfinite(P.p[i])) bad = 1;
+  MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  if (bad) throw Error("position, velocity or pressure became NaN/Inf: the run blew up; reduce -cfl or -dt");
+}
+
+}  // namespace sph

@@ -1,0 +1,103 @@
+#pragma once
+// SPH differential operators on particle fields (outputs hold one value per owned particle).
+// Every operator is the shared pair loop with a small pair formula; V_j = m_j / rho_j.
+#include <vector>
+
+#include "src/sph/pair_terms.hpp"
+
+namespace sph {
+
+// rho_i = sum_j m_j W_ij (self term included).
+template <int D>
+std::vector<double> density_summation(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) {
+  std::vector<double> rho(P.n_owned);
+  for (std::size_t i = 0; i < P.n_owned; ++i) rho[i] = P.m[i] * K.W(0.0);
+  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) { rho[i] += P.m[j] * g.W; });
+  return rho;
+}
+
+// (div u)_i = -(1/rho_i) sum_j m_j u_ij . grad_i W_ij  (exact for uniform u).
+template <int D>
+std::vector<double> divergence(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                               const std::vector<Vector<D>>& u) {
+  std::vector<double> div(P.n_owned, 0.0);
+  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+    div[i] -= P.m[j] * (u[i] - u[j]).dot(g.gradW);
+  });
+  for (std::size_t i = 0; i < P.n_owned; ++i) div[i] /= P.rho[i];
+  return div;
+}
+
+// (grad f)_i = sum_j V_j (f_j - f_i) grad_i W_ij  (zero for constant f).
+template <int D>
+std::vector<Vector<D>> gradient_difference(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                        const std::vector<double>& f) {
+  std::vector<Vector<D>> grad(P.n_owned, Vector<D>::Zero());
+  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+    grad[i] += (P.m[j] / P.rho[j] * (f[j] - f[i])) * g.gradW;
+  });
+  return grad;
+}
+
+// (grad f)_i = rho_i sum_j m_j (f_i/rho_i^2 + f_j/rho_j^2) grad_i W_ij: the momentum-conserving
+// (antisymmetric in i, j) form of Monaghan (1992).
+template <int D>
+std::vector<Vector<D>> gradient_symmetric(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                       const std::vector<double>& f) {
+  std::vector<Vector<D>> grad(P.n_owned, Vector<D>::Zero());
+  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+    grad[i] += (P.m[j] * (f[i] / (P.rho[i] * P.rho[i]) + f[j] / (P.rho[j] * P.rho[j]))) * g.gradW;
+  });
+  for (std::size_t i = 0; i < P.n_owned; ++i) grad[i] *= P.rho[i];
+  return grad;
+}
+
+// Kernel-gradient correction L_i = (sum_j V_j grad_i W_ij (x_j - x_i)^T)^{-1} (Bonet & Lok 1999):
+// with it, sum_j V_j (f_j - f_i) L_i grad_i W_ij is exact for linear f on any particle distribution.
+// Where the moment matrix is singular (isolated particles) the identity is used.
+template <int D>
+std::vector<Tensor<D>> correction_matrices(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) {
+  std::vector<Tensor<D>> M(P.n_owned, Tensor<D>::Zero());
+  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+    M[i] -= (P.m[j] / P.rho[j]) * g.gradW * g.rij.transpose();
+  });
+  for (auto& Mi : M) {
+    const double det = Mi.determinant();
+    Mi = std::abs(det) > 1e-8 * std::pow(Mi.norm(), D) ? Tensor<D>(Mi.inverse()) : Tensor<D>(Tensor<D>::Identity());
+  }
+  return M;
+}
+
+template <int D>
+std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                       const std::vector<Tensor<D>>& L, const std::vector<double>& f) {
+  std::vector<Vector<D>> grad = gradient_difference(P, nl, K, f);
+  for (std::size_t i = 0; i < P.n_owned; ++i) grad[i] = L[i] * grad[i];
+  return grad;
+}
+
+// Corrected gradient of a vector field: G_i(a, b) = d u_b / d x_a.
+template <int D>
+std::vector<Tensor<D>> vector_gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl,
+                                              const Kernel<D>& K, const std::vector<Tensor<D>>& L,
+                                              const std::vector<Vector<D>>& u) {
+  std::vector<Tensor<D>> G(P.n_owned, Tensor<D>::Zero());
+  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+    G[i] += (P.m[j] / P.rho[j]) * g.gradW * (u[j] - u[i]).transpose();
+  });
+  for (std::size_t i = 0; i < P.n_owned; ++i) G[i] = L[i] * G[i];
+  return G;
+}
+
+// Morris et al. (1997) Laplacian: (lap f)_i = 2 sum_j V_j (f_i - f_j) F_ij.
+template <int D, class T>
+std::vector<T> laplacian_morris(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                const std::vector<T>& f) {
+  std::vector<T> lap(P.n_owned, T(f.empty() ? T() : f[0] * 0.0));
+  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+    lap[i] += (2.0 * P.m[j] / P.rho[j] * morris_factor(g, K.h())) * (f[i] - f[j]);
+  });
+  return lap;
+}
+
+}  // namespace sph
