@@ -15,7 +15,7 @@ PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscReal* shif
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "ISPH projection solver (-solver isph)", "Solver");
   PetscCall(PetscOptionsReal("-cfl", "Advective Courant number: dt <= cfl h / U", "", *cfl, cfl, nullptr));
   PetscCall(PetscOptionsBool("-shifting", "Particle shifting (Lind et al. 2012)", "", *shifting, shifting, nullptr));
-  PetscCall(PetscOptionsReal("-shift_coefficient", "Shifting diffusion factor A in D = A h U dt", "", *shift_A,
+  PetscCall(PetscOptionsReal("-shift_coefficient", "Shifting coefficient A in D = A h^2 per step (stable up to ~0.5)", "", *shift_A,
                              shift_A, nullptr));
   PetscCall(PetscOptionsEList("-pressure_gradient",
                               "Pressure gradient: corrected (Bonet & Lok), difference, symmetric (Monaghan)", "",
@@ -30,7 +30,7 @@ template <int D> void IsphSolver<D>::set_from_options() {
   PetscInt gradient = static_cast<PetscInt>(gradient_);
   SPH_PETSC(read_options(&cfl, &shifting_, &A, &gradient));
   require(cfl > 0 && cfl <= 1.0, "-cfl", "in (0, 1]", cfl);
-  require(A >= 0, "-shift_coefficient", "non-negative", A);
+  require(A >= 0 && A <= 1, "-shift_coefficient", "in [0, 1]", A);
   cfl_ = cfl, shifting_model_.A = A, gradient_ = static_cast<PressureGradient>(gradient);
   ppe_.set_from_options();
 }
@@ -114,23 +114,13 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
     P.v[i] = u_star[i] - (dt / P.rho[i]) * grad_p[i];
     P.x[i] += (0.5 * dt) * (P.v[i] - u_old[i]);
   }
-  if (shifting_) shift(dt);
+  if (shifting_) shift();
   return report;
 }
 
-template <int D> void IsphSolver<D>::shift(double dt) {
-  Particles<D>& P = scene_->particles;
-  Neighbourhood<D>& nh = scene_->neighbourhood;
-  const Kernel<D>& K = scene_->kernel;
-  nh.update(P);  // shifting works on the new positions
-  const NeighbourList<D>& nl = nh.list();
-  const std::vector<Vector<D>> dr = shifting_model_.displacement(P, nl, K, scene_->dx, max_speed(), dt);
-  // Taylor correction: the velocity at the shifted position, u + (dr . grad) u.
-  const std::vector<Tensor<D>> grad_u = vector_gradient_corrected(P, nl, K, correction_matrices(P, nl, K), P.v);
-  for (std::size_t i = 0; i < P.n_owned; ++i) {
-    P.x[i] += dr[i];
-    P.v[i] += grad_u[i].transpose() * dr[i];
-  }
+template <int D> void IsphSolver<D>::shift() {
+  scene_->neighbourhood.update(scene_->particles);  // shifting works on the new positions
+  shift_particles(scene_->particles, scene_->neighbourhood, scene_->kernel, shifting_model_, scene_->dx);
 }
 
 template <int D> nlohmann::json IsphSolver<D>::describe() const {

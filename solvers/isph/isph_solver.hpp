@@ -29,7 +29,7 @@ template <int D> class IsphSolver : public Solver<D> {
 
  private:
   std::vector<Vector<D>> pressure_gradient() const;
-  void shift(double dt);
+  void shift();
   double max_speed() const;
 
   Scene<D>* scene_ = nullptr;

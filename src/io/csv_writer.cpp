@@ -2,16 +2,36 @@
 
 #include <petscsys.h>
 
+#include <charconv>
+#include <cmath>
+
 #include "src/core/error.hpp"
 
 namespace sph {
 
 namespace {
+
 bool is_root() {
-  PetscMPIInt rank;
+  PetscMPIInt rank = 0;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   return rank == 0;
 }
+
+// Shortest decimal form that parses back to exactly `x` (C++17 std::to_chars).
+void append_number(std::string& line, double x) {
+  if (std::isnan(x)) {
+    line += "nan";
+    return;
+  }
+  if (std::isinf(x)) {
+    line += x > 0 ? "inf" : "-inf";
+    return;
+  }
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, x);
+  line.append(buf, res.ptr);
+}
+
 }  // namespace
 
 CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns)
@@ -19,9 +39,14 @@ CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& co
   if (!is_root()) return;
   file_ = std::fopen(path.c_str(), "w");
   if (!file_) throw Error("cannot write " + path + "; check that -output_dir is writable");
-  for (std::size_t k = 0; k < columns.size(); ++k) std::fprintf(file_, "%s%s", k ? "," : "", columns[k].c_str());
-  std::fprintf(file_, "\n");
-  std::fflush(file_);
+  std::string header;
+  for (std::size_t k = 0; k < columns.size(); ++k) header += (k ? "," : "") + columns[k];
+  header += '\n';
+  if (std::fputs(header.c_str(), file_) < 0 || std::fflush(file_) != 0) {
+    std::fclose(file_);
+    file_ = nullptr;
+    throw Error("failed writing " + path + " (disk full?)");
+  }
 }
 
 CsvWriter::~CsvWriter() {
@@ -30,12 +55,18 @@ CsvWriter::~CsvWriter() {
 
 void CsvWriter::row(const std::vector<double>& values) {
   if (values.size() != columns_)
-    throw Error("internal: CSV row of " + std::to_string(values.size()) + " values for " +
-                std::to_string(columns_) + " columns in " + path_);
+    throw Error("internal: CSV row of " + std::to_string(values.size()) + " values for " + std::to_string(columns_) +
+                " columns in " + path_);
   if (!file_) return;
-  for (std::size_t k = 0; k < values.size(); ++k) std::fprintf(file_, "%s%.12g", k ? "," : "", values[k]);
-  std::fprintf(file_, "\n");
-  std::fflush(file_);
+  std::string line;
+  line.reserve(24 * values.size() + 1);
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    if (k) line += ',';
+    append_number(line, values[k]);
+  }
+  line += '\n';
+  if (std::fputs(line.c_str(), file_) < 0 || std::fflush(file_) != 0)
+    throw Error("failed writing " + path_ + " (disk full?)");
 }
 
 }  // namespace sph

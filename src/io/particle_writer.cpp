@@ -4,17 +4,18 @@
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
-#include <vtkIdTypeArray.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkTypeInt64Array.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <system_error>
 
 #include "src/core/error.hpp"
 
@@ -22,49 +23,110 @@ namespace sph {
 
 namespace {
 
-PetscMPIInt comm_rank() {
-  PetscMPIInt r;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &r);
-  return r;
-}
-PetscMPIInt comm_size() {
-  PetscMPIInt s;
-  MPI_Comm_size(PETSC_COMM_WORLD, &s);
-  return s;
-}
-
-std::string frame_name(const std::string& base, int frame, const char* suffix) {
+// "<base>_NNNNN" (the frame's stem, shared by the .vtp, the pieces and the .pvtp).
+std::string frame_stem(const std::string& base, int frame) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "_%05d", frame);
-  return base + buf + suffix;
+  return base + buf;
 }
 
-vtkNew<vtkDoubleArray> scalar_array(const char* name, const std::vector<double>& values, std::size_t n) {
+std::string piece_name(const std::string& base, int frame, int rank) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "_r%04d.vtp", rank);
+  return frame_stem(base, frame) + buf;
+}
+
+// Escapes a string for use inside a double-quoted XML attribute.
+std::string xml_attr(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// The VTK XML type name that vtkXMLWriter uses for an array (for the hand-written .pvtp).
+const char* xml_type(vtkDataArray* a) {
+  switch (a->GetDataType()) {
+    case VTK_DOUBLE: return "Float64";
+    case VTK_FLOAT: return "Float32";
+    case VTK_INT: return "Int32";
+    case VTK_LONG:
+    case VTK_LONG_LONG:
+    case VTK_ID_TYPE: return a->GetDataTypeSize() == 8 ? "Int64" : "Int32";
+    default: throw Error(std::string("internal: no VTK XML type for output array ") + a->GetName());
+  }
+}
+
+vtkNew<vtkDoubleArray> scalar_array(const std::string& name, const std::vector<double>& values, std::size_t n) {
   vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
+  a->SetName(name.c_str());
   a->SetNumberOfTuples(static_cast<vtkIdType>(n));
   for (std::size_t i = 0; i < n; ++i) a->SetValue(static_cast<vtkIdType>(i), values[i]);
   return a;
+}
+
+// Writes `text` to `path` through a temporary file renamed over it (atomic on POSIX file systems).
+void write_atomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error("cannot write " + path + "; check that the output directory is writable");
+    out << text;
+    out.flush();
+    if (!out) {
+      std::remove(tmp.c_str());
+      throw Error("failed writing " + path + " (disk full?)");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw Error("cannot replace " + path + " (rename from " + tmp + " failed)");
+  }
 }
 
 }  // namespace
 
 template <int D>
 ParticleWriter<D>::ParticleWriter(const std::string& output_dir, const std::string& basename)
-    : dir_(output_dir), base_(basename) {
+    : dir_(output_dir.empty() ? std::string(".") : output_dir), base_(basename) {
+  PetscMPIInt r = 0, s = 1;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &r);
+  MPI_Comm_size(PETSC_COMM_WORLD, &s);
+  rank_ = r, size_ = s;
+  if (base_.empty() || base_.find('/') != std::string::npos)
+    throw Error("internal: particle output basename '" + base_ + "' must be a plain, non-empty file name");
+  // Every rank may try: create_directories tolerates a directory that already exists, and if two ranks
+  // race, the loser's error is ignored as long as the directory is there afterwards.
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
-  if (ec || !std::filesystem::is_directory(dir_))
-    throw Error("cannot create output directory '" + dir_ + "' (" + ec.message() + "); choose another -output_dir");
+  std::error_code ec2;
+  if (!std::filesystem::is_directory(dir_, ec2))
+    throw Error("cannot create output directory '" + dir_ + "'" + (ec ? " (" + ec.message() + ")" : std::string()) +
+                "; choose another -output_dir");
 }
 
 template <int D>
 std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const std::vector<ScalarField>& extra) {
   const std::size_t n = P.n_owned;
+  for (const ScalarField& f : extra)
+    if (!f.values || f.values->size() < n)
+      throw Error("internal: output field '" + f.name + "' has " + std::to_string(f.values ? f.values->size() : 0) +
+                  " values for " + std::to_string(n) + " particles");
+
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(static_cast<vtkIdType>(n));
-  vtkNew<vtkCellArray> verts;
+  vtkNew<vtkCellArray> verts;  // one vertex cell per particle, so ParaView renders them as points
+  verts->AllocateExact(static_cast<vtkIdType>(n), static_cast<vtkIdType>(n));
   vtkNew<vtkDoubleArray> velocity;
   velocity->SetName("velocity");
   velocity->SetNumberOfComponents(3);
@@ -72,7 +134,7 @@ std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const s
   vtkNew<vtkIntArray> kind;
   kind->SetName("kind");
   kind->SetNumberOfTuples(static_cast<vtkIdType>(n));
-  vtkNew<vtkIdTypeArray> id;
+  vtkNew<vtkTypeInt64Array> id;
   id->SetName("id");
   id->SetNumberOfTuples(static_cast<vtkIdType>(n));
   for (std::size_t i = 0; i < n; ++i) {
@@ -81,9 +143,9 @@ std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const s
     const vtkIdType k = static_cast<vtkIdType>(i);
     points->SetPoint(k, x);
     verts->InsertNextCell(1, &k);
-    velocity->SetTuple(k, v);
+    velocity->SetTypedTuple(k, v);
     kind->SetValue(k, P.kind[i]);
-    id->SetValue(k, static_cast<vtkIdType>(P.gid[i]));
+    id->SetValue(k, static_cast<vtkTypeInt64>(P.gid[i]));
   }
   vtkNew<vtkPolyData> poly;
   poly->SetPoints(points);
@@ -95,7 +157,7 @@ std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const s
   pd->AddArray(scalar_array("mass", P.m, n));
   pd->AddArray(kind);
   pd->AddArray(id);
-  for (const ScalarField& f : extra) pd->AddArray(scalar_array(f.name.c_str(), *f.values, n));
+  for (const ScalarField& f : extra) pd->AddArray(scalar_array(f.name, *f.values, n));
   vtkNew<vtkDoubleArray> t;
   t->SetName("TIME");
   t->SetNumberOfTuples(1);
@@ -103,34 +165,40 @@ std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const s
   poly->GetFieldData()->AddArray(t);
 
   const int frame = frames_written();
-  const bool parallel = comm_size() > 1;
-  const std::string piece = parallel ? frame_name(base_, frame, "") + "_r" + std::to_string(comm_rank()) + ".vtp"
-                                     : frame_name(base_, frame, ".vtp");
+  const bool parallel = size_ > 1;
+  const std::string own = parallel ? piece_name(base_, frame, rank_) : frame_stem(base_, frame) + ".vtp";
+  const std::string own_path = dir_ + "/" + own;
   vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetFileName((dir_ + "/" + piece).c_str());
+  writer->SetFileName(own_path.c_str());
   writer->SetInputData(poly);
   writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();  // raw binary
   writer->SetCompressorTypeToZLib();
-  if (writer->Write() != 1) throw Error("cannot write " + dir_ + "/" + piece + "; check -output_dir");
+  writer->SetHeaderTypeToUInt64();  // no 4 GiB limit on a block
+  if (writer->Write() != 1)
+    throw Error("cannot write " + own_path + "; check that -output_dir is writable and not full");
 
-  std::string listed = piece;
+  std::string listed = own;
   if (parallel) {
-    listed = frame_name(base_, frame, ".pvtp");
-    if (comm_rank() == 0) {
-      std::ofstream m(dir_ + "/" + listed);
-      m << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PPolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-        << "  <PPolyData GhostLevel=\"0\">\n    <PPointData>\n"
-        << "      <PDataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\"/>\n"
-        << "      <PDataArray type=\"Float64\" Name=\"pressure\"/>\n      <PDataArray type=\"Float64\" Name=\"density\"/>\n"
-        << "      <PDataArray type=\"Float64\" Name=\"mass\"/>\n      <PDataArray type=\"Int32\" Name=\"kind\"/>\n"
-        << "      <PDataArray type=\"Int64\" Name=\"id\"/>\n";
-      for (const ScalarField& f : extra) m << "      <PDataArray type=\"Float64\" Name=\"" << f.name << "\"/>\n";
-      m << "    </PPointData>\n    <PPoints>\n      <PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n"
-        << "    </PPoints>\n";
-      for (int r = 0; r < comm_size(); ++r)
-        m << "    <Piece Source=\"" << frame_name(base_, frame, "") << "_r" << r << ".vtp\"/>\n";
-      m << "  </PPolyData>\n</VTKFile>\n";
-      if (!m) throw Error("cannot write " + dir_ + "/" + listed);
+    listed = frame_stem(base_, frame) + ".pvtp";
+    if (rank_ == 0) {
+      std::string m = "<?xml version=\"1.0\"?>\n"
+                      "<VTKFile type=\"PPolyData\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+                      "  <PPolyData GhostLevel=\"0\">\n"
+                      "    <PPointData>\n";
+      for (int k = 0; k < pd->GetNumberOfArrays(); ++k) {
+        vtkDataArray* a = pd->GetArray(k);
+        m += "      <PDataArray type=\"" + std::string(xml_type(a)) + "\" Name=\"" + xml_attr(a->GetName()) + "\"";
+        if (a->GetNumberOfComponents() > 1) m += " NumberOfComponents=\"" + std::to_string(a->GetNumberOfComponents()) + "\"";
+        m += "/>\n";
+      }
+      m += "    </PPointData>\n"
+           "    <PPoints>\n"
+           "      <PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n"
+           "    </PPoints>\n";
+      for (int r = 0; r < size_; ++r) m += "    <Piece Source=\"" + xml_attr(piece_name(base_, frame, r)) + "\"/>\n";
+      m += "  </PPolyData>\n</VTKFile>\n";
+      write_atomically(dir_ + "/" + listed, m);
     }
   }
   frames_.emplace_back(time, listed);
@@ -139,18 +207,17 @@ std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const s
 }
 
 template <int D> void ParticleWriter<D>::write_pvd() const {
-  if (comm_rank() != 0) return;
-  const std::string path = dir_ + "/" + base_ + ".pvd", tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    out.precision(17);
-    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
-    for (const auto& f : frames_)
-      out << "    <DataSet timestep=\"" << f.first << "\" part=\"0\" file=\"" << f.second << "\"/>\n";
-    out << "  </Collection>\n</VTKFile>\n";
-    if (!out) throw Error("cannot write " + path);
+  if (rank_ != 0) return;
+  std::string text = "<?xml version=\"1.0\"?>\n"
+                     "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+                     "  <Collection>\n";
+  for (const auto& f : frames_) {
+    char ts[40];
+    std::snprintf(ts, sizeof ts, "%.17g", f.first);
+    text += std::string("    <DataSet timestep=\"") + ts + "\" group=\"\" part=\"0\" file=\"" + xml_attr(f.second) + "\"/>\n";
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw Error("cannot rename " + tmp + " to " + path);
+  text += "  </Collection>\n</VTKFile>\n";
+  write_atomically(pvd_path(), text);
 }
 
 template class ParticleWriter<1>;

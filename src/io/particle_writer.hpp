@@ -1,7 +1,17 @@
 #pragma once
 // Particle frames as VTK XML PolyData (.vtp, one per output) plus a ParaView .pvd time-series index,
-// rewritten atomically after each frame so an interrupted run always leaves a valid series.
-// Owned particles only. On several ranks each rank writes a piece and rank 0 a .pvtp that joins them.
+// rewritten atomically (temporary file + rename) after each frame, so an interrupted run always
+// leaves a valid series. Only owned particles are written; ghosts never appear in the output.
+//
+// One rank:      <dir>/<basename>_NNNNN.vtp and <dir>/<basename>.pvd (which lists the .vtp files).
+// Several ranks: every rank writes its piece <dir>/<basename>_NNNNN_rRRRR.vtp, rank 0 writes the
+//                master <dir>/<basename>_NNNNN.pvtp that joins them, and the .pvd lists the .pvtp files.
+// NNNNN is the output counter (00000, 00001, ...), RRRR the rank.
+//
+// Point arrays: velocity (3 components, zero-padded below 3D), pressure, density, mass (Float64),
+// kind (Int32, ParticleKind), id (Int64, global index), then each extra ScalarField (Float64).
+// Field data: TIME (one Float64), which ParaView shows as the frame's time.
+// Not collective: a failure throws sph::Error on the rank that hit it.
 #include <string>
 #include <utility>
 #include <vector>
@@ -10,23 +20,30 @@
 
 namespace sph {
 
+// An extra per-particle scalar to write next to the standard arrays.
 struct ScalarField {
   std::string name;
-  const std::vector<double>* values;  // one value per owned particle
+  const std::vector<double>* values;  // at least one value per owned particle (ghost entries are ignored)
 };
 
 template <int D> class ParticleWriter {
  public:
+  // Creates output_dir (and its parents); throws sph::Error naming it if that fails.
   explicit ParticleWriter(const std::string& output_dir, const std::string& basename = "particles");
 
-  // Writes frame number frames_written() at time t; returns the path of the file the .pvd points at.
+  // Writes frame number frames_written() at time `time` and rewrites the .pvd. Returns the path of
+  // the file the .pvd lists for this frame: the .vtp on one rank, the .pvtp master on several.
   std::string write(const Particles<D>& P, double time, const std::vector<ScalarField>& extra = {});
+
   int frames_written() const { return static_cast<int>(frames_.size()); }
+  const std::string& directory() const { return dir_; }
+  std::string pvd_path() const { return dir_ + "/" + base_ + ".pvd"; }
 
  private:
   void write_pvd() const;
 
   std::string dir_, base_;
+  int rank_ = 0, size_ = 1;
   std::vector<std::pair<double, std::string>> frames_;  // time, file name relative to dir_
 };
 

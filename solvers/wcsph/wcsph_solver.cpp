@@ -1,0 +1,219 @@
+#include "solvers/wcsph/wcsph_solver.hpp"
+
+#include <cmath>
+
+#include "src/core/options.hpp"
+#include "src/sph/operators.hpp"
+
+namespace sph {
+
+namespace {
+const char* const density_names[] = {"continuity", "summation"};
+const char* const diffusion_names[] = {"none", "molteni", "antuono"};
+
+struct RawOptions {
+  PetscReal c0, c0_factor, gamma, cfl, delta, alpha, beta, epsilon, shift_A;
+  PetscInt density, diffusion;
+  PetscBool shifting;
+};
+
+PetscErrorCode read_options(RawOptions* o) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Weakly-compressible SPH (-solver wcsph)", "Solver");
+  PetscCall(PetscOptionsReal("-c0", "Reference sound speed (0: c0_factor * U_ref)", "", o->c0, &o->c0, nullptr));
+  PetscCall(PetscOptionsReal("-c0_factor", "c0 / U_ref when -c0 is not given (>= 10 keeps density variations ~1%)",
+                             "", o->c0_factor, &o->c0_factor, nullptr));
+  PetscCall(PetscOptionsReal("-tait_gamma", "Tait equation-of-state exponent", "", o->gamma, &o->gamma, nullptr));
+  PetscCall(PetscOptionsReal("-cfl", "Acoustic Courant number: dt <= cfl h / (c0 + U_max)", "", o->cfl, &o->cfl, nullptr));
+  PetscCall(PetscOptionsEList("-density", "Density: continuity equation or kernel summation", "", density_names, 2,
+                              density_names[o->density], &o->density, nullptr));
+  PetscCall(PetscOptionsEList("-density_diffusion", "delta-SPH density diffusion: none, molteni (2009), antuono (2010)",
+                              "", diffusion_names, 3, diffusion_names[o->diffusion], &o->diffusion, nullptr));
+  PetscCall(PetscOptionsReal("-delta", "delta-SPH coefficient", "", o->delta, &o->delta, nullptr));
+  PetscCall(PetscOptionsReal("-av_alpha", "Monaghan artificial viscosity alpha (0: off)", "", o->alpha, &o->alpha, nullptr));
+  PetscCall(PetscOptionsReal("-av_beta", "Monaghan artificial viscosity beta", "", o->beta, &o->beta, nullptr));
+  PetscCall(PetscOptionsReal("-av_epsilon", "Artificial viscosity singularity guard epsilon", "", o->epsilon, &o->epsilon,
+                             nullptr));
+  PetscCall(PetscOptionsBool("-shifting", "Particle shifting (Lind et al. 2012) with Taylor-corrected u and rho", "",
+                             o->shifting, &o->shifting, nullptr));
+  PetscCall(PetscOptionsReal("-shift_coefficient", "Shifting coefficient A in D = A h^2 per step (stable up to ~0.5)", "", o->shift_A,
+                             &o->shift_A, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+}  // namespace
+
+template <int D> void WcsphSolver<D>::set_from_options() {
+  RawOptions o{c0_, c0_factor_, eos_.gamma, cfl_, delta_, av_.alpha, av_.beta, av_.epsilon,
+               shifting_model_.A, static_cast<PetscInt>(density_), static_cast<PetscInt>(diffusion_), shifting_};
+  SPH_PETSC(read_options(&o));
+  require(o.c0 >= 0, "-c0", "non-negative", o.c0);
+  require(o.c0_factor > 0, "-c0_factor", "positive", o.c0_factor);
+  require(o.gamma >= 1, "-tait_gamma", "at least 1", o.gamma);
+  require(o.cfl > 0 && o.cfl <= 1, "-cfl", "in (0, 1]", o.cfl);
+  require(o.delta >= 0, "-delta", "non-negative", o.delta);
+  require(o.alpha >= 0, "-av_alpha", "non-negative", o.alpha);
+  require(o.beta >= 0, "-av_beta", "non-negative", o.beta);
+  require(o.epsilon > 0, "-av_epsilon", "positive", o.epsilon);
+  require(o.shift_A >= 0, "-shift_coefficient", "non-negative", o.shift_A);
+  shifting_ = o.shifting, shifting_model_.A = o.shift_A;
+  c0_ = o.c0, c0_factor_ = o.c0_factor, eos_.gamma = o.gamma, cfl_ = o.cfl, delta_ = o.delta;
+  av_.alpha = o.alpha, av_.beta = o.beta, av_.epsilon = o.epsilon;
+  density_ = static_cast<DensityMethod>(o.density);
+  diffusion_ = static_cast<DensityDiffusion>(o.diffusion);
+  if (delta_ == 0.0) diffusion_ = DensityDiffusion::None;
+}
+
+template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
+  scene_ = &scene;
+  Particles<D>& P = scene.particles;
+  eos_.rho0 = scene.physics.rho0;
+  eos_.c0 = c0_ > 0 ? c0_ : c0_factor_ * scene.physics.U;
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    if (P.kind[i] != kFluid) throw Error("the WCSPH solver has no wall boundary treatment yet; use a periodic case");
+    // The case's initial pressure sets the density (inverse EOS); particle volumes stay as laid out.
+    const double rho = eos_.density(P.p[i]);
+    P.m[i] *= rho / P.rho[i];
+    P.rho[i] = rho;
+  }
+  scene.neighbourhood.update(P, true);
+  if (density_ == DensityMethod::Summation) {
+    const std::vector<double> rho = density_summation(P, scene.neighbourhood.list(), scene.kernel);
+    std::copy(rho.begin(), rho.end(), P.rho.begin());
+  }
+  scene.neighbourhood.halo().update(P.rho);
+  update_pressure();
+  compute_rates();
+}
+
+template <int D> void WcsphSolver<D>::update_pressure() {
+  Particles<D>& P = scene_->particles;
+  for (std::size_t i = 0; i < P.size(); ++i) P.p[i] = eos_.pressure(P.rho[i]);  // ghosts too: rho is current there
+}
+
+template <int D> void WcsphSolver<D>::compute_rates() {
+  Particles<D>& P = scene_->particles;
+  const Neighbourhood<D>& nh = scene_->neighbourhood;
+  const NeighbourList<D>& nl = nh.list();
+  const Kernel<D>& K = scene_->kernel;
+  const Physics<D>& phys = scene_->physics;
+  const std::size_t n = P.n_owned;
+  const double h = K.h();
+
+  if (density_ == DensityMethod::Summation) {
+    const std::vector<double> rho = density_summation(P, nl, K);
+    std::copy(rho.begin(), rho.end(), P.rho.begin());
+    nh.halo().update(P.rho);
+  }
+  update_pressure();
+
+  // Antuono's correction needs the renormalised density gradient on both sides of each pair.
+  std::vector<Vector<D>> grad_rho;
+  if (diffusion_ == DensityDiffusion::Antuono) {
+    grad_rho = gradient_corrected(P, nl, K, correction_matrices(P, nl, K), P.rho);
+    nh.halo().update(grad_rho);
+  }
+  const Vector<D> zero = Vector<D>::Zero();
+  const double delta_h_c0 = delta_ * h * eos_.c0;
+  const bool diffuse = diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity;
+
+  acc_.assign(n, phys.gravity);
+  drho_.assign(n, 0.0);
+  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+    const Vector<D> uij = P.v[i] - P.v[j];
+    const double Vj = P.m[j] / P.rho[j];
+    double Pi = 0.0;
+    if (av_.active())
+      Pi = av_.Pi(h, eos_.sound_speed(P.rho[i]), eos_.sound_speed(P.rho[j]), P.rho[i], P.rho[j], uij, g);
+    acc_[i] += wcsph::pressure_acceleration_pair(P.m[j], P.p[i], P.p[j], P.rho[i], P.rho[j], Pi, g);
+    const double F = morris_factor(g, h);
+    if (phys.viscous()) acc_[i] += morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], phys.nu, phys.nu, F, uij);
+    if (density_ == DensityMethod::Continuity) {
+      drho_[i] += wcsph::continuity_pair(P.rho[i], Vj, uij, g);
+      if (diffuse)
+        drho_[i] += wcsph::density_diffusion_pair(delta_h_c0, P.rho[i], P.rho[j], Vj, F,
+                                                  grad_rho.empty() ? zero : grad_rho[i],
+                                                  grad_rho.empty() ? zero : grad_rho[j], g);
+    }
+  });
+  double a2 = 0.0;
+  for (const auto& a : acc_) a2 = std::max(a2, a.squaredNorm());
+  MPI_Allreduce(MPI_IN_PLACE, &a2, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+  max_acc_ = std::sqrt(a2);
+}
+
+template <int D> double WcsphSolver<D>::stable_dt() const {
+  const Particles<D>& P = scene_->particles;
+  const Physics<D>& phys = scene_->physics;
+  const double h = scene_->kernel.h();
+  double buf[2] = {0.0, 0.0};  // max |u|^2, max c
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    buf[0] = std::max(buf[0], P.v[i].squaredNorm());
+    buf[1] = std::max(buf[1], eos_.sound_speed(P.rho[i]));
+  }
+  MPI_Allreduce(MPI_IN_PLACE, buf, 2, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+  double dt = cfl_ * h / (buf[1] + std::sqrt(buf[0]));
+  if (phys.viscous()) dt = std::min(dt, 0.125 * h * h / phys.nu);
+  if (max_acc_ > 0.0) dt = std::min(dt, 0.25 * std::sqrt(h / max_acc_));
+  return dt;
+}
+
+template <int D> StepReport WcsphSolver<D>::step(double dt) {
+  Particles<D>& P = scene_->particles;
+  Neighbourhood<D>& nh = scene_->neighbourhood;
+  const std::size_t n = P.n_owned;
+  const bool continuity = density_ == DensityMethod::Continuity;
+
+  // Kick (half step) and drift.
+  std::vector<Vector<D>> v_half(n);
+  std::vector<double> rho_half(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    v_half[i] = P.v[i] + 0.5 * dt * acc_[i];
+    rho_half[i] = P.rho[i] + (continuity ? 0.5 * dt * drho_[i] : 0.0);
+    P.x[i] += dt * v_half[i];
+  }
+  // Velocity-dependent rates see a predicted end-of-step velocity and density.
+  for (std::size_t i = 0; i < n; ++i) {
+    P.v[i] = v_half[i] + 0.5 * dt * acc_[i];
+    if (continuity) P.rho[i] = rho_half[i] + 0.5 * dt * drho_[i];
+  }
+  if (!nh.update(P)) nh.halo().update(P.v);
+  nh.halo().update(P.rho);
+  compute_rates();
+
+  // Closing kick.
+  for (std::size_t i = 0; i < n; ++i) {
+    P.v[i] = v_half[i] + 0.5 * dt * acc_[i];
+    if (continuity) P.rho[i] = rho_half[i] + 0.5 * dt * drho_[i];
+  }
+  if (shifting_) {
+    if (!nh.update(P)) nh.halo().update(P.rho);
+    shift_particles(P, nh, scene_->kernel, shifting_model_, scene_->dx, {&P.rho});
+  }
+  nh.halo().update(P.rho);
+  update_pressure();
+  return {};
+}
+
+template <int D> nlohmann::json WcsphSolver<D>::describe() const {
+  const Physics<D>& phys = scene_->physics;
+  nlohmann::json models = nlohmann::json::object();
+  models["equation_of_state"] = {{"model", "Tait"}, {"c0", eos_.c0}, {"gamma", eos_.gamma}, {"rho0", eos_.rho0}};
+  models["density"] = density_names[static_cast<int>(density_)];
+  if (diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity)
+    models["density_diffusion"] = {{"model", diffusion_ == DensityDiffusion::Molteni ? "MolteniColagrossi" : "Antuono"},
+                                   {"delta", delta_}};
+  if (av_.active())
+    models["artificial_viscosity"] = {{"model", "MonaghanAV"}, {"alpha", av_.alpha}, {"beta", av_.beta},
+                                      {"epsilon", av_.epsilon}};
+  if (phys.viscous()) models["viscosity"] = {{"model", "MorrisViscosity"}, {"nu", phys.nu}};
+  if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
+  if (shifting_) models["shifting"] = shifting_model_.describe();
+  return {{"models", models}, {"cfl", cfl_}};
+}
+
+template class WcsphSolver<1>;
+template class WcsphSolver<2>;
+template class WcsphSolver<3>;
+
+}  // namespace sph

@@ -1,0 +1,46 @@
+#pragma once
+// Weakly-compressible SPH (Monaghan 1994, 2005): the explicit twin of ISPH on the same kernels,
+// neighbour search and cases. Pressure from the Tait equation of state; density by continuity (default)
+// or summation; optional delta-SPH density diffusion (Molteni & Colagrossi 2009; Antuono et al. 2010),
+// Monaghan (1992) artificial viscosity, Morris et al. (1997) laminar viscosity; kick-drift-kick
+// leapfrog (Monaghan 2005, sec. 5.3); dt from the acoustic CFL, viscous and force limits.
+#include "solvers/solver.hpp"
+#include "solvers/wcsph/wcsph_iact.hpp"
+#include "src/sph/shifting.hpp"
+
+namespace sph {
+
+enum class DensityMethod { Continuity, Summation };
+enum class DensityDiffusion { None, Molteni, Antuono };
+
+template <int D> class WcsphSolver : public Solver<D> {
+ public:
+  std::string name() const override { return "wcsph"; }
+  void set_from_options() override;
+  void setup(Scene<D>& scene) override;
+  double stable_dt() const override;
+  StepReport step(double dt) override;
+  nlohmann::json describe() const override;
+
+ private:
+  // Accelerations and density rates at the current positions, velocities and densities.
+  void compute_rates();
+  void update_pressure();
+
+  Scene<D>* scene_ = nullptr;
+  wcsph::TaitEos eos_;
+  wcsph::MonaghanAV av_;
+  PetscReal c0_factor_ = 10.0;  // c0 = factor * U_ref unless -c0 is given
+  PetscReal c0_ = 0.0;
+  PetscReal cfl_ = 0.25;
+  PetscReal delta_ = 0.1;
+  DensityMethod density_ = DensityMethod::Continuity;
+  DensityDiffusion diffusion_ = DensityDiffusion::Molteni;
+  PetscBool shifting_ = PETSC_TRUE;
+  LindShifting shifting_model_;
+  std::vector<Vector<D>> acc_;
+  std::vector<double> drho_;
+  double max_acc_ = 0.0;
+};
+
+}  // namespace sph
