@@ -3,6 +3,7 @@
 #include <petscsys.h>
 
 #include <chrono>
+#include <deque>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -32,6 +33,25 @@ struct StepStats {
   double mean_iterations() const { return solves ? double(total_iterations) / solves : 0.0; }
 };
 
+// Steady state: the relative kinetic-energy change rate over the last time unit below a tolerance.
+class SteadyState {
+ public:
+  explicit SteadyState(double tol) : tol_(tol) {}
+  void add(double t, double ke) {
+    if (tol_ <= 0) return;
+    history_.emplace_back(t, ke);
+    while (history_.size() > 2 && history_[1].first <= t - window_) history_.pop_front();
+    const auto& [t0, ke0] = history_.front();
+    if (t - t0 >= window_ * (1 - 1e-9) && ke > 0) reached_ = std::abs(ke - ke0) / (ke * (t - t0)) < tol_;
+  }
+  bool reached() const { return reached_; }
+
+ private:
+  double tol_, window_ = 1.0;
+  bool reached_ = false;
+  std::deque<std::pair<double, double>> history_;
+};
+
 struct DriverOptions {
   PetscReal t_end = 1.0;
   PetscReal dt = 0.0;               // 0: from the solver's stability limits
@@ -40,6 +60,7 @@ struct DriverOptions {
   PetscInt kernel = static_cast<PetscInt>(KernelType::WendlandC2);
   PetscReal h_over_dx = -1;         // -1: support radius = 3 dx
   PetscReal skin = 0.2;             // Verlet skin as a fraction of the support radius
+  PetscReal steady_tol = -1;        // -1: the case's default
   PetscBool progress = PETSC_TRUE;
   char output_dir[PETSC_MAX_PATH_LEN] = "";
 };
@@ -62,6 +83,10 @@ PetscErrorCode read_driver_options(DriverOptions* o) {
                              o->h_over_dx, &o->h_over_dx, nullptr));
   PetscCall(PetscOptionsReal("-neighbour_skin", "Verlet-list skin as a fraction of the kernel support", "", o->skin,
                              &o->skin, nullptr));
+  PetscCall(PetscOptionsReal("-steady_tol",
+                             "Stop when |dKE/dt| / KE over the last time unit falls below this (0: run to t_end; "
+                             "-1: the case's default)",
+                             "", o->steady_tol, &o->steady_tol, nullptr));
   PetscCall(PetscOptionsBool("-progress", "Print a progress line on stderr about once a second", "", o->progress,
                              &o->progress, nullptr));
   PetscOptionsEnd();
@@ -85,6 +110,7 @@ template <int D> struct Run {
     require(opt.h_over_dx == -1 || opt.h_over_dx > 0, "-h_over_dx", "positive", opt.h_over_dx);
     require(opt.skin >= 0 && opt.skin <= 1, "-neighbour_skin", "in [0, 1]", opt.skin);
     if (opt.output_interval < 0) opt.output_interval = opt.t_end / 20;
+    if (opt.steady_tol < 0) opt.steady_tol = scene_case->steady_tolerance();
     output_dir = opt.output_dir[0] ? std::string(opt.output_dir)
                                    : "out/" + names.case_name + "-" + names.solver_name + "-" +
                                          std::to_string(scene_case->resolution());
@@ -105,6 +131,10 @@ template <int D> void Run<D>::execute() {
   const double dx = scene_case->spacing();
   const double h_over_dx = opt.h_over_dx > 0 ? opt.h_over_dx : 3.0 / Kernel<D>::support_factor(ktype);
   const Kernel<D> kernel(ktype, h_over_dx * dx);
+  if (scene_case->wall_thickness() > 0 && scene_case->wall_thickness() < kernel.support_radius() * (1 - 1e-12))
+    throw Error("wall layers (" + std::to_string(scene_case->wall_thickness() / dx) +
+                " dx) are thinner than the kernel support (" + std::to_string(kernel.support_radius() / dx) +
+                " dx); raise -wall_layers or lower -h_over_dx");
   Neighbourhood<D> nh(domain, kernel.support_radius(), opt.skin * kernel.support_radius());
   Scene<D> scene{P, nh, kernel, scene_case->physics(), dx};
   solver->setup(scene);
@@ -135,12 +165,15 @@ template <int D> void Run<D>::execute() {
   MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
   summary["mpi_ranks"] = ranks;
 
+  const Totals<D> initial = totals(P);
+  SteadyState steady(opt.steady_tol);
   double t = 0.0;
   long step = 0;
   StepStats stats;
   Progress progress(opt.progress, opt.t_end);
   double next_output = opt.output_interval > 0 ? opt.output_interval : opt.t_end;
   writer.write(P, t);
+  double last_frame_t = t;
   bool warned_dt = false;
   const auto loop_start = std::chrono::steady_clock::now();
   auto finish = [&](const std::string& status, const std::string& failure) {
@@ -158,15 +191,23 @@ template <int D> void Run<D>::execute() {
       summary["ksp"]["iterations_mean"] = stats.mean_iterations();
       summary["ksp"]["iterations_max"] = stats.max_iterations;
     }
-    for (auto it = solver_info.begin(); it != solver_info.end(); ++it)
-      if (it.key() != "models" && it.key() != "ksp") summary["solver_parameters"][it.key()] = it.value();
+    // Total momentum change relative to the initial sum of |m v|: round-off for pairwise-symmetric
+    // schemes without shifting (shifting's Taylor correction and corrected gradients do not conserve it).
+    const Totals<D> now = totals(P);
+    summary["conservation"] = {{"momentum_drift", (now.momentum - initial.momentum).norm() /
+                                                      std::max(initial.momentum_scale, 1e-300)}};
+    for (auto it = solver_info.begin(); it != solver_info.end(); ++it) {
+      if (it.key() == "models" || it.key() == "ksp") continue;
+      if (it.key() == "conservation") summary["conservation"].update(it.value());
+      else summary["solver_parameters"][it.key()] = it.value();
+    }
     summary["errors"] = nlohmann::json::object();
     for (const auto& e : scene_case->errors(P, t)) summary["errors"][e.first] = e.second;
     write_json_file(output_dir + "/summary.json", summary);
   };
 
   try {
-    while (t < opt.t_end * (1.0 - 1e-12) && (opt.max_steps < 0 || step < opt.max_steps)) {
+    while (t < opt.t_end * (1.0 - 1e-12) && (opt.max_steps < 0 || step < opt.max_steps) && !steady.reached()) {
       const double stable = solver->stable_dt();
       double dt = opt.dt > 0 ? opt.dt : stable;
       if (opt.dt > stable && !warned_dt) {
@@ -185,6 +226,7 @@ template <int D> void Run<D>::execute() {
       check_health(P, step, t);
 
       const Totals<D> tot = totals(P);
+      steady.add(t, tot.kinetic_energy);
       std::vector<double> row = {double(step), t, dt, tot.kinetic_energy};
       for (int a = 0; a < D; ++a) row.push_back(tot.momentum[a]);
       row.push_back(report.linear_iterations);
@@ -194,6 +236,7 @@ template <int D> void Run<D>::execute() {
       progress.update(step, t, dt, report.linear_iterations);
       if (t >= next_output * (1.0 - 1e-12) || t >= opt.t_end * (1.0 - 1e-12)) {
         writer.write(P, t);
+        last_frame_t = t;
         while (next_output <= t * (1.0 + 1e-12)) next_output += opt.output_interval > 0 ? opt.output_interval : opt.t_end;
       }
     }
@@ -204,6 +247,9 @@ template <int D> void Run<D>::execute() {
     throw Error(msg.str() + " [last good output kept in " + output_dir + "]");
   }
   progress.done(step, t);
+  if (opt.steady_tol > 0) summary["steady_state_reached"] = steady.reached();
+  scene_case->write_outputs(P, t, output_dir);
+  if (last_frame_t < t) writer.write(P, t);  // e.g. stopped at steady state between frames
   finish("completed", "");
   finish_options_check();
 }

@@ -30,6 +30,14 @@ template <int D> class Case {
 
   // Error norms against the reference at time t, reduced over all ranks; empty without a reference.
   virtual std::map<std::string, double> errors(const Particles<D>& P, double t) const { return {}; }
+
+  // Thickness of the wall-particle layers (0 without walls): the kernel support must fit in it.
+  virtual double wall_thickness() const { return 0.0; }
+  // Relative kinetic-energy change per unit time below which the flow counts as steady and the run
+  // stops (0: run to t_end). The -steady_tol option overrides it.
+  virtual double steady_tolerance() const { return 0.0; }
+  // Case-specific files written at the end of a run (e.g. centreline profiles).
+  virtual void write_outputs(const Particles<D>& P, double t, const std::string& dir) const {}
   virtual nlohmann::json parameters() const = 0;
 };
 

@@ -1,6 +1,10 @@
 #include "cases/registry.hpp"
 
+#include "cases/lid_driven_cavity/lid_driven_cavity.hpp"
+#include "cases/poiseuille/poiseuille.hpp"
+#include "cases/sod/sod.hpp"
 #include "cases/taylor_green/taylor_green.hpp"
+#include "cases/toy_star/toy_star.hpp"
 #include "src/core/error.hpp"
 
 namespace sph {
@@ -9,6 +13,15 @@ const std::vector<CaseEntry>& case_registry() {
   static const std::vector<CaseEntry> entries = {
       {"taylor_green", "decaying Taylor-Green vortex, periodic unit square, analytic reference", 2, nullptr,
        [] { return std::make_unique<TaylorGreen>(); }, nullptr},
+      {"lid_driven_cavity", "unit cavity with a sliding lid, Adami walls, to steady state; Ghia et al. (1982) reference",
+       2, nullptr, [] { return std::make_unique<LidDrivenCavity>(); }, nullptr},
+      {"poiseuille", "body-force-driven channel between walls, periodic in x; series solution (Morris et al. 1997)", 2,
+       nullptr, [] { return std::make_unique<Poiseuille>(); }, nullptr},
+      {"sod", "Sod shock tube (gamma = 1.4), periodic x in [-1, 1), 1D/2D/3D; exact Riemann solution (Toro 2009)", 1,
+       [] { return std::make_unique<SodShockTube<1>>(); }, [] { return std::make_unique<SodShockTube<2>>(); },
+       [] { return std::make_unique<SodShockTube<3>>(); }},
+      {"toy_star", "1D polytropic toy star in -Omega^2 x, breathing; exact ODE solution (Monaghan & Price 2004)", 1,
+       [] { return std::make_unique<ToyStar>(); }, nullptr, nullptr},
   };
   return entries;
 }

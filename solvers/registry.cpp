@@ -1,5 +1,6 @@
 #include "solvers/registry.hpp"
 
+#include "solvers/compressible/compressible_solver.hpp"
 #include "solvers/isph/isph_solver.hpp"
 #include "solvers/wcsph/wcsph_solver.hpp"
 #include "src/core/error.hpp"
@@ -7,13 +8,14 @@
 namespace sph {
 
 const std::vector<std::string>& solver_names() {
-  static const std::vector<std::string> names = {"isph", "wcsph"};
+  static const std::vector<std::string> names = {"isph", "wcsph", "compressible"};
   return names;
 }
 
 template <int D> std::unique_ptr<Solver<D>> create_solver(const std::string& name) {
   if (name == "isph") return std::make_unique<IsphSolver<D>>();
   if (name == "wcsph") return std::make_unique<WcsphSolver<D>>();
+  if (name == "compressible") return std::make_unique<CompressibleSolver<D>>();
   std::string list;
   for (const auto& n : solver_names()) list += (list.empty() ? "" : ", ") + n;
   throw Error("unknown solver '" + name + "'; choose -solver from: " + list);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "src/boundary/adami_wall.hpp"
 #include "src/core/options.hpp"
 #include "src/sph/operators.hpp"
 
@@ -38,10 +39,10 @@ template <int D> void IsphSolver<D>::set_from_options() {
 template <int D> void IsphSolver<D>::setup(Scene<D>& scene) {
   scene_ = &scene;
   Particles<D>& P = scene.particles;
-  for (std::size_t i = 0; i < P.n_owned; ++i) {
-    if (P.kind[i] != kFluid) throw Error("the ISPH solver has no wall boundary treatment yet; use a periodic case");
-    P.rho[i] = scene.physics.rho0;  // divergence-free ISPH: density stays at its reference value
-  }
+  // Divergence-free ISPH: density stays at its reference value (walls included).
+  for (std::size_t i = 0; i < P.n_owned; ++i) P.rho[i] = scene.physics.rho0;
+  walls_ = has_walls(P);
+  ppe_.use_walls(walls_);
   scene.neighbourhood.update(P, true);
 }
 
@@ -83,26 +84,35 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   const std::size_t n = P.n_owned;
   nh.update(P);
 
+  auto fluid = [&](std::size_t i) { return P.kind[i] == kFluid; };  // walls keep their prescribed motion
+
   // Prediction with the non-pressure forces at x^n.
   const std::vector<Vector<D>> u_old(P.v.begin(), P.v.begin() + n);
   std::vector<Vector<D>> u_star = P.v;
   if (phys.viscous()) {
-    std::vector<Vector<D>> lap = laplacian_morris(P, nh.list(), K, P.v);
-    for (std::size_t i = 0; i < n; ++i) u_star[i] += dt * phys.nu * lap[i];
+    // No-slip walls: the viscous term sees the mirrored wall velocity (Adami et al. 2012).
+    std::vector<Vector<D>> u_visc =
+        walls_ ? AdamiWall<D>::viscous_velocity(AdamiWall<D>::stencil(P, nh.list(), K), P) : P.v;
+    if (walls_) nh.halo().update(u_visc);
+    const std::vector<Vector<D>> lap = laplacian_morris(P, nh.list(), K, u_visc);
+    for (std::size_t i = 0; i < n; ++i)
+      if (fluid(i)) u_star[i] += dt * phys.nu * lap[i];
   }
   if (phys.has_body_force())
-    for (std::size_t i = 0; i < n; ++i) u_star[i] += dt * phys.gravity;
+    for (std::size_t i = 0; i < n; ++i)
+      if (fluid(i)) u_star[i] += dt * phys.gravity;
 
   // Advect to x* = x^n + dt u^n, where the projection is made: the pressure then balances this
   // step's motion (Cummins & Rudman 1999; Lind et al. 2012) instead of lagging a step behind.
-  for (std::size_t i = 0; i < n; ++i) P.x[i] += dt * u_old[i];
+  for (std::size_t i = 0; i < n; ++i)
+    if (fluid(i)) P.x[i] += dt * u_old[i];
   nh.update(P);
   nh.halo().update(u_star);
 
   // Projection: div(grad p / rho) = div(u*) / dt.
   std::vector<double> source = divergence(P, nh.list(), K, u_star);
   for (double& s : source) s /= dt;
-  ppe_.assemble(P, nh, K);
+  ppe_.assemble(P, nh, K, phys.gravity);
   // The first solve starts from zero: the case's initial pressure is not the projection's.
   const StepReport report = ppe_.solve(source, P.m, P.p, solves_ > 0);
   ++solves_;
@@ -111,6 +121,7 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   // Correction, and the trapezoidal position update x^{n+1} = x^n + dt (u^n + u^{n+1}) / 2.
   const std::vector<Vector<D>> grad_p = pressure_gradient();
   for (std::size_t i = 0; i < n; ++i) {
+    if (!fluid(i)) continue;
     P.v[i] = u_star[i] - (dt / P.rho[i]) * grad_p[i];
     P.x[i] += (0.5 * dt) * (P.v[i] - u_old[i]);
   }
@@ -127,6 +138,7 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
   const Physics<D>& phys = scene_->physics;
   nlohmann::json models = nlohmann::json::object();
   models["pressure_laplacian"] = "CumminsRudman";
+  if (walls_) models["walls"] = {{"model", "AdamiWall"}, {"ppe", "extrapolation rows, one fluid pressure pinned"}};
   models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
   if (phys.viscous()) models["viscosity"] = {{"model", "MorrisViscosity"}, {"nu", phys.nu}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];

@@ -40,6 +40,7 @@ template <int D> class IsphSolver : public Solver<D> {
   LindShifting shifting_model_;
   PressureGradient gradient_ = PressureGradient::Corrected;
   long solves_ = 0;
+  bool walls_ = false;
 };
 
 }  // namespace sph

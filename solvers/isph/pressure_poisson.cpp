@@ -32,8 +32,21 @@ template <int D> void PressurePoisson<D>::set_from_options() {
   SPH_PETSC(KSPSetFromOptions(ksp_));
 }
 
+template <int D> void PressurePoisson<D>::use_walls(bool walls) {
+  walls_ = walls;
+  if (!walls) return;
+  // Wall rows make the matrix non-symmetric: GMRES unless the user chose a KSP.
+  PetscBool user_type = PETSC_FALSE;
+  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-ksp_type", &user_type));
+  if (!user_type) {
+    SPH_PETSC(KSPSetType(ksp_, KSPGMRES));
+    SPH_PETSC(KSPSetFromOptions(ksp_));
+  }
+}
+
 template <int D>
-void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K) {
+void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
+                                  const Vector<D>& body_force) {
   const NeighbourList<D>& nl = nh.list();
   const Halo<D>& halo = nh.halo();
   PetscMPIInt rank;
@@ -42,6 +55,7 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   // Exact preallocation: one diagonal entry plus one per distinct-particle pair inside the support,
   // split by whether the column's particle is owned by this rank.
   const std::size_t n = P.n_owned;
+  kind_.assign(P.kind.begin(), P.kind.begin() + n);
   std::vector<PetscInt> d_nnz(n, 1), o_nnz(n, 0);
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>&) {
     if (P.gid[j] == P.gid[i]) return;
@@ -55,16 +69,42 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
                          o_nnz.data(), &A_));
   SPH_PETSC(MatSetOption(A_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
 
+  // Closed domains (walls, no free surface) pin the first fluid particle of rank 0 to p = 0: the
+  // wall rows make the matrix non-symmetric, so its left null space is unknown and the right-hand side
+  // cannot be projected; dropping one continuity equation instead makes the system regular.
+  pinned_ = -1;
+  if (walls_ && rank == 0)
+    for (std::size_t i = 0; i < n && pinned_ < 0; ++i)
+      if (P.kind[i] == kFluid) pinned_ = static_cast<long>(i);
+  row_rhs_.assign(n, 0.0);
+
   std::vector<PetscInt> cols;
   std::vector<PetscScalar> vals;
+  std::vector<PetscInt> wall_cols;
+  std::vector<double> wall_w, wall_g;  // W_wf and rho_f (g . r_wf) of the wall row's fluid neighbours
   std::size_t current = 0;
   double diag = 0.0;
   auto flush_row = [&](std::size_t i) {
     const PetscInt row = P.gid[i];
-    cols.push_back(row);
-    vals.push_back(diag);
+    if (P.kind[i] == kWall) {
+      // Adami et al. (2012) extrapolation, scaled like a fluid row: s (p_w - sum_f w_f p_f) = s sum_f w_f rho_f g.r_wf
+      double sumW = 0.0;
+      for (double w : wall_w) sumW += w;
+      cols.assign(1, row), vals.assign(1, diag);
+      for (std::size_t k = 0; k < wall_cols.size(); ++k) {
+        cols.push_back(wall_cols[k]);
+        vals.push_back(-diag * wall_w[k] / sumW);
+        row_rhs_[i] += diag * wall_w[k] / sumW * wall_g[k];
+      }
+      if (wall_cols.empty()) vals[0] = 1.0;  // no fluid in reach: p_w = 0, seen by nobody
+    } else if (static_cast<long>(i) == pinned_) {
+      cols.assign(1, row), vals.assign(1, diag);
+    } else {
+      cols.push_back(row);
+      vals.push_back(diag);
+    }
     SPH_PETSC(MatSetValues(A_, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(), vals.data(), ADD_VALUES));
-    cols.clear(), vals.clear(), diag = 0.0;
+    cols.clear(), vals.clear(), wall_cols.clear(), wall_w.clear(), wall_g.clear(), diag = 0.0;
   };
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     while (current < static_cast<std::size_t>(i)) flush_row(current++);
@@ -73,14 +113,21 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
     cols.push_back(P.gid[j]);
     vals.push_back(c);
     diag -= c;
+    if (P.kind[i] == kWall && P.kind[j] == kFluid) {
+      wall_cols.push_back(P.gid[j]);
+      wall_w.push_back(g.W);
+      wall_g.push_back(P.rho[j] * body_force.dot(g.rij));
+    }
   });
   while (current < n) flush_row(current++);
   SPH_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
   SPH_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
 
-  SPH_PETSC(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_TRUE, 0, nullptr, &nullspace_));
-  SPH_PETSC(MatSetNullSpace(A_, nullspace_));
-  SPH_PETSC(MatSetTransposeNullSpace(A_, nullspace_));
+  if (!walls_) {
+    SPH_PETSC(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_TRUE, 0, nullptr, &nullspace_));
+    SPH_PETSC(MatSetNullSpace(A_, nullspace_));
+    SPH_PETSC(MatSetTransposeNullSpace(A_, nullspace_));
+  }
   SPH_PETSC(MatCreateVecs(A_, &x_, &b_));
   SPH_PETSC(KSPSetOperators(ksp_, A_, A_));
 }
@@ -93,14 +140,18 @@ StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const st
   SPH_PETSC(VecGetLocalSize(b_, &n));
   SPH_PETSC(VecGetArray(b_, &b));
   SPH_PETSC(VecGetArray(x_, &x));
-  for (PetscInt i = 0; i < n; ++i) b[i] = -mass[i] * source[i], x[i] = use_guess ? p[i] : 0.0;
+  for (PetscInt i = 0; i < n; ++i) {
+    const bool fluid_row = kind_[i] == kFluid && i != pinned_;
+    b[i] = fluid_row ? -mass[i] * source[i] : row_rhs_[i];
+    x[i] = use_guess ? p[i] : 0.0;
+  }
   SPH_PETSC(VecRestoreArray(b_, &b));
   SPH_PETSC(VecRestoreArray(x_, &x));
   // The discrete divergence of u* need not sum to zero exactly: project out the part of the
   // right-hand side that no pressure can produce.
-  SPH_PETSC(MatNullSpaceRemove(nullspace_, b_));
+  if (nullspace_) SPH_PETSC(MatNullSpaceRemove(nullspace_, b_));
   SPH_PETSC(KSPSolve(ksp_, b_, x_));
-  SPH_PETSC(MatNullSpaceRemove(nullspace_, x_));
+  if (nullspace_) SPH_PETSC(MatNullSpaceRemove(nullspace_, x_));
 
   StepReport report;
   KSPConvergedReason reason;

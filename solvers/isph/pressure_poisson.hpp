@@ -10,6 +10,15 @@
 // (periodic or closed domains) the constant vector spans its null space; it is attached with
 // MatSetNullSpace and removed from the right-hand side, which makes the singular system consistent.
 // Rows and columns use global particle indices, so the same code assembles a distributed matrix.
+//
+// Walls (Adami, Hu & Adams 2012): each wall particle has a row expressing its pressure as the
+// Shepard-weighted extrapolation of the fluid pressure plus the body-force head,
+//   p_w - sum_f w_wf p_f = sum_f w_wf rho_f g . r_wf,
+// so fluid rows see walls through the same Laplacian and the wall pressure makes the normal pressure
+// gradient balance the body force (the homogeneous Neumann condition without one). These rows are
+// not symmetric: the default KSP becomes GMRES (BoomerAMG still preconditions it well: the matrix
+// stays an M-matrix with zero row sums), and a closed domain pins one fluid pressure instead of a
+// null space (see assemble).
 #include <petscksp.h>
 
 #include <string>
@@ -30,8 +39,12 @@ template <int D> class PressurePoisson {
   // Creates the KSP with the defaults above, then applies the user's -ksp_*/-pc_* options.
   void set_from_options();
 
+  // Tells the solver whether the scene has wall particles (switches the default KSP to GMRES).
+  void use_walls(bool walls);
+
   // Builds the matrix for the current particle positions (owned rows, global column indices).
-  void assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K);
+  void assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
+                const Vector<D>& body_force = Vector<D>::Zero());
 
   // Solves div(grad p / rho) = source (one value per owned particle). With use_guess, p holds the
   // initial guess on entry (the previous step's pressure: a good one); otherwise the KSP starts from
@@ -51,6 +64,10 @@ template <int D> class PressurePoisson {
   ::Mat A_ = nullptr;
   ::Vec b_ = nullptr, x_ = nullptr;
   MatNullSpace nullspace_ = nullptr;
+  bool walls_ = false;
+  long pinned_ = -1;             // local row pinned to p = 0 (closed domains), -1: none
+  std::vector<int> kind_;        // particle kind of each owned row
+  std::vector<double> row_rhs_;  // right-hand side of wall rows
 };
 
 }  // namespace sph

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "src/boundary/adami_wall.hpp"
 #include "src/core/options.hpp"
 #include "src/sph/operators.hpp"
 
@@ -70,12 +71,12 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
   eos_.rho0 = scene.physics.rho0;
   eos_.c0 = c0_ > 0 ? c0_ : c0_factor_ * scene.physics.U;
   for (std::size_t i = 0; i < P.n_owned; ++i) {
-    if (P.kind[i] != kFluid) throw Error("the WCSPH solver has no wall boundary treatment yet; use a periodic case");
     // The case's initial pressure sets the density (inverse EOS); particle volumes stay as laid out.
     const double rho = eos_.density(P.p[i]);
     P.m[i] *= rho / P.rho[i];
     P.rho[i] = rho;
   }
+  walls_ = has_walls(P);
   scene.neighbourhood.update(P, true);
   if (density_ == DensityMethod::Summation) {
     const std::vector<double> rho = density_summation(P, scene.neighbourhood.list(), scene.kernel);
@@ -89,6 +90,14 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
 template <int D> void WcsphSolver<D>::update_pressure() {
   Particles<D>& P = scene_->particles;
   for (std::size_t i = 0; i < P.size(); ++i) P.p[i] = eos_.pressure(P.rho[i]);  // ghosts too: rho is current there
+  if (!walls_) return;
+  // Adami et al. (2012): wall pressure extrapolated from the fluid, wall density from the EOS.
+  const Neighbourhood<D>& nh = scene_->neighbourhood;
+  AdamiWall<D>::extrapolate_pressure(AdamiWall<D>::stencil(P, nh.list(), scene_->kernel), P, scene_->physics.gravity);
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (P.kind[i] == kWall) P.rho[i] = eos_.density(std::max(P.p[i], -0.9 * eos_.B()));
+  nh.halo().update(P.p);
+  nh.halo().update(P.rho);
 }
 
 template <int D> void WcsphSolver<D>::compute_rates() {
@@ -117,9 +126,20 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   const double delta_h_c0 = delta_ * h * eos_.c0;
   const bool diffuse = diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity;
 
-  acc_.assign(n, phys.gravity);
+  // No-slip walls: the viscous term sees the mirrored wall velocity (Adami et al. 2012).
+  std::vector<Vector<D>> u_visc;
+  if (walls_ && phys.viscous()) {
+    u_visc = AdamiWall<D>::viscous_velocity(AdamiWall<D>::stencil(P, nl, K), P);
+    nh.halo().update(u_visc);
+  }
+  const std::vector<Vector<D>>& uv = u_visc.empty() ? P.v : u_visc;
+
+  acc_.assign(n, Vector<D>::Zero());
+  for (std::size_t i = 0; i < n; ++i)
+    if (P.kind[i] == kFluid) acc_[i] = phys.gravity;
   drho_.assign(n, 0.0);
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+    if (P.kind[i] != kFluid) return;  // walls move as prescribed
     const Vector<D> uij = P.v[i] - P.v[j];
     const double Vj = P.m[j] / P.rho[j];
     double Pi = 0.0;
@@ -127,7 +147,8 @@ template <int D> void WcsphSolver<D>::compute_rates() {
       Pi = av_.Pi(h, eos_.sound_speed(P.rho[i]), eos_.sound_speed(P.rho[j]), P.rho[i], P.rho[j], uij, g);
     acc_[i] += wcsph::pressure_acceleration_pair(P.m[j], P.p[i], P.p[j], P.rho[i], P.rho[j], Pi, g);
     const double F = morris_factor(g, h);
-    if (phys.viscous()) acc_[i] += morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], phys.nu, phys.nu, F, uij);
+    if (phys.viscous())
+      acc_[i] += morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], phys.nu, phys.nu, F, Vector<D>(uv[i] - uv[j]));
     if (density_ == DensityMethod::Continuity) {
       drho_[i] += wcsph::continuity_pair(P.rho[i], Vj, uij, g);
       if (diffuse)
@@ -167,10 +188,11 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
   // Kick (half step) and drift.
   std::vector<Vector<D>> v_half(n);
   std::vector<double> rho_half(n);
+  // Wall particles have zero rates: they keep their prescribed velocity and place.
   for (std::size_t i = 0; i < n; ++i) {
     v_half[i] = P.v[i] + 0.5 * dt * acc_[i];
     rho_half[i] = P.rho[i] + (continuity ? 0.5 * dt * drho_[i] : 0.0);
-    P.x[i] += dt * v_half[i];
+    if (P.kind[i] == kFluid) P.x[i] += dt * v_half[i];
   }
   // Velocity-dependent rates see a predicted end-of-step velocity and density.
   for (std::size_t i = 0; i < n; ++i) {
@@ -208,6 +230,7 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
                                       {"epsilon", av_.epsilon}};
   if (phys.viscous()) models["viscosity"] = {{"model", "MorrisViscosity"}, {"nu", phys.nu}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
+  if (walls_) models["walls"] = {{"model", "AdamiWall"}};
   if (shifting_) models["shifting"] = shifting_model_.describe();
   return {{"models", models}, {"cfl", cfl_}};
 }

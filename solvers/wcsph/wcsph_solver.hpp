@@ -41,6 +41,7 @@ template <int D> class WcsphSolver : public Solver<D> {
   std::vector<Vector<D>> acc_;
   std::vector<double> drho_;
   double max_acc_ = 0.0;
+  bool walls_ = false;
 };
 
 }  // namespace sph

@@ -31,9 +31,13 @@ template <int D> class Kernel {
   static double support_factor(KernelType type);
   double support_radius() const { return kappa_ * h_; }
 
-  double W(double r) const { return norm_ * shape(r * inv_h_); }
+  // Both vanish for r >= support_radius(): tested on r itself, since r/h rounds to just below kappa
+  // for some r = kappa h (e.g. h = 0.7), which the truncated Gaussian would turn into W(R) > 0.
+  double W(double r) const { return r < support_radius() ? norm_ * shape(r * inv_h_) : 0.0; }
   // dW/dr (negative inside the support).
-  double dWdr(double r) const { return norm_ * inv_h_ * shape_derivative(r * inv_h_); }
+  double dWdr(double r) const {
+    return r < support_radius() ? norm_ * inv_h_ * shape_derivative(r * inv_h_) : 0.0;
+  }
   // Gradient with respect to x_i of W(|x_i - x_j|), given r_ij = x_i - x_j and r = |r_ij| > 0.
   Vector<D> gradient(const Vector<D>& rij, double r) const {
     return r > 0.0 ? Vector<D>((dWdr(r) / r) * rij) : Vector<D>(Vector<D>::Zero());

@@ -21,6 +21,8 @@ template <int D> class Neighbourhood {
   const Halo<D>& halo() const { return halo_; }
   const Domain<D>& domain() const { return domain_; }
   double support_radius() const { return support_; }
+  // Schemes with variable smoothing lengths widen or narrow the search; the next update() rebuilds.
+  void set_support_radius(double support) { support_ = support, x_at_build_.clear(); }
   long rebuilds() const { return rebuilds_; }
 
  private:

@@ -21,21 +21,26 @@ template <int D> void assign_global_indices(Particles<D>& P) {
   for (std::size_t i = 0; i < P.n_owned; ++i) P.gid[i] = first + static_cast<GlobalIndex>(i);
 }
 
+// Fluid particles only.
 template <int D> struct Totals {
   double kinetic_energy = 0.0;
   Vector<D> momentum = Vector<D>::Zero();
+  double momentum_scale = 0.0;  // sum of |m v|: what momentum round-off is relative to
 };
 
 template <int D> Totals<D> totals(const Particles<D>& P) {
-  double buf[D + 1] = {};
+  double buf[D + 2] = {};
   for (std::size_t i = 0; i < P.n_owned; ++i) {
+    if (P.kind[i] != kFluid) continue;  // walls move as prescribed
     buf[0] += 0.5 * P.m[i] * P.v[i].squaredNorm();
-    for (int a = 0; a < D; ++a) buf[1 + a] += P.m[i] * P.v[i][a];
+    buf[1] += P.m[i] * P.v[i].norm();
+    for (int a = 0; a < D; ++a) buf[2 + a] += P.m[i] * P.v[i][a];
   }
-  MPI_Allreduce(MPI_IN_PLACE, buf, D + 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, buf, D + 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   Totals<D> t;
   t.kinetic_energy = buf[0];
-  for (int a = 0; a < D; ++a) t.momentum[a] = buf[1 + a];
+  t.momentum_scale = buf[1];
+  for (int a = 0; a < D; ++a) t.momentum[a] = buf[2 + a];
   return t;
 }
 

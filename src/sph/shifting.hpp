@@ -54,11 +54,14 @@ void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, 
   const std::vector<Vector<D>> dr = model.displacement(P, nl, K, dx);
   const std::vector<Tensor<D>> L = correction_matrices(P, nl, K);
   const std::vector<Tensor<D>> grad_u = vector_gradient_corrected(P, nl, K, L, P.v);
+  // Only fluid particles move; walls keep their place.
   for (std::vector<double>* f : scalars) {
     const std::vector<Vector<D>> grad_f = gradient_corrected(P, nl, K, L, *f);
-    for (std::size_t i = 0; i < P.n_owned; ++i) (*f)[i] += grad_f[i].dot(dr[i]);
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      if (P.kind[i] == kFluid) (*f)[i] += grad_f[i].dot(dr[i]);
   }
   for (std::size_t i = 0; i < P.n_owned; ++i) {
+    if (P.kind[i] != kFluid) continue;
     P.x[i] += dr[i];
     P.v[i] += grad_u[i].transpose() * dr[i];
   }

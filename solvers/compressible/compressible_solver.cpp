@@ -1,0 +1,450 @@
+#include "solvers/compressible/compressible_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "src/core/options.hpp"
+
+namespace sph {
+
+namespace {
+const char* const viscosity_names[] = {"none", "signal_velocity", "monaghan"};
+const char* const switch_names[] = {"none", "morris_monaghan"};
+
+struct RawOptions {
+  PetscReal cfl, cfl_force, eta, h_tol, alpha, beta, epsilon, alpha_min, alpha_max, sigma, alpha_u;
+  PetscInt viscosity, av_switch;
+  PetscBool balsara, conductivity;
+};
+
+PetscErrorCode read_options(RawOptions* o) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Compressible SPH, ideal gas with grad-h terms (-solver compressible)",
+                    "Solver");
+  PetscCall(PetscOptionsReal("-cfl", "Courant number: dt <= cfl h_i / v_sig,i (signal velocity)", "", o->cfl, &o->cfl,
+                             nullptr));
+  PetscCall(PetscOptionsReal("-cfl_force", "Force criterion: dt <= cfl_force sqrt(h_i / |a_i|)", "", o->cfl_force,
+                             &o->cfl_force, nullptr));
+  PetscCall(PetscOptionsReal("-eta", "Smoothing length h_i = eta (m_i/rho_i)^(1/D) (0: the kernel's default)", "",
+                             o->eta, &o->eta, nullptr));
+  PetscCall(PetscOptionsReal("-h_tolerance", "Relative tolerance of the Newton-Raphson iteration for h", "", o->h_tol,
+                             &o->h_tol, nullptr));
+  PetscCall(PetscOptionsEList("-av", "Artificial viscosity: none, signal_velocity (Monaghan 1997), monaghan (1992)", "",
+                              viscosity_names, 3, viscosity_names[o->viscosity], &o->viscosity, nullptr));
+  PetscCall(PetscOptionsReal("-av_alpha", "Artificial viscosity alpha (initial alpha with -av_switch)", "", o->alpha,
+                             &o->alpha, nullptr));
+  PetscCall(PetscOptionsReal("-av_beta", "Artificial viscosity beta (-1: 3 for signal_velocity, 2 for monaghan)", "",
+                             o->beta, &o->beta, nullptr));
+  PetscCall(PetscOptionsReal("-av_epsilon", "Singularity guard of the monaghan viscosity", "", o->epsilon, &o->epsilon,
+                             nullptr));
+  PetscCall(PetscOptionsEList("-av_switch", "Time-dependent alpha: none, morris_monaghan (1997)", "", switch_names, 2,
+                              switch_names[o->av_switch], &o->av_switch, nullptr));
+  PetscCall(PetscOptionsReal("-av_alpha_min", "Morris-Monaghan: alpha far from shocks", "", o->alpha_min, &o->alpha_min,
+                             nullptr));
+  PetscCall(PetscOptionsReal("-av_alpha_max", "Morris-Monaghan: largest alpha", "", o->alpha_max, &o->alpha_max, nullptr));
+  PetscCall(PetscOptionsReal("-av_decay", "Morris-Monaghan: decay rate sigma, tau = h / (sigma c)", "", o->sigma,
+                             &o->sigma, nullptr));
+  PetscCall(PetscOptionsBool("-balsara", "Balsara (1995) switch on the artificial viscosity", "", o->balsara,
+                             &o->balsara, nullptr));
+  PetscCall(PetscOptionsBool("-conductivity", "Artificial thermal conductivity (Price 2008)", "", o->conductivity,
+                             &o->conductivity, nullptr));
+  PetscCall(PetscOptionsReal("-conductivity_alpha", "Artificial conductivity coefficient alpha_u", "", o->alpha_u,
+                             &o->alpha_u, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+// h = eta (m/rho)^(1/D): about 1.2 for the cubic spline (Price 2012 sec. 3.2), fewer smoothing lengths for
+// the kernels with support 3h, more for the Wendland kernels, which need more neighbours (Dehnen & Aly 2012).
+double default_eta(KernelType t) {
+  switch (t) {
+    case KernelType::CubicSpline: return 1.2;
+    case KernelType::QuinticSpline: return 1.0;
+    case KernelType::WendlandC2: return 1.3;
+    case KernelType::WendlandC4: return 1.5;
+    case KernelType::Gaussian: return 1.0;
+  }
+  return 1.2;
+}
+
+double mpi_max(double x) {
+  MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+  return x;
+}
+}  // namespace
+
+template <int D> void CompressibleSolver<D>::set_from_options() {
+  RawOptions o{cfl_,       cfl_force_,  eta_,      h_tolerance_, av_.alpha, -1.0, av_.epsilon, alpha_min_, alpha_max_,
+               mm_sigma_,  alpha_u_,    static_cast<PetscInt>(av_.model), static_cast<PetscInt>(switch_),
+               balsara_,   conductivity_};
+  SPH_PETSC(read_options(&o));
+  require(o.cfl > 0 && o.cfl <= 1, "-cfl", "in (0, 1]", o.cfl);
+  require(o.cfl_force > 0 && o.cfl_force <= 1, "-cfl_force", "in (0, 1]", o.cfl_force);
+  require(o.eta >= 0, "-eta", "non-negative (0: kernel default)", o.eta);
+  require(o.h_tol > 0 && o.h_tol < 0.1, "-h_tolerance", "in (0, 0.1)", o.h_tol);
+  require(o.alpha >= 0, "-av_alpha", "non-negative", o.alpha);
+  require(o.beta >= 0 || o.beta == -1, "-av_beta", "non-negative (or -1 for the model's default)", o.beta);
+  require(o.epsilon > 0, "-av_epsilon", "positive", o.epsilon);
+  require(o.alpha_min >= 0, "-av_alpha_min", "non-negative", o.alpha_min);
+  require(o.alpha_max >= o.alpha_min, "-av_alpha_max", "at least -av_alpha_min", o.alpha_max);
+  require(o.sigma > 0, "-av_decay", "positive", o.sigma);
+  require(o.alpha_u >= 0, "-conductivity_alpha", "non-negative", o.alpha_u);
+  cfl_ = o.cfl, cfl_force_ = o.cfl_force, eta_ = o.eta, h_tolerance_ = o.h_tol;
+  av_.model = static_cast<compressible::ViscosityModel>(o.viscosity);
+  av_.alpha = o.alpha, av_.epsilon = o.epsilon;
+  av_.beta = o.beta >= 0 ? o.beta : (av_.model == compressible::ViscosityModel::Monaghan1992 ? 2.0 : 3.0);
+  switch_ = static_cast<ViscositySwitch>(o.av_switch);
+  alpha_min_ = o.alpha_min, alpha_max_ = o.alpha_max, mm_sigma_ = o.sigma;
+  balsara_ = o.balsara, conductivity_ = o.conductivity, alpha_u_ = o.alpha_u;
+  if (alpha_u_ == 0.0) conductivity_ = PETSC_FALSE;
+  if (!av_.active()) switch_ = ViscositySwitch::None, balsara_ = PETSC_FALSE;
+}
+
+template <int D> void CompressibleSolver<D>::setup(Scene<D>& scene) {
+  scene_ = &scene;
+  Particles<D>& P = scene.particles;
+  const Physics<D>& phys = scene.physics;
+  if (!phys.is_gas())
+    throw Error("the compressible solver needs a gas scene (the case declares no adiabatic index gamma); "
+                "use e.g. -case sod or -case toy_star, or another -solver");
+  require(phys.gamma > 1.0, "gamma (declared by the case)", "greater than 1", phys.gamma);
+  if (phys.viscous())
+    throw Error("the compressible solver has no physical (Navier-Stokes) viscosity; the case asks for nu > 0");
+  gamma_ = phys.gamma;
+  entropy_ = phys.isentropic;
+  const KernelType type = scene.kernel.type();
+  kappa_ = Kernel<D>::support_factor(type);
+  if (eta_ == 0.0) eta_ = default_eta(type);
+
+  const std::size_t n = P.n_owned;
+  h_.assign(n, 0.0), thermal_.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (P.kind[i] != kFluid) throw Error("the compressible solver has no wall boundary treatment; use a periodic or free case");
+    if (!(P.rho[i] > 0.0 && P.p[i] >= 0.0))
+      throw Error("the compressible solver needs positive initial densities and non-negative pressures");
+    h_[i] = eta_ * std::pow(P.m[i] / P.rho[i], 1.0 / D);
+  }
+  // The case's pressure and density set the entropy function A = P / rho^gamma (isentropic scenes).
+  if (entropy_)
+    for (std::size_t i = 0; i < n; ++i) thermal_[i] = P.p[i] / std::pow(P.rho[i], gamma_);
+  std::vector<double> p_case(P.p.begin(), P.p.begin() + n);
+  const double alpha0 = switch_ == ViscositySwitch::MorrisMonaghan ? std::clamp<double>(av_.alpha, alpha_min_, alpha_max_)
+                                                                   : av_.alpha;
+  alpha_.assign(n, alpha0);
+  dalpha_.assign(n, 0.0);
+
+  double h_max = 0.0;
+  for (std::size_t i = 0; i < n; ++i) h_max = std::max(h_max, h_[i]);
+  scene.neighbourhood.set_support_radius(1.1 * kappa_ * mpi_max(h_max));
+  scene.neighbourhood.update(P, true);
+  solve_density();
+  // With the energy equation, u = P / ((gamma - 1) rho) from the summation density keeps the case's
+  // pressure exactly (at a discontinuity the summation density is smoothed over h; a thermal energy from
+  // the case's density would give a pressure blip there that runs off as a spurious wave).
+  if (!entropy_)
+    for (std::size_t i = 0; i < n; ++i) thermal_[i] = p_case[i] / ((gamma_ - 1.0) * P.rho[i]);
+  update_thermodynamics();
+  compute_forces();
+  energy0_ = total_energy();
+  momentum0_ = total_momentum();
+  double scale = 0.0;
+  for (std::size_t i = 0; i < n; ++i) scale += P.m[i] * P.v[i].norm();
+  MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  momentum_scale0_ = scale;
+}
+
+template <int D> void CompressibleSolver<D>::ensure_search_radius(double h_max, bool allow_shrink) {
+  Neighbourhood<D>& nh = scene_->neighbourhood;
+  const double need = kappa_ * h_max;
+  if (need > nh.support_radius() || (allow_shrink && need < 0.7 * nh.support_radius())) {
+    // 10% headroom: smoothing lengths drift by a fraction of a percent per step.
+    nh.set_support_radius(1.1 * need);
+    nh.update(scene_->particles, true);
+    ++radius_changes_;
+  }
+}
+
+template <int D> void CompressibleSolver<D>::solve_density() {
+  using namespace compressible;
+  Particles<D>& P = scene_->particles;
+  const std::size_t n = P.n_owned;
+  const KernelType type = scene_->kernel.type();
+  const bool need_div = switch_ == ViscositySwitch::MorrisMonaghan || balsara_;
+  omega_.resize(std::max(omega_.size(), n));
+  divv_.assign(n, 0.0), curlv_.assign(n, 0.0);
+
+  std::vector<std::size_t> active(n);
+  for (std::size_t i = 0; i < n; ++i) active[i] = i;
+  std::vector<HBracket> bracket(n);
+  const int max_iterations = 50;
+  for (int iteration = 1;; ++iteration) {
+    double h_max = 0.0;
+    for (std::size_t k : active) h_max = std::max(h_max, h_[k]);
+    ensure_search_radius(mpi_max(h_max), false);
+    const NeighbourList<D>& nl = scene_->neighbourhood.list();
+
+    std::vector<std::size_t> still;
+    for (std::size_t i : active) {
+      const double h = h_[i];
+      const Kernel<D> K(type, h);
+      DensitySums s;
+      const double W0 = K.W(0.0);
+      s.rho = P.m[i] * W0;
+      s.drho_dh = P.m[i] * dW_dh(D, W0, 0.0, 0.0, h);
+      double div = 0.0;
+      Eigen::Vector3d curl = Eigen::Vector3d::Zero();
+      for_each_gather_neighbour(P, nl, i, K, [&](int j, const Vector<D>& rij, double r) {
+        const double W = K.W(r), dW = K.dWdr(r);
+        s.rho += P.m[j] * W;
+        s.drho_dh += P.m[j] * dW_dh(D, W, r, dW, h);
+        if (need_div) {
+          const Vector<D> vij = P.v[i] - P.v[j], gradW = (dW / r) * rij;
+          div += divergence_term(P.m[j], vij, gradW);
+          curl += curl_term(P.m[j], vij, gradW);
+        }
+      });
+      const double h_new = newton_h_update(D, P.m[i], eta_, h, s, bracket[i]);
+      if (getenv("SPH_DEBUG_H") && active.size() <= 2) fprintf(stderr, "   i=%zu h=%.15g f=%.6e df=%.6e hnew=%.15g\n", i, h, s.rho - density_from_h(D, P.m[i], eta_, h), s.drho_dh + D * density_from_h(D, P.m[i], eta_, h) / h, h_new);
+      const bool closed = bracket[i].hi > 0.0 && bracket[i].hi - bracket[i].lo <= h_tolerance_ * h;
+      if (std::abs(h_new - h) <= h_tolerance_ * h || closed) {
+        // Converged: the sums were taken at this h.
+        P.rho[i] = s.rho;
+        omega_[i] = grad_h_factor(D, h, s);
+        if (need_div) divv_[i] = div / (omega_[i] * s.rho), curlv_[i] = curl.norm() / (omega_[i] * s.rho);
+      } else {
+        h_[i] = h_new;
+        still.push_back(i);
+      }
+    }
+    active.swap(still);
+    density_iterations_max_ = std::max<long>(density_iterations_max_, iteration);
+    if (getenv("SPH_DEBUG_H") && !active.empty()) fprintf(stderr, "it %d active %zu e.g. i=%zu h=%.10g lo=%.10g hi=%.10g\n", iteration, active.size(), active[0], h_[active[0]], bracket[active[0]].lo, bracket[active[0]].hi);
+    double left = static_cast<double>(active.size());
+    MPI_Allreduce(MPI_IN_PLACE, &left, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    if (left == 0.0) break;
+    if (iteration == max_iterations) {
+      std::ostringstream msg;
+      msg << "the smoothing-length iteration did not converge in " << max_iterations << " Newton steps ("
+          << static_cast<long>(left) << " particles left, e.g. at x = " << P.x[active.front()].transpose()
+          << "); reduce -cfl or raise -h_tolerance";
+      throw Error(msg.str());
+    }
+  }
+  double h_max = 0.0, h_min = std::numeric_limits<double>::max();
+  for (std::size_t i = 0; i < n; ++i) h_max = std::max(h_max, h_[i]), h_min = std::min(h_min, h_[i]);
+  h_max_seen_ = mpi_max(h_max);
+  h_min_seen_ = -mpi_max(-h_min);
+  ensure_search_radius(h_max_seen_, true);  // narrow the search again where the gas was compressed
+}
+
+template <int D> void CompressibleSolver<D>::update_thermodynamics() {
+  Particles<D>& P = scene_->particles;
+  const std::size_t n = P.n_owned;
+  u_.resize(n), cs_.resize(n), balsara_factor_.resize(n), q_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double rho = P.rho[i];
+    if (entropy_) {
+      P.p[i] = thermal_[i] * std::pow(rho, gamma_);
+      u_[i] = P.p[i] / ((gamma_ - 1.0) * rho);
+    } else {
+      u_[i] = thermal_[i];
+      P.p[i] = (gamma_ - 1.0) * rho * u_[i];
+    }
+    cs_[i] = std::sqrt(gamma_ * P.p[i] / rho);
+    balsara_factor_[i] = balsara_ ? compressible::balsara_factor(divv_[i], curlv_[i], cs_[i], h_[i]) : 1.0;
+    q_[i] = P.p[i] / (omega_[i] * rho * rho);
+  }
+  const Halo<D>& halo = scene_->neighbourhood.halo();
+  halo.update(P.rho), halo.update(P.p), halo.update(h_), halo.update(u_), halo.update(cs_), halo.update(q_);
+  if (av_.active()) halo.update(alpha_), halo.update(balsara_factor_);
+  omega_.resize(n), halo.update(omega_);
+  const KernelType type = scene_->kernel.type();
+  kernels_.clear();
+  kernels_.reserve(P.size());
+  for (std::size_t k = 0; k < P.size(); ++k) kernels_.emplace_back(type, h_[k]);
+}
+
+template <int D> void CompressibleSolver<D>::compute_forces() {
+  using namespace compressible;
+  Particles<D>& P = scene_->particles;
+  const Physics<D>& phys = scene_->physics;
+  const std::size_t n = P.n_owned;
+  acc_.assign(n, phys.gravity);
+  if (phys.has_external_force())
+    for (std::size_t i = 0; i < n; ++i) acc_[i] += phys.external_acceleration(P.x[i]);
+  std::vector<double> pdv(n, 0.0), heat(n, 0.0);
+  vsig_.assign(n, 0.0);
+
+  for_each_gas_pair(P, scene_->neighbourhood.list(), kernels_, [&](int i, int j, const GasPair<D>& g) {
+    const Vector<D> vij = P.v[i] - P.v[j];
+    acc_[i] += pressure_acceleration(P.m[j], q_[i], q_[j], g);
+    pdv[i] += pdv_heating(P.m[j], q_[i], vij, g);
+    vsig_[i] = std::max(vsig_[i], signal_velocity(cs_[i], cs_[j], vij.dot(g.rij) / g.r));
+    if (av_.active()) {
+      const double alpha_ij = 0.25 * (alpha_[i] + alpha_[j]) * (balsara_factor_[i] + balsara_factor_[j]);
+      const double Pi = av_.Pi(alpha_ij, cs_[i], cs_[j], P.rho[i], P.rho[j], h_[i], h_[j], vij, g);
+      if (Pi > 0.0) {
+        acc_[i] += viscous_acceleration(P.m[j], Pi, g);
+        heat[i] += viscous_heating(P.m[j], Pi, vij, g);
+      }
+    }
+    if (conductivity_)
+      heat[i] += conductivity_heating(P.m[j], alpha_u_, P.p[i], P.p[j], P.rho[i], P.rho[j], u_[i], u_[j], g.dW_mean());
+  });
+
+  dthermal_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    // In entropy mode only dissipation changes A: dA/dt = (gamma - 1) rho^(1 - gamma) du/dt|_diss.
+    dthermal_[i] = entropy_ ? (gamma_ - 1.0) * std::pow(P.rho[i], 1.0 - gamma_) * heat[i] : pdv[i] + heat[i];
+  dalpha_.assign(n, 0.0);
+  if (switch_ == ViscositySwitch::MorrisMonaghan)
+    for (std::size_t i = 0; i < n; ++i)
+      dalpha_[i] = morris_monaghan_rate(alpha_[i], alpha_min_, alpha_max_, mm_sigma_, divv_[i], cs_[i], h_[i]);
+}
+
+template <int D> double CompressibleSolver<D>::stable_dt() const {
+  const Particles<D>& P = scene_->particles;
+  double dt = std::numeric_limits<double>::max();
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    if (vsig_[i] > 0.0) dt = std::min(dt, cfl_ * h_[i] / vsig_[i]);
+    const double a = acc_[i].norm();
+    if (a > 0.0) dt = std::min(dt, cfl_force_ * std::sqrt(h_[i] / a));
+  }
+  dt = -mpi_max(-dt);
+  // A gas without pressure or neighbours: the reference speed bounds the step.
+  if (dt == std::numeric_limits<double>::max()) dt = cfl_ * h_min_seen_ / std::max(scene_->physics.U, 1e-300);
+  return dt;
+}
+
+template <int D> void CompressibleSolver<D>::check_thermal_state() const {
+  const Particles<D>& P = scene_->particles;
+  int bad = -1;
+  for (std::size_t i = 0; i < P.n_owned && bad < 0; ++i)
+    if (!(thermal_[i] >= 0.0) || !std::isfinite(thermal_[i])) bad = static_cast<int>(i);
+  int any = bad >= 0;
+  MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  if (!any) return;
+  std::ostringstream msg;
+  msg << (entropy_ ? "entropy function" : "thermal energy") << " became negative or NaN";
+  if (bad >= 0) msg << " (particle at x = " << P.x[bad].transpose() << ")";
+  msg << "; reduce -cfl or raise -av_alpha";
+  throw Error(msg.str());
+}
+
+template <int D> StepReport CompressibleSolver<D>::step(double dt) {
+  Particles<D>& P = scene_->particles;
+  const std::size_t n = P.n_owned;
+  const bool mm = switch_ == ViscositySwitch::MorrisMonaghan;
+  // Kick (half step with the rates at t^n) and drift; velocity and thermal variable are predicted to
+  // t^{n+1} for the velocity- and energy-dependent terms of the force evaluation.
+  std::vector<Vector<D>> v_half(n);
+  std::vector<double> th_half(n), alpha_half(mm ? n : 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    v_half[i] = P.v[i] + (0.5 * dt) * acc_[i];
+    th_half[i] = thermal_[i] + 0.5 * dt * dthermal_[i];
+    P.x[i] += dt * v_half[i];
+    P.v[i] = v_half[i] + (0.5 * dt) * acc_[i];
+    thermal_[i] = th_half[i] + 0.5 * dt * dthermal_[i];
+    if (mm) {
+      alpha_half[i] = alpha_[i] + 0.5 * dt * dalpha_[i];
+      alpha_[i] = std::clamp<double>(alpha_half[i] + 0.5 * dt * dalpha_[i], alpha_min_, alpha_max_);
+    }
+  }
+  check_thermal_state();
+  scene_->neighbourhood.update(P);
+  solve_density();
+  update_thermodynamics();
+  compute_forces();
+  // Kick with the rates at t^{n+1}.
+  for (std::size_t i = 0; i < n; ++i) {
+    P.v[i] = v_half[i] + (0.5 * dt) * acc_[i];
+    thermal_[i] = th_half[i] + 0.5 * dt * dthermal_[i];
+    if (mm) alpha_[i] = std::clamp<double>(alpha_half[i] + 0.5 * dt * dalpha_[i], alpha_min_, alpha_max_);
+  }
+  check_thermal_state();
+  // Pressure and thermal energy of the final state (what the outputs and the errors see).
+  for (std::size_t i = 0; i < n; ++i) {
+    if (entropy_) {
+      P.p[i] = thermal_[i] * std::pow(P.rho[i], gamma_);
+      u_[i] = P.p[i] / ((gamma_ - 1.0) * P.rho[i]);
+    } else {
+      u_[i] = thermal_[i];
+      P.p[i] = (gamma_ - 1.0) * P.rho[i] * u_[i];
+    }
+  }
+  return {};
+}
+
+template <int D> double CompressibleSolver<D>::total_energy() const {
+  const Particles<D>& P = scene_->particles;
+  const Physics<D>& phys = scene_->physics;
+  double E = 0.0;
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    double e = 0.5 * P.v[i].squaredNorm() + u_[i] - phys.gravity.dot(P.x[i]);
+    if (phys.external_potential) e += phys.external_potential(P.x[i]);
+    E += P.m[i] * e;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &E, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  return E;
+}
+
+template <int D> Vector<D> CompressibleSolver<D>::total_momentum() const {
+  const Particles<D>& P = scene_->particles;
+  Vector<D> M = Vector<D>::Zero();
+  for (std::size_t i = 0; i < P.n_owned; ++i) M += P.m[i] * P.v[i];
+  MPI_Allreduce(MPI_IN_PLACE, M.data(), D, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  return M;
+}
+
+template <int D> nlohmann::json CompressibleSolver<D>::describe() const {
+  const Physics<D>& phys = scene_->physics;
+  nlohmann::json models = nlohmann::json::object();
+  models["equation_of_state"] = {{"model", "IdealGas"}, {"gamma", gamma_}};
+  models["energy_equation"] =
+      entropy_ ? nlohmann::json{{"model", "Isentropic"}, {"variable", "A = P/rho^gamma (Springel & Hernquist 2002)"}}
+               : nlohmann::json{{"model", "ThermalEnergy"}, {"variable", "u"}};
+  models["smoothing_length"] = {{"model", "GradH"}, {"eta", eta_}, {"tolerance", h_tolerance_}};
+  if (av_.model == compressible::ViscosityModel::SignalVelocity)
+    models["artificial_viscosity"] = {{"model", "MonaghanSignalVelocity"}, {"alpha", av_.alpha}, {"beta", av_.beta}};
+  else if (av_.model == compressible::ViscosityModel::Monaghan1992)
+    models["artificial_viscosity"] = {
+        {"model", "MonaghanAV"}, {"alpha", av_.alpha}, {"beta", av_.beta}, {"epsilon", av_.epsilon}};
+  if (balsara_) models["balsara"] = {{"model", "Balsara1995"}};
+  if (switch_ == ViscositySwitch::MorrisMonaghan)
+    models["viscosity_switch"] = {{"model", "MorrisMonaghan1997"},
+                                  {"alpha_min", alpha_min_},
+                                  {"alpha_max", alpha_max_},
+                                  {"decay", mm_sigma_}};
+  if (conductivity_) models["conductivity"] = {{"model", "Price2008"}, {"alpha_u", alpha_u_}};
+  if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
+  if (phys.has_external_force()) models["external_force"] = phys.describe()["external_acceleration"];
+  models["time_integration"] = "KickDriftKickLeapfrog";
+
+  // Conservation since setup: momentum relative to the larger of the initial and current sum of |m v|
+  // (a gas starting at rest has no initial scale), energy = kinetic + thermal + external potential.
+  const Particles<D>& P = scene_->particles;
+  double scale = 0.0;
+  for (std::size_t i = 0; i < P.n_owned; ++i) scale += P.m[i] * P.v[i].norm();
+  MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  const double dP = (total_momentum() - momentum0_).norm();
+  const double E = total_energy();
+  nlohmann::json conservation = {{"momentum_drift", dP / std::max({scale, momentum_scale0_, 1e-300})},
+                                 {"momentum_change", dP},
+                                 {"energy_initial", energy0_},
+                                 {"energy_drift_rel", std::abs(E - energy0_) / std::max(std::abs(energy0_), 1e-300)}};
+  return {{"models", models},
+          {"cfl", cfl_},
+          {"cfl_force", cfl_force_},
+          {"smoothing_length_range", {h_min_seen_, h_max_seen_}},
+          {"density_iterations_max", density_iterations_max_},
+          {"search_radius_changes", radius_changes_},
+          {"conservation", conservation}};
+}
+
+template class CompressibleSolver<1>;
+template class CompressibleSolver<2>;
+template class CompressibleSolver<3>;
+
+}  // namespace sph

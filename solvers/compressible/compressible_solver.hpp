@@ -1,0 +1,81 @@
+#pragma once
+// Compressible SPH for an ideal gas (-solver compressible): the scheme of Springel & Hernquist (2002)
+// and Price (2012, JCP 231:759) on the shared kernels and neighbour search.
+//   - variable smoothing lengths rho_i h_i^D = m_i eta^D, solved per particle by Newton-Raphson
+//     together with the density summation; grad-h factors Omega_i in momentum and energy equations;
+//   - P = (gamma - 1) rho u with the thermal energy equation, or (scenes declared isentropic) the
+//     entropy function A = P / rho^gamma, constant apart from dissipative heating (Springel & Hernquist 2002);
+//   - artificial viscosity: signal-velocity form (Monaghan 1997) or Monaghan (1992) alpha/beta, with
+//     optional Balsara (1995) switch and Morris & Monaghan (1997) time-dependent alpha; AV heating;
+//   - artificial thermal conductivity (Price 2008);
+//   - kick-drift-kick leapfrog (Monaghan 2005, sec. 5.3; Price 2012 sec. 4.6) with a predicted velocity
+//     and thermal energy for the velocity-dependent terms;
+//   - dt = min_i [C_cour h_i / v_sig,i, C_force sqrt(h_i / |a_i|)].
+// Position-dependent external forces come from the scene's Physics (e.g. the toy star's -Omega^2 x).
+#include <vector>
+
+#include "solvers/compressible/compressible_iact.hpp"
+#include "solvers/solver.hpp"
+
+namespace sph {
+
+enum class ViscositySwitch { None, MorrisMonaghan };
+
+template <int D> class CompressibleSolver : public Solver<D> {
+ public:
+  std::string name() const override { return "compressible"; }
+  void set_from_options() override;
+  void setup(Scene<D>& scene) override;
+  double stable_dt() const override;
+  StepReport step(double dt) override;
+  nlohmann::json describe() const override;
+
+  // Per-particle state (owned entries), public for tests and diagnostics.
+  const std::vector<double>& smoothing_lengths() const { return h_; }
+  const std::vector<double>& thermal_energy() const { return u_; }
+  const std::vector<double>& grad_h_factors() const { return omega_; }
+  const std::vector<double>& alphas() const { return alpha_; }
+  double total_energy() const;
+  Vector<D> total_momentum() const;
+
+ private:
+  // h, rho and Omega (and div v, curl v) at the current positions, by Newton-Raphson per particle.
+  void solve_density();
+  // P, c (and Balsara factors) from rho and the thermal variable; fills ghosts; builds per-particle kernels.
+  void update_thermodynamics();
+  // Accelerations and rates of the thermal variable and alpha at the current state.
+  void compute_forces();
+  void ensure_search_radius(double h_max, bool allow_shrink);
+  void check_thermal_state() const;
+
+  Scene<D>* scene_ = nullptr;
+  compressible::ArtificialViscosity av_;
+  ViscositySwitch switch_ = ViscositySwitch::None;
+  PetscBool balsara_ = PETSC_FALSE;  // Balsara switch on
+  PetscBool conductivity_ = PETSC_TRUE;
+  PetscReal alpha_u_ = 1.0;
+  PetscReal alpha_min_ = 0.1, alpha_max_ = 1.5, mm_sigma_ = 0.1;
+  PetscReal eta_ = 0.0;  // 0: the kernel's default
+  PetscReal h_tolerance_ = 1e-8;
+  PetscReal cfl_ = 0.3, cfl_force_ = 0.25;
+  double gamma_ = 1.4;
+  bool entropy_ = false;  // thermal variable: A = P/rho^gamma (isentropic scenes) instead of u
+  double kappa_ = 2.0;    // kernel support in units of h
+
+  // Per particle (owned + ghost where the pair loop reads neighbours' values).
+  std::vector<double> h_, omega_, u_, cs_, alpha_, balsara_factor_, q_;
+  std::vector<double> thermal_;  // u, or A in entropy mode
+  std::vector<Kernel<D>> kernels_;
+  // Owned only.
+  std::vector<Vector<D>> acc_;
+  std::vector<double> dthermal_, dalpha_, divv_, curlv_, vsig_;
+
+  // Bookkeeping.
+  double energy0_ = 0.0;
+  Vector<D> momentum0_ = Vector<D>::Zero();
+  double momentum_scale0_ = 0.0;
+  long density_iterations_max_ = 0, radius_changes_ = 0;
+  double h_min_seen_ = 0.0, h_max_seen_ = 0.0;
+};
+
+}  // namespace sph

@@ -1,0 +1,81 @@
+#pragma once
+// Generalised wall boundary condition of Adami, Hu & Adams (2012, JCP 231:7057) for fixed layers of
+// dummy wall particles (kind kWall), shared by every solver. For each wall particle w, from its fluid
+// neighbours f (Shepard-weighted):
+//   pressure   p_w = [sum_f p_f W_wf + (g - a_w) . sum_f rho_f r_wf W_wf] / sum_f W_wf
+//   velocity   u_w = 2 v_w - sum_f u_f W_wf / sum_f W_wf     (no-slip: used in the viscous term only;
+//                                                               the prescribed v_w enters continuity)
+// where v_w is the wall's prescribed velocity (kept in Particles::v; a moving lid has v_w != 0) and
+// a_w its acceleration (zero for the walls here). Wall particles with no fluid neighbour keep p = 0
+// and u_w = v_w; no fluid particle sees them.
+#include <vector>
+
+#include "src/core/physics.hpp"
+#include "src/sph/pair_loop.hpp"
+
+namespace sph {
+
+template <int D> struct AdamiWall {
+  // Shepard weights of wall particle w: the fluid neighbours f and W_wf / sum_f W_wf.
+  struct Stencil {
+    std::vector<std::size_t> offset{0};
+    std::vector<int> fluid;
+    std::vector<double> weight;
+    std::vector<Vector<D>> r_wf;  // x_w - x_f
+  };
+
+  // Builds the stencils of all owned wall particles (entries for fluid particles are empty).
+  static Stencil stencil(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) {
+    Stencil s;
+    s.offset.assign(P.n_owned + 1, 0);
+    std::vector<double> sum(P.n_owned, 0.0);
+    std::size_t current = 0;
+    for_each_pair(P, nl, K, [&](int w, int f, const PairGeometry<D>& g) {
+      if (P.kind[w] != kWall || P.kind[f] != kFluid) return;
+      while (current < static_cast<std::size_t>(w)) s.offset[++current] = s.fluid.size();
+      s.fluid.push_back(f);
+      s.weight.push_back(g.W);
+      s.r_wf.push_back(g.rij);
+      sum[w] += g.W;
+    });
+    while (current < P.n_owned) s.offset[++current] = s.fluid.size();
+    for (std::size_t w = 0; w < P.n_owned; ++w)
+      for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) s.weight[k] /= sum[w];
+    return s;
+  }
+
+  // Wall pressure from the fluid (for explicit schemes; ISPH puts the same relation into its matrix).
+  static void extrapolate_pressure(const Stencil& s, Particles<D>& P, const Vector<D>& body_force) {
+    for (std::size_t w = 0; w < P.n_owned; ++w) {
+      if (P.kind[w] != kWall) continue;
+      double p = 0.0;
+      for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) {
+        const int f = s.fluid[k];
+        p += s.weight[k] * (P.p[f] + P.rho[f] * body_force.dot(s.r_wf[k]));
+      }
+      P.p[w] = p;
+    }
+  }
+
+  // Velocity seen by the viscous term: the fluid's own, and the no-slip mirror on walls.
+  static std::vector<Vector<D>> viscous_velocity(const Stencil& s, const Particles<D>& P) {
+    std::vector<Vector<D>> u(P.v.begin(), P.v.begin() + P.n_owned);
+    for (std::size_t w = 0; w < P.n_owned; ++w) {
+      if (P.kind[w] != kWall || s.offset[w] == s.offset[w + 1]) continue;
+      Vector<D> avg = Vector<D>::Zero();
+      for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) avg += s.weight[k] * P.v[s.fluid[k]];
+      u[w] = 2.0 * P.v[w] - avg;
+    }
+    return u;
+  }
+};
+
+// True when any rank holds wall particles.
+template <int D> bool has_walls(const Particles<D>& P) {
+  int any = 0;
+  for (std::size_t i = 0; i < P.n_owned && !any; ++i) any = P.kind[i] == kWall;
+  MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  return any != 0;
+}
+
+}  // namespace sph
