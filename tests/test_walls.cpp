@@ -1,0 +1,52 @@
+// End-to-end: Adami et al. (2012) walls in ISPH and WCSPH, against the Poiseuille series solution
+// (Morris et al. 1997) and the lid-driven cavity tables of Ghia, Ghia & Shin (1982).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "run_sph.hpp"
+
+namespace {
+
+using sph::testing::run_sph;
+
+double error(const sph::testing::RunResult& r, const char* name) { return r.summary["errors"][name].get<double>(); }
+
+// Start-up Poiseuille flow at Re = 10 to t = 1 (about the viscous time L^2/nu / 10). A wall that let
+// the fluid slip would give a plug profile, an error of tens of percent; 2% at 20 particles across
+// is a fifth of the smallest such failure and the error must shrink with resolution (second order
+// expected from the kernel smoothing error: measured 0.53% -> 0.14%, nx 20 -> 40).
+TEST(Walls, IsphPoiseuilleMatchesSeriesSolutionAndConverges) {
+  const auto coarse = run_sph("pois_isph_20", "-case poiseuille -solver isph -nx 20 -t_end 1");
+  const auto fine = run_sph("pois_isph_40", "-case poiseuille -solver isph -nx 40 -t_end 1");
+  ASSERT_EQ(coarse.exit_code, 0);
+  ASSERT_EQ(fine.exit_code, 0);
+  EXPECT_LT(error(coarse, "l1_velocity"), 0.02);
+  EXPECT_LT(error(fine, "l1_velocity"), 0.5 * error(coarse, "l1_velocity"));
+  EXPECT_EQ(coarse.summary["ksp"]["type"], "gmres");  // wall rows are not symmetric
+  EXPECT_EQ(coarse.summary["models"]["walls"]["model"], "AdamiWall");
+}
+
+TEST(Walls, WcsphPoiseuilleMatchesSeriesSolution) {
+  const auto r = run_sph("pois_wcsph_20", "-case poiseuille -solver wcsph -nx 20 -t_end 1");
+  ASSERT_EQ(r.exit_code, 0);
+  EXPECT_LT(error(r, "l1_velocity"), 0.02);
+}
+
+// Cavity Re = 100 at 30 x 30 particles, run to steady state. The target is 2% RMS at
+// nx = 100; at nx = 30 we require 5% for u (the interior Ghia values themselves have an RMS of about
+// 0.35, so a stagnant or wrongly-driven cavity fails by far) and 2% for v (measured 2.4% and 0.4%).
+TEST(Walls, IsphCavityRe100MatchesGhia) {
+  const auto r = run_sph("cavity_isph_30", "-case lid_driven_cavity -solver isph -nx 30 -re 100");
+  ASSERT_EQ(r.exit_code, 0);
+  EXPECT_TRUE(r.summary["steady_state_reached"].get<bool>());
+  EXPECT_LT(error(r, "centreline_rms_u"), 0.05);
+  EXPECT_LT(error(r, "centreline_rms_v"), 0.02);
+}
+
+TEST(Walls, ThinWallLayersAreRefused) {
+  const auto r = run_sph("cavity_thin", "-case lid_driven_cavity -nx 16 -wall_layers 2");
+  EXPECT_NE(r.exit_code, 0);
+}
+
+}  // namespace
