@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <deque>
+#include <limits>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include "cases/registry.hpp"
 #include "solvers/registry.hpp"
 #include "src/core/options.hpp"
+#include "src/io/checkpoint.hpp"
 #include "src/io/csv_writer.hpp"
 #include "src/io/json_file.hpp"
 #include "src/io/particle_writer.hpp"
@@ -61,6 +63,8 @@ struct DriverOptions {
   PetscReal h_over_dx = -1;         // -1: support radius = 3 dx
   PetscReal skin = 0.2;             // Verlet skin as a fraction of the support radius
   PetscReal steady_tol = -1;        // -1: the case's default
+  PetscReal checkpoint_interval = -1;  // -1: with every VTK frame, 0: never
+  char restart[PETSC_MAX_PATH_LEN] = "";
   PetscBool progress = PETSC_TRUE;
   char output_dir[PETSC_MAX_PATH_LEN] = "";
 };
@@ -87,6 +91,11 @@ PetscErrorCode read_driver_options(DriverOptions* o) {
                              "Stop when |dKE/dt| / KE over the last time unit falls below this (0: run to t_end; "
                              "-1: the case's default)",
                              "", o->steady_tol, &o->steady_tol, nullptr));
+  PetscCall(PetscOptionsReal("-checkpoint_interval",
+                             "Time between checkpoints (<output_dir>/checkpoint.bin; -1: with every frame, 0: never)", "",
+                             o->checkpoint_interval, &o->checkpoint_interval, nullptr));
+  PetscCall(PetscOptionsString("-restart", "Resume from this checkpoint (same case, solver and options)", "", o->restart,
+                               o->restart, sizeof(o->restart), nullptr));
   PetscCall(PetscOptionsBool("-progress", "Print a progress line on stderr about once a second", "", o->progress,
                              &o->progress, nullptr));
   PetscOptionsEnd();
@@ -139,7 +148,23 @@ template <int D> void Run<D>::execute() {
   Scene<D> scene{P, nh, kernel, scene_case->physics(), dx};
   solver->setup(scene);
 
+  // A restart overwrites the freshly set-up state with the checkpoint's, then rebuilds the
+  // neighbourhood exactly as the writing run did after writing it.
+  const bool restarting = opt.restart[0] != '\0';
+  CheckpointState<D> resumed;
+  if (restarting) {
+    resumed = read_checkpoint(opt.restart, P, solver->checkpoint_fields());
+    solver->restore_scalars(resumed.scalars);
+    nh.update(P, true);
+  }
+  const std::string checkpoint_path = output_dir + "/checkpoint.bin";
+  auto write_state = [&](double t_now, long step_now) {
+    nh.update(P, true);  // the canonical neighbour state a restart starts from
+    write_checkpoint(checkpoint_path, P, solver->checkpoint_fields(), {t_now, step_now, solver->checkpoint_scalars()});
+  };
+
   ParticleWriter<D> writer(output_dir);
+  if (restarting) writer.resume(resumed.t);
   const std::vector<std::string> error_names = [&] {
     std::vector<std::string> v;
     for (const auto& e : scene_case->errors(P, 0.0)) v.push_back(e.first);
@@ -149,7 +174,8 @@ template <int D> void Run<D>::execute() {
   for (int a = 0; a < D; ++a) columns.push_back(std::string("momentum_") + "xyz"[a]);
   columns.insert(columns.end(), {"ksp_iterations", "ksp_reason"});
   columns.insert(columns.end(), error_names.begin(), error_names.end());
-  CsvWriter series(output_dir + "/timeseries.csv", columns);
+  CsvWriter series = restarting ? CsvWriter(output_dir + "/timeseries.csv", columns, 1, resumed.t)
+                                : CsvWriter(output_dir + "/timeseries.csv", columns);
 
   nlohmann::json summary;
   summary["case"] = names.case_name;
@@ -167,13 +193,18 @@ template <int D> void Run<D>::execute() {
 
   const Totals<D> initial = totals(P);
   SteadyState steady(opt.steady_tol);
-  double t = 0.0;
-  long step = 0;
+  double t = resumed.t;
+  long step = resumed.step;
   StepStats stats;
   Progress progress(opt.progress, opt.t_end);
-  double next_output = opt.output_interval > 0 ? opt.output_interval : opt.t_end;
-  writer.write(P, t);
+  const double frame_interval = opt.output_interval > 0 ? opt.output_interval : opt.t_end;
+  double next_output = frame_interval * (std::floor(t / frame_interval * (1 + 1e-12)) + 1);
+  const double checkpoint_interval = opt.checkpoint_interval < 0 ? frame_interval : opt.checkpoint_interval;
+  double next_checkpoint = checkpoint_interval > 0 ? checkpoint_interval * (std::floor(t / checkpoint_interval * (1 + 1e-12)) + 1)
+                                                   : std::numeric_limits<double>::infinity();
+  if (!restarting) writer.write(P, t);
   double last_frame_t = t;
+  const double ke_bound = 1e3 * 0.5 * fluid_mass(P) * scene.physics.U * scene.physics.U;
   bool warned_dt = false;
   const auto loop_start = std::chrono::steady_clock::now();
   auto finish = [&](const std::string& status, const std::string& failure) {
@@ -223,7 +254,7 @@ template <int D> void Run<D>::execute() {
       t += dt;
       ++step;
       stats.add(report);
-      check_health(P, step, t);
+      check_health(P, domain, ke_bound);
 
       const Totals<D> tot = totals(P);
       steady.add(t, tot.kinetic_energy);
@@ -237,14 +268,19 @@ template <int D> void Run<D>::execute() {
       if (t >= next_output * (1.0 - 1e-12) || t >= opt.t_end * (1.0 - 1e-12)) {
         writer.write(P, t);
         last_frame_t = t;
-        while (next_output <= t * (1.0 + 1e-12)) next_output += opt.output_interval > 0 ? opt.output_interval : opt.t_end;
+        while (next_output <= t * (1.0 + 1e-12)) next_output += frame_interval;
+      }
+      if (t >= next_checkpoint * (1.0 - 1e-12)) {
+        write_state(t, step);
+        while (next_checkpoint <= t * (1.0 + 1e-12)) next_checkpoint += checkpoint_interval;
       }
     }
   } catch (const Error& e) {
     std::ostringstream msg;
     msg << "step " << step + 1 << " (t = " << t << "): " << e.what();
     finish("failed", msg.str());
-    throw Error(msg.str() + " [last good output kept in " + output_dir + "]");
+    writer.write(P, t);  // the state that failed, for inspection (the .pvd lists it last)
+    throw Error(msg.str() + " [earlier frames and the last checkpoint are kept in " + output_dir + "]");
   }
   progress.done(step, t);
   if (opt.steady_tol > 0) summary["steady_state_reached"] = steady.reached();

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "src/core/physics.hpp"
+#include "src/io/checkpoint.hpp"
 #include "src/kernels/kernel.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 
@@ -39,6 +40,12 @@ template <int D> class Solver {
   virtual StepReport step(double dt) = 0;
   // Active models and their parameters, linear solver settings: goes into summary.json.
   virtual nlohmann::json describe() const = 0;
+
+  // State beyond the Particles fields that a restart needs to continue exactly: per-particle arrays
+  // (owned entries, contiguous doubles) and scalars. Restored after setup().
+  virtual std::vector<CheckpointField> checkpoint_fields() { return {}; }
+  virtual nlohmann::json checkpoint_scalars() const { return nlohmann::json::object(); }
+  virtual void restore_scalars(const nlohmann::json&) {}
 };
 
 }  // namespace sph

@@ -24,6 +24,8 @@ template <int D> class IsphSolver : public Solver<D> {
   double stable_dt() const override;
   StepReport step(double dt) override;
   nlohmann::json describe() const override;
+  nlohmann::json checkpoint_scalars() const override { return {{"pressure_solves", solves_}}; }
+  void restore_scalars(const nlohmann::json& j) override { solves_ = j.value("pressure_solves", 0L); }
 
   const PressurePoisson<D>& pressure_poisson() const { return ppe_; }
 

@@ -21,6 +21,11 @@ template <int D> class WcsphSolver : public Solver<D> {
   double stable_dt() const override;
   StepReport step(double dt) override;
   nlohmann::json describe() const override;
+  // The leapfrog carries the last accelerations and density rates into the next step.
+  std::vector<CheckpointField> checkpoint_fields() override {
+    acc_.resize(scene_->particles.n_owned), drho_.resize(scene_->particles.n_owned);
+    return {{"acceleration", acc_.empty() ? nullptr : acc_[0].data(), D}, {"density_rate", drho_.data(), 1}};
+  }
 
  private:
   // Accelerations and density rates at the current positions, velocities and densities.

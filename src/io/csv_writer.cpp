@@ -1,5 +1,8 @@
 #include "src/io/csv_writer.hpp"
 
+#include <cstdlib>
+#include <fstream>
+
 #include <petscsys.h>
 
 #include <charconv>
@@ -47,6 +50,34 @@ CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& co
     file_ = nullptr;
     throw Error("failed writing " + path + " (disk full?)");
   }
+}
+
+CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns, std::size_t key,
+                     double resume_at)
+    : columns_(columns.size()), path_(path) {
+  if (!is_root()) return;
+  std::vector<std::string> kept;
+  {
+    std::ifstream in(path);
+    std::string line;
+    bool header = true;
+    while (std::getline(in, line)) {
+      if (header) {
+        header = false;
+        continue;
+      }
+      std::size_t start = 0;
+      for (std::size_t k = 0; k < key && start != std::string::npos; ++k) start = line.find(',', start) + 1;
+      if (start != std::string::npos && std::strtod(line.c_str() + start, nullptr) <= resume_at) kept.push_back(line);
+    }
+  }
+  file_ = std::fopen(path.c_str(), "w");
+  if (!file_) throw Error("cannot write " + path + "; check that -output_dir is writable");
+  std::string text;
+  for (std::size_t k = 0; k < columns.size(); ++k) text += (k ? "," : "") + columns[k];
+  text += '\n';
+  for (const auto& l : kept) text += l + '\n';
+  if (std::fputs(text.c_str(), file_) < 0 || std::fflush(file_) != 0) throw Error("failed writing " + path);
 }
 
 CsvWriter::~CsvWriter() {

@@ -14,6 +14,9 @@ class CsvWriter {
  public:
   // Creates (truncates) `path` and writes the header line; throws sph::Error naming the file on failure.
   CsvWriter(const std::string& path, const std::vector<std::string>& columns);
+  // For a restart: keeps the existing file's rows whose first column `key` is <= resume_at and
+  // appends after them (the header must match).
+  CsvWriter(const std::string& path, const std::vector<std::string>& columns, std::size_t key, double resume_at);
   ~CsvWriter();
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <system_error>
 
 #include "src/core/error.hpp"
@@ -204,6 +205,17 @@ std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const s
   frames_.emplace_back(time, listed);
   write_pvd();
   return dir_ + "/" + listed;
+}
+
+template <int D> void ParticleWriter<D>::resume(double t) {
+  frames_.clear();
+  std::ifstream in(pvd_path());
+  const std::regex entry("<DataSet[^>]*timestep=\"([^\"]+)\"[^>]*file=\"([^\"]+)\"");
+  std::string line;
+  std::smatch m;
+  while (std::getline(in, line))
+    if (std::regex_search(line, m, entry) && std::stod(m[1].str()) <= t * (1 + 1e-12))
+      frames_.emplace_back(std::stod(m[1].str()), m[2].str());
 }
 
 template <int D> void ParticleWriter<D>::write_pvd() const {

@@ -35,6 +35,10 @@ template <int D> class ParticleWriter {
   // the file the .pvd lists for this frame: the .vtp on one rank, the .pvtp master on several.
   std::string write(const Particles<D>& P, double time, const std::vector<ScalarField>& extra = {});
 
+  // For a restart: takes over the frames of an existing .pvd up to time t (later ones are dropped),
+  // so numbering and the time series continue.
+  void resume(double t);
+
   int frames_written() const { return static_cast<int>(frames_.size()); }
   const std::string& directory() const { return dir_; }
   std::string pvd_path() const { return dir_ + "/" + base_ + ".pvd"; }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "src/core/domain.hpp"
 #include "src/core/error.hpp"
 #include "src/particles/particles.hpp"
 
@@ -44,13 +45,33 @@ template <int D> Totals<D> totals(const Particles<D>& P) {
   return t;
 }
 
-// Stops a run whose state is no longer a number.
-template <int D> void check_health(const Particles<D>& P, long step, double t) {
-  int bad = 0;
-  for (std::size_t i = 0; i < P.n_owned && !bad; ++i)
-    if (!P.x[i].allFinite() || !P.v[i].allFinite() || !std::isfinite(P.p[i])) bad = 1;
-  MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
-  if (bad) throw Error("position, velocity or pressure became NaN/Inf: the run blew up; reduce -cfl or -dt");
+template <int D> double fluid_mass(const Particles<D>& P) {
+  double m = 0.0;
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (P.kind[i] == kFluid) m += P.m[i];
+  MPI_Allreduce(MPI_IN_PLACE, &m, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  return m;
+}
+
+// Run health: stops a run whose state is no longer a number, whose fluid left the box through a
+// non-periodic side (walls crossed), or whose kinetic energy exceeds `ke_bound`.
+template <int D> void check_health(const Particles<D>& P, const Domain<D>& domain, double ke_bound) {
+  int bad[2] = {0, 0};  // NaN, outside
+  double ke = 0.0;
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    if (!P.x[i].allFinite() || !P.v[i].allFinite() || !std::isfinite(P.p[i])) bad[0] = 1;
+    if (P.kind[i] != kFluid) continue;
+    ke += 0.5 * P.m[i] * P.v[i].squaredNorm();
+    for (int a = 0; a < D; ++a)
+      if (!domain.periodic[a] && (P.x[i][a] < domain.lo[a] || P.x[i][a] > domain.hi[a])) bad[1] = 1;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, bad, 2, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, &ke, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  if (bad[0]) throw Error("position, velocity or pressure became NaN/Inf: the run blew up; reduce -cfl or -dt");
+  if (bad[1]) throw Error("a fluid particle left the domain through a wall: the run is unstable; reduce -cfl or -dt");
+  if (ke > ke_bound)
+    throw Error("kinetic energy " + std::to_string(ke) + " exceeds 1000 x its reference scale (1/2 M U^2): the run "
+                "blew up; reduce -cfl or -dt");
 }
 
 }  // namespace sph

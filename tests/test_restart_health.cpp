@@ -1,0 +1,98 @@
+// Checkpoint/restart reproduces an uninterrupted run bit for bit; run-health checks stop bad runs
+// with a one-line cause, status "failed" in summary.json and a non-zero exit.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
+#include <limits>
+
+#include "run_sph.hpp"
+#include "src/run/diagnostics.hpp"
+
+namespace {
+
+using sph::testing::run_sph;
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Run A goes straight to t = 0.2; run B stops at step 20 (t = 0.1, where a checkpoint is due);
+// run C resumes B's checkpoint to t = 0.2. C's final checkpoint and time series must equal A's.
+void expect_restart_is_exact(const std::string& solver, double dt) {
+  const std::string common = "-case taylor_green -solver " + solver + " -nx 16 -t_end " + std::to_string(40 * dt) +
+                             " -dt " + std::to_string(dt) + " -output_interval " + std::to_string(10 * dt) +
+                             " -checkpoint_interval " + std::to_string(20 * dt);
+  const auto a = run_sph("restart_a_" + solver, common);
+  const auto b = run_sph("restart_b_" + solver, common + " -max_steps 20");
+  ASSERT_EQ(a.exit_code, 0);
+  ASSERT_EQ(b.exit_code, 0);
+  const auto c = run_sph("restart_c_" + solver, common + " -restart " + b.output_dir + "/checkpoint.bin");
+  ASSERT_EQ(c.exit_code, 0);
+  EXPECT_EQ(c.summary["steps"], a.summary["steps"]);
+  const std::string ca = slurp(a.output_dir + "/checkpoint.bin"), cc = slurp(c.output_dir + "/checkpoint.bin");
+  ASSERT_FALSE(ca.empty());
+  EXPECT_TRUE(ca == cc) << "final checkpoints differ";
+  EXPECT_EQ(c.summary["errors"], a.summary["errors"]);
+}
+
+TEST(Restart, IsphMatchesUninterruptedRunExactly) { expect_restart_is_exact("isph", 0.005); }
+TEST(Restart, WcsphMatchesUninterruptedRunExactly) { expect_restart_is_exact("wcsph", 0.001); }
+
+TEST(Restart, MismatchedCheckpointIsRefused) {
+  const auto b = run_sph("restart_src", "-case taylor_green -nx 16 -t_end 0.02");
+  ASSERT_EQ(b.exit_code, 0);
+  const auto c = run_sph("restart_bad", "-case taylor_green -nx 20 -t_end 0.04 -restart " + b.output_dir + "/checkpoint.bin");
+  EXPECT_NE(c.exit_code, 0);
+}
+
+// Each health check on a constructed bad state.
+struct Box {
+  sph::Particles<2> P;
+  sph::Domain<2> domain;
+  Box() {
+    domain.periodic = {true, false};
+    for (int k = 0; k < 4; ++k) P.add(sph::Vector<2>(0.2 + 0.2 * k, 0.5), sph::Vector<2>(1.0, 0.0), 1.0, 1.0);
+  }
+};
+
+TEST(Health, NanStopsTheRun) {
+  Box b;
+  EXPECT_NO_THROW(sph::check_health(b.P, b.domain, 100.0));
+  b.P.v[2][1] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(sph::check_health(b.P, b.domain, 100.0), sph::Error);
+}
+
+TEST(Health, ParticleThroughAWallStopsTheRun) {
+  Box b;
+  b.P.x[1][0] = 1.5;  // periodic axis: fine (wrapped at the next rebuild)
+  EXPECT_NO_THROW(sph::check_health(b.P, b.domain, 100.0));
+  b.P.x[1][1] = -0.01;  // below the bottom wall
+  EXPECT_THROW(sph::check_health(b.P, b.domain, 100.0), sph::Error);
+}
+
+TEST(Health, EnergyGrowthStopsTheRun) {
+  Box b;
+  EXPECT_NO_THROW(sph::check_health(b.P, b.domain, 2.1));  // KE = 4 * 0.5
+  EXPECT_THROW(sph::check_health(b.P, b.domain, 1.9), sph::Error);
+}
+
+TEST(Health, BlowUpEndsWithFailedSummaryAndFinalFrame) {
+  // A time step ten times the acoustic limit: WCSPH must blow up, and the run must say so.
+  const auto r = run_sph("blowup", "-case taylor_green -solver wcsph -nx 16 -t_end 1 -dt 0.02 -output_interval 0.5");
+  EXPECT_NE(r.exit_code, 0);
+  ASSERT_FALSE(r.summary.is_null());
+  EXPECT_EQ(r.summary["status"], "failed");
+  EXPECT_FALSE(r.summary["failure"].get<std::string>().empty());
+  EXPECT_TRUE(std::ifstream(r.output_dir + "/particles_00001.vtp").good());  // the failed state, for inspection
+}
+
+TEST(Health, DivergedPressureSolveStopsTheRun) {
+  const auto r = run_sph("ksp_diverged", "-case taylor_green -nx 16 -t_end 0.1 -ksp_type cg -pc_type none -ksp_max_it 2");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.summary["status"], "failed");
+  EXPECT_NE(r.summary["failure"].get<std::string>().find("did not converge"), std::string::npos);
+}
+
+}  // namespace
