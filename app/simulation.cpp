@@ -279,6 +279,7 @@ template <int D> void Run<D>::execute() {
     std::ostringstream msg;
     msg << "step " << step + 1 << " (t = " << t << "): " << e.what();
     finish("failed", msg.str());
+    scene_case->write_outputs(P, t, output_dir);
     writer.write(P, t);  // the state that failed, for inspection (the .pvd lists it last)
     throw Error(msg.str() + " [earlier frames and the last checkpoint are kept in " + output_dir + "]");
   }

@@ -1,5 +1,6 @@
 #include "cases/registry.hpp"
 
+#include "cases/dam_break/dam_break.hpp"
 #include "cases/lid_driven_cavity/lid_driven_cavity.hpp"
 #include "cases/poiseuille/poiseuille.hpp"
 #include "cases/sod/sod.hpp"
@@ -15,6 +16,8 @@ const std::vector<CaseEntry>& case_registry() {
        [] { return std::make_unique<TaylorGreen>(); }, nullptr},
       {"lid_driven_cavity", "unit cavity with a sliding lid, Adami walls, to steady state; Ghia et al. (1982) reference",
        2, nullptr, [] { return std::make_unique<LidDrivenCavity>(); }, nullptr},
+      {"dam_break", "collapsing water column (a x 2a) in a 4a tank, free surface; Martin & Moyce (1952) front", 2,
+       nullptr, [] { return std::make_unique<DamBreak>(); }, nullptr},
       {"poiseuille", "body-force-driven channel between walls, periodic in x; series solution (Morris et al. 1997)", 2,
        nullptr, [] { return std::make_unique<Poiseuille>(); }, nullptr},
       {"sod", "Sod shock tube (gamma = 1.4), periodic x in [-1, 1), 1D/2D/3D; exact Riemann solution (Toro 2009)", 1,

@@ -4,6 +4,7 @@
 
 #include "src/boundary/adami_wall.hpp"
 #include "src/core/options.hpp"
+#include "src/sph/free_surface.hpp"
 #include "src/sph/operators.hpp"
 
 namespace sph {
@@ -11,7 +12,8 @@ namespace sph {
 namespace {
 const char* const gradient_names[] = {"corrected", "difference", "symmetric"};
 
-PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscReal* shift_A, PetscInt* gradient) {
+PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscReal* shift_A, PetscInt* gradient,
+                            PetscReal* fs_threshold) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "ISPH projection solver (-solver isph)", "Solver");
   PetscCall(PetscOptionsReal("-cfl", "Advective Courant number: dt <= cfl h / U", "", *cfl, cfl, nullptr));
@@ -21,6 +23,9 @@ PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscReal* shif
   PetscCall(PetscOptionsEList("-pressure_gradient",
                               "Pressure gradient: corrected (Bonet & Lok), difference, symmetric (Monaghan)", "",
                               gradient_names, 3, gradient_names[*gradient], gradient, nullptr));
+  PetscCall(PetscOptionsReal("-free_surface_threshold",
+                             "Free-surface particles: div r below this (0: 1.5 in 2D, 2.4 in 3D; Lind et al. 2012)", "",
+                             *fs_threshold, fs_threshold, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -29,7 +34,9 @@ PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscReal* shif
 template <int D> void IsphSolver<D>::set_from_options() {
   PetscReal cfl = cfl_, A = shifting_model_.A;
   PetscInt gradient = static_cast<PetscInt>(gradient_);
-  SPH_PETSC(read_options(&cfl, &shifting_, &A, &gradient));
+  SPH_PETSC(read_options(&cfl, &shifting_, &A, &gradient, &free_surface_threshold_));
+  require(free_surface_threshold_ >= 0 && free_surface_threshold_ < D, "-free_surface_threshold",
+          "in [0, dimension)", free_surface_threshold_);
   require(cfl > 0 && cfl <= 1.0, "-cfl", "in (0, 1]", cfl);
   require(A >= 0 && A <= 1, "-shift_coefficient", "in [0, 1]", A);
   cfl_ = cfl, shifting_model_.A = A, gradient_ = static_cast<PressureGradient>(gradient);
@@ -42,7 +49,8 @@ template <int D> void IsphSolver<D>::setup(Scene<D>& scene) {
   // Divergence-free ISPH: density stays at its reference value (walls included).
   for (std::size_t i = 0; i < P.n_owned; ++i) P.rho[i] = scene.physics.rho0;
   walls_ = has_walls(P);
-  ppe_.use_walls(walls_);
+  ppe_.use_nonsymmetric(walls_ || scene.physics.free_surface);
+  if (free_surface_threshold_ <= 0) free_surface_threshold_ = default_free_surface_threshold<D>();
   scene.neighbourhood.update(P, true);
 }
 
@@ -112,7 +120,10 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   // Projection: div(grad p / rho) = div(u*) / dt.
   std::vector<double> source = divergence(P, nh.list(), K, u_star);
   for (double& s : source) s /= dt;
-  ppe_.assemble(P, nh, K, phys.gravity);
+  // Free surface (Lind et al. 2012): surface particles at x* get p = 0.
+  std::vector<char> surface;
+  if (phys.free_surface) surface = free_surface_particles(P, nh.list(), K, free_surface_threshold_);
+  ppe_.assemble(P, nh, K, phys.gravity, phys.free_surface ? &surface : nullptr);
   // The first solve starts from zero: the case's initial pressure is not the projection's.
   const StepReport report = ppe_.solve(source, P.m, P.p, solves_ > 0);
   ++solves_;
@@ -130,15 +141,23 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
 }
 
 template <int D> void IsphSolver<D>::shift() {
-  scene_->neighbourhood.update(scene_->particles);  // shifting works on the new positions
-  shift_particles(scene_->particles, scene_->neighbourhood, scene_->kernel, shifting_model_, scene_->dx);
+  Particles<D>& P = scene_->particles;
+  Neighbourhood<D>& nh = scene_->neighbourhood;
+  nh.update(P);  // shifting works on the new positions
+  std::vector<char> surface;
+  if (scene_->physics.free_surface) surface = free_surface_particles(P, nh.list(), scene_->kernel, free_surface_threshold_);
+  shift_particles(P, nh, scene_->kernel, shifting_model_, scene_->dx, {}, surface.empty() ? nullptr : &surface);
 }
 
 template <int D> nlohmann::json IsphSolver<D>::describe() const {
   const Physics<D>& phys = scene_->physics;
   nlohmann::json models = nlohmann::json::object();
   models["pressure_laplacian"] = "CumminsRudman";
-  if (walls_) models["walls"] = {{"model", "AdamiWall"}, {"ppe", "extrapolation rows, one fluid pressure pinned"}};
+  if (walls_)
+    models["walls"] = {{"model", "AdamiWall"},
+                       {"ppe", phys.free_surface ? "extrapolation rows" : "extrapolation rows, one fluid pressure pinned"}};
+  if (phys.free_surface)
+    models["free_surface"] = {{"model", "LindFreeSurface"}, {"threshold_div_r", free_surface_threshold_}};
   models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
   if (phys.viscous()) models["viscosity"] = {{"model", "MorrisViscosity"}, {"nu", phys.nu}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];

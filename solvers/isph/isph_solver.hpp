@@ -43,6 +43,7 @@ template <int D> class IsphSolver : public Solver<D> {
   PressureGradient gradient_ = PressureGradient::Corrected;
   long solves_ = 0;
   bool walls_ = false;
+  PetscReal free_surface_threshold_ = 0.0;  // 0: the dimension's default
 };
 
 }  // namespace sph

@@ -32,10 +32,9 @@ template <int D> void PressurePoisson<D>::set_from_options() {
   SPH_PETSC(KSPSetFromOptions(ksp_));
 }
 
-template <int D> void PressurePoisson<D>::use_walls(bool walls) {
-  walls_ = walls;
-  if (!walls) return;
-  // Wall rows make the matrix non-symmetric: GMRES unless the user chose a KSP.
+template <int D> void PressurePoisson<D>::use_nonsymmetric(bool nonsymmetric) {
+  walls_ = nonsymmetric;
+  if (!nonsymmetric) return;
   PetscBool user_type = PETSC_FALSE;
   SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-ksp_type", &user_type));
   if (!user_type) {
@@ -46,7 +45,7 @@ template <int D> void PressurePoisson<D>::use_walls(bool walls) {
 
 template <int D>
 void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
-                                  const Vector<D>& body_force) {
+                                  const Vector<D>& body_force, const std::vector<char>* dirichlet) {
   const NeighbourList<D>& nl = nh.list();
   const Halo<D>& halo = nh.halo();
   PetscMPIInt rank;
@@ -56,6 +55,11 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   // split by whether the column's particle is owned by this rank.
   const std::size_t n = P.n_owned;
   kind_.assign(P.kind.begin(), P.kind.begin() + n);
+  if (dirichlet) dirichlet_ = *dirichlet;
+  else dirichlet_.assign(n, 0);
+  int any_dirichlet = 0;
+  for (char c : dirichlet_) any_dirichlet |= c;
+  MPI_Allreduce(MPI_IN_PLACE, &any_dirichlet, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
   std::vector<PetscInt> d_nnz(n, 1), o_nnz(n, 0);
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>&) {
     if (P.gid[j] == P.gid[i]) return;
@@ -73,7 +77,7 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   // wall rows make the matrix non-symmetric, so its left null space is unknown and the right-hand side
   // cannot be projected; dropping one continuity equation instead makes the system regular.
   pinned_ = -1;
-  if (walls_ && rank == 0)
+  if (walls_ && !any_dirichlet && rank == 0)
     for (std::size_t i = 0; i < n && pinned_ < 0; ++i)
       if (P.kind[i] == kFluid) pinned_ = static_cast<long>(i);
   row_rhs_.assign(n, 0.0);
@@ -97,8 +101,8 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
         row_rhs_[i] += diag * wall_w[k] / sumW * wall_g[k];
       }
       if (wall_cols.empty()) vals[0] = 1.0;  // no fluid in reach: p_w = 0, seen by nobody
-    } else if (static_cast<long>(i) == pinned_) {
-      cols.assign(1, row), vals.assign(1, diag);
+    } else if (static_cast<long>(i) == pinned_ || dirichlet_[i]) {
+      cols.assign(1, row), vals.assign(1, diag > 0.0 ? diag : 1.0);
     } else {
       cols.push_back(row);
       vals.push_back(diag);
@@ -123,7 +127,7 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   SPH_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
   SPH_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
 
-  if (!walls_) {
+  if (!walls_ && !any_dirichlet) {
     SPH_PETSC(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_TRUE, 0, nullptr, &nullspace_));
     SPH_PETSC(MatSetNullSpace(A_, nullspace_));
     SPH_PETSC(MatSetTransposeNullSpace(A_, nullspace_));
@@ -141,7 +145,7 @@ StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const st
   SPH_PETSC(VecGetArray(b_, &b));
   SPH_PETSC(VecGetArray(x_, &x));
   for (PetscInt i = 0; i < n; ++i) {
-    const bool fluid_row = kind_[i] == kFluid && i != pinned_;
+    const bool fluid_row = kind_[i] == kFluid && i != pinned_ && !dirichlet_[i];
     b[i] = fluid_row ? -mass[i] * source[i] : row_rhs_[i];
     x[i] = use_guess ? p[i] : 0.0;
   }

@@ -19,6 +19,9 @@
 // not symmetric: the default KSP becomes GMRES (BoomerAMG still preconditions it well: the matrix
 // stays an M-matrix with zero row sums), and a closed domain pins one fluid pressure instead of a
 // null space (see assemble).
+//
+// Free surface: particles flagged as on the surface get the Dirichlet row p = 0 (Lind et al. 2012);
+// the pressure level is then fixed and neither a null space nor a pin is needed.
 #include <petscksp.h>
 
 #include <string>
@@ -39,12 +42,14 @@ template <int D> class PressurePoisson {
   // Creates the KSP with the defaults above, then applies the user's -ksp_*/-pc_* options.
   void set_from_options();
 
-  // Tells the solver whether the scene has wall particles (switches the default KSP to GMRES).
-  void use_walls(bool walls);
+  // Tells the solver whether the matrix will be non-symmetric (walls, free surface): the default KSP
+  // becomes GMRES unless the user chose one.
+  void use_nonsymmetric(bool nonsymmetric);
 
   // Builds the matrix for the current particle positions (owned rows, global column indices).
+  // Particles flagged in `dirichlet` (free surface) get the row p = 0.
   void assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
-                const Vector<D>& body_force = Vector<D>::Zero());
+                const Vector<D>& body_force = Vector<D>::Zero(), const std::vector<char>* dirichlet = nullptr);
 
   // Solves div(grad p / rho) = source (one value per owned particle). With use_guess, p holds the
   // initial guess on entry (the previous step's pressure: a good one); otherwise the KSP starts from
@@ -67,6 +72,7 @@ template <int D> class PressurePoisson {
   bool walls_ = false;
   long pinned_ = -1;             // local row pinned to p = 0 (closed domains), -1: none
   std::vector<int> kind_;        // particle kind of each owned row
+  std::vector<char> dirichlet_;  // rows with p = 0
   std::vector<double> row_rhs_;  // right-hand side of wall rows
 };
 

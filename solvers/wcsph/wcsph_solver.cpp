@@ -4,6 +4,7 @@
 
 #include "src/boundary/adami_wall.hpp"
 #include "src/core/options.hpp"
+#include "src/sph/free_surface.hpp"
 #include "src/sph/operators.hpp"
 
 namespace sph {
@@ -210,7 +211,11 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
   }
   if (shifting_) {
     if (!nh.update(P)) nh.halo().update(P.rho);
-    shift_particles(P, nh, scene_->kernel, shifting_model_, scene_->dx, {&P.rho});
+    // At a free surface particles shift only along it (Lind et al. 2012).
+    std::vector<char> surface;
+    if (scene_->physics.free_surface)
+      surface = free_surface_particles(P, nh.list(), scene_->kernel, default_free_surface_threshold<D>());
+    shift_particles(P, nh, scene_->kernel, shifting_model_, scene_->dx, {&P.rho}, surface.empty() ? nullptr : &surface);
   }
   nh.halo().update(P.rho);
   update_pressure();

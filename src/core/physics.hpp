@@ -25,6 +25,9 @@ template <int D> struct Physics {
   double gamma = 0.0;
   bool isentropic = false;
 
+  // The scene has a free surface: ISPH detects surface particles and imposes p = 0 there.
+  bool free_surface = false;
+
   bool viscous() const { return nu > 0.0; }
   bool has_body_force() const { return gravity.squaredNorm() > 0.0; }
   bool has_external_force() const { return static_cast<bool>(external_acceleration); }
@@ -35,6 +38,7 @@ template <int D> struct Physics {
     if (has_body_force()) j["gravity"] = std::vector<double>(gravity.data(), gravity.data() + D);
     if (has_external_force()) j["external_acceleration"] = external_label.empty() ? "position-dependent" : external_label;
     if (is_gas()) j["gas"] = {{"gamma", gamma}, {"isentropic", isentropic}};
+    if (free_surface) j["free_surface"] = true;
     return j;
   }
 };

@@ -45,13 +45,21 @@ struct LindShifting {
   nlohmann::json describe() const { return {{"model", "LindShifting"}, {"A", A}, {"R", R}, {"n", n}}; }
 };
 
-// Shifts the owned particles by -D grad C and Taylor-corrects the velocity, u + (dr . grad) u with
+// Shifts the owned particles by -D grad C (on free-surface particles only along the surface: the
+// normal part, n = -grad C / |grad C|, is removed, Lind et al. 2012) and Taylor-corrects the velocity, u + (dr . grad) u with
 // the corrected gradient, and the listed scalar fields likewise. Positions must be current in `nh`.
 template <int D>
 void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, const LindShifting& model,
-                     double dx, const std::vector<std::vector<double>*>& scalars = {}) {
+                     double dx, const std::vector<std::vector<double>*>& scalars = {},
+                     const std::vector<char>* surface = nullptr) {
   const NeighbourList<D>& nl = nh.list();
-  const std::vector<Vector<D>> dr = model.displacement(P, nl, K, dx);
+  std::vector<Vector<D>> dr = model.displacement(P, nl, K, dx);
+  if (surface)
+    for (std::size_t i = 0; i < P.n_owned; ++i) {
+      if (!(*surface)[i] || dr[i].squaredNorm() == 0.0) continue;
+      const Vector<D> n = dr[i].normalized();  // dr is along -grad C, the outward normal
+      dr[i] -= n.dot(dr[i]) * n;
+    }
   const std::vector<Tensor<D>> L = correction_matrices(P, nl, K);
   const std::vector<Tensor<D>> grad_u = vector_gradient_corrected(P, nl, K, L, P.v);
   // Only fluid particles move; walls keep their place.

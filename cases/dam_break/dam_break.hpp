@@ -1,0 +1,36 @@
+#pragma once
+// Dam break (Martin & Moyce 1952; Koshizuka & Oka 1996): a water column of width a and height 2a at
+// rest against the left wall of a tank 4a long collapses under gravity. Free surface, walls on the
+// left, right and bottom. Reference: the experimental surge-front positions Z = x/a against
+// T = t sqrt(2g/a) (cases/dam_break/data/); error front_position_rel = mean |Z - Z_exp| / Z_exp over
+// the experimental points reached so far, before the front meets the far wall (Z < 4).
+#include <vector>
+
+#include "cases/case.hpp"
+
+namespace sph {
+
+class DamBreak : public Case<2> {
+ public:
+  std::string name() const override { return "dam_break"; }
+  void set_from_options() override;
+  void create(Particles<2>& P, Domain<2>& domain) const override;
+  double spacing() const override { return a_ / nx_; }
+  int resolution() const override { return nx_; }
+  Physics<2> physics() const override;
+  double default_t_end() const override;  // T = 3
+  double wall_thickness() const override { return wall_layers_ * spacing(); }
+  std::map<std::string, double> errors(const Particles<2>& P, double t) const override;
+  void write_outputs(const Particles<2>& P, double t, const std::string& dir) const override;
+  nlohmann::json parameters() const override;
+
+ private:
+  double front(const Particles<2>& P) const;  // surge-front position x
+  double time_scale() const;                  // sqrt(a / (2 g)): T = t / time_scale
+
+  PetscInt nx_ = 20, wall_layers_ = 4;
+  PetscReal a_ = 1.0, g_ = 1.0, re_ = 1000.0, rho0_ = 1.0;
+  mutable std::vector<std::pair<double, double>> history_;  // (T, Z) as the run advances
+};
+
+}  // namespace sph

@@ -1,0 +1,25 @@
+// End-to-end: ISPH free surface (Lind et al. 2012) on the dam break against Martin & Moyce (1952).
+#include <gtest/gtest.h>
+
+#include "run_sph.hpp"
+
+namespace {
+
+using sph::testing::run_sph;
+
+// Collapse to T = t sqrt(2g/a) = 2.5 at 16 particles across the column. The two Martin & Moyce
+// series (a = 1.125 in and 2.25 in) differ by 2-3%, and simulations without the experiment's gate
+// and wall friction run ahead of it: Koshizuka & Oka's MPS and most SPH results lead by 5-10% at
+// T = 2-3 (we measure 10.6% for ISPH and 4.8% for WCSPH at nx = 20 to T = 3). The 15% bound is
+// that lead plus the scatter; a run without a working free surface or wall pressure (a column
+// that does not collapse, or falls through the floor) misses it by far.
+TEST(DamBreak, IsphFrontFollowsMartinMoyce) {
+  const auto r = run_sph("dam_break_isph", "-case dam_break -solver isph -nx 16 -t_end 1.77 -output_interval 0");
+  ASSERT_EQ(r.exit_code, 0) << r.summary.dump();
+  EXPECT_EQ(r.summary["status"], "completed");
+  EXPECT_LT(r.summary["errors"]["front_position_rel"].get<double>(), 0.15);
+  EXPECT_GT(r.summary["errors"]["front_position"].get<double>(), 2.0);  // the column did collapse
+  EXPECT_EQ(r.summary["models"]["free_surface"]["model"], "LindFreeSurface");
+}
+
+}  // namespace
