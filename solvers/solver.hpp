@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "src/core/error.hpp"
 #include "src/core/physics.hpp"
 #include "src/io/checkpoint.hpp"
 #include "src/kernels/kernel.hpp"
@@ -27,6 +28,15 @@ template <int D> struct Scene {
   Physics<D> physics;
   double dx;  // initial particle spacing
 };
+
+// A case that asks for a model the solver does not have is refused, not silently run without it.
+template <int D> void refuse_unmodelled(const Physics<D>& phys, const std::string& solver, bool gas, bool external_force) {
+  if (phys.is_gas() && !gas)
+    throw Error("this case is a compressible gas (ideal-gas EOS, energy equation): use -solver compressible, not " + solver);
+  if (phys.has_external_force() && !external_force)
+    throw Error("this case needs a position-dependent body force, which -solver " + solver +
+                " does not model; use -solver compressible");
+}
 
 template <int D> class Solver {
  public:

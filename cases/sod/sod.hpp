@@ -41,7 +41,7 @@ template <int D> class SodShockTube : public Case<D> {
   Lattice left_lattice() const;
   Lattice right_lattice() const;
 
-  PetscInt nx_ = 400, ny_ = D == 2 ? 24 : 16;
+  PetscInt nx_ = 400, ny_ = D == 2 ? 32 : 16;
   PetscReal gamma_ = 1.4, rho_l_ = 1.0, p_l_ = 1.0, rho_r_ = 0.125, p_r_ = 0.1;
   PetscReal plateau_margin_ = 4.0;
   std::shared_ptr<ExactRiemann> exact_;

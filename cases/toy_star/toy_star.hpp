@@ -35,11 +35,12 @@ class ToyStar : public Case<1> {
 
  private:
   std::array<double, 3> rates(const std::array<double, 3>& y) const;
+  std::array<double, 3> rk4_step(const std::array<double, 3>& y, double h) const;
 
   PetscInt n_ = 200;
   PetscReal gamma_ = 2.0, K_ = 0.25, omega_ = 1.0, A0_ = 0.1;
   // RK4 cache: errors() is called every step with increasing t.
-  mutable double t_cache_ = 0.0;
+  mutable long k_cache_ = 0;
   mutable std::array<double, 3> y_cache_{};
 };
 

@@ -21,13 +21,14 @@
 namespace sph::compressible {
 
 // ---------------------------------------------------------------------------------------------------
-// Loops. Lists must have been built with a radius covering the largest support in use.
+// Loops. Lists (NeighbourList or PrunedPairs: begin(i)/end(i) over neighbour indices) must hold every
+// pair within the supports in use.
 
 // For owned particle i: f(j, r_ij, r) for every neighbour j with 0 < r < support of K (i's own kernel),
 // the "gather" view used by the density / smoothing-length iteration.
-template <int D, class Fn>
-inline void for_each_gather_neighbour(const Particles<D>& P, const NeighbourList<D>& nl, std::size_t i,
-                                      const Kernel<D>& K, Fn&& f) {
+template <int D, class List, class Fn>
+inline void for_each_gather_neighbour(const Particles<D>& P, const List& nl, std::size_t i, const Kernel<D>& K,
+                                      Fn&& f) {
   const double rc2 = K.support_radius() * K.support_radius();
   for (const int* it = nl.begin(i); it != nl.end(i); ++it) {
     const int j = *it;
@@ -52,9 +53,8 @@ template <int D> struct GasPair {
 
 // f(i, j, pair) for every owned i and neighbour j within the larger of the two supports ("scatter +
 // gather", what the symmetric force needs). kernels[k] is particle k's kernel (owned and ghosts).
-template <int D, class Fn>
-void for_each_gas_pair(const Particles<D>& P, const NeighbourList<D>& nl, const std::vector<Kernel<D>>& kernels,
-                       Fn&& f) {
+template <int D, class List, class Fn>
+void for_each_gas_pair(const Particles<D>& P, const List& nl, const std::vector<Kernel<D>>& kernels, Fn&& f) {
   GasPair<D> g;
   for (std::size_t i = 0; i < P.n_owned; ++i) {
     const Kernel<D>& Ki = kernels[i];
@@ -93,11 +93,13 @@ struct DensitySums {
 // sec. 3.3). f grows with h, so each evaluation narrows a bracket [lo, hi] around the root; a Newton step
 // that leaves it (or a non-positive slope) is replaced by bisection, or by a fixed-point step
 // h = eta (m / rho_sum)^(1/D) limited to a factor 2 while one side is still open. Kernels with a jump
-// at the support edge (the truncated Gaussian) make f discontinuous: the bracket still closes.
+// at the support edge (the truncated Gaussian) make f discontinuous: after a number of steps the caller
+// asks for plain bisection (bisect_only), which closes the bracket in ~50 halvings at most.
 struct HBracket {
   double lo = 0.0, hi = 0.0;  // hi = 0: no upper bound yet
 };
-inline double newton_h_update(int D, double m, double eta, double h, const DensitySums& s, HBracket& b) {
+inline double newton_h_update(int D, double m, double eta, double h, const DensitySums& s, HBracket& b,
+                              bool bisect_only = false) {
   const double rho_h = density_from_h(D, m, eta, h);
   const double f = s.rho - rho_h;
   if (f > 0.0) b.hi = h;
@@ -105,8 +107,9 @@ inline double newton_h_update(int D, double m, double eta, double h, const Densi
   const double df = s.drho_dh + D * rho_h / h;  // d rho_sum/dh - d rho(h)/dh
   double h_new = df > 0.0 ? h - f / df : -1.0;
   const double lo = b.lo > 0.0 ? b.lo : 0.5 * h, hi = b.hi > 0.0 ? b.hi : 2.0 * h;
-  if (!(h_new > lo && h_new < hi)) {
-    if (b.lo > 0.0 && b.hi > 0.0) {
+  const bool bracketed = b.lo > 0.0 && b.hi > 0.0;
+  if (!(h_new >= lo && h_new <= hi) || (bisect_only && bracketed)) {
+    if (bracketed) {
       h_new = 0.5 * (b.lo + b.hi);
     } else {
       h_new = s.rho > 0.0 ? eta * std::pow(m / s.rho, 1.0 / D) : 2.0 * h;

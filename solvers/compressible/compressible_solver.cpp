@@ -139,6 +139,7 @@ template <int D> void CompressibleSolver<D>::setup(Scene<D>& scene) {
   for (std::size_t i = 0; i < n; ++i) h_max = std::max(h_max, h_[i]);
   scene.neighbourhood.set_support_radius(1.1 * kappa_ * mpi_max(h_max));
   scene.neighbourhood.update(P, true);
+  prune_pairs();
   solve_density();
   // With the energy equation, u = P / ((gamma - 1) rho) from the summation density keeps the case's
   // pressure exactly (at a discontinuity the summation density is smoothed over h; a thermal energy from
@@ -166,6 +167,27 @@ template <int D> void CompressibleSolver<D>::ensure_search_radius(double h_max, 
   }
 }
 
+// Margin of the pruned lists over kappa h: smoothing lengths change by well under 1% per step.
+constexpr double prune_margin = 1.2;
+
+template <int D> void CompressibleSolver<D>::prune_pairs() {
+  Particles<D>& P = scene_->particles;
+  const Neighbourhood<D>& nh = scene_->neighbourhood;
+  h_.resize(P.n_owned);
+  nh.halo().update(h_);
+  pairs_.build(P, nh.list(), h_, kappa_, prune_margin);
+  pairs_built_at_rebuild_ = nh.rebuilds();
+}
+
+template <int D> bool CompressibleSolver<D>::pairs_valid() const {
+  if (pairs_built_at_rebuild_ != scene_->neighbourhood.rebuilds() || pairs_.size() != scene_->particles.n_owned)
+    return false;
+  int ok = 1;
+  for (std::size_t i = 0; i < pairs_.size() && ok; ++i) ok = kappa_ * h_[i] <= pairs_.reach(i);
+  MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
+  return ok;
+}
+
 template <int D> void CompressibleSolver<D>::solve_density() {
   using namespace compressible;
   Particles<D>& P = scene_->particles;
@@ -178,11 +200,12 @@ template <int D> void CompressibleSolver<D>::solve_density() {
   std::vector<std::size_t> active(n);
   for (std::size_t i = 0; i < n; ++i) active[i] = i;
   std::vector<HBracket> bracket(n);
-  const int max_iterations = 50;
+  const int max_iterations = 80;  // Newton, then (from step 10) bisection
   for (int iteration = 1;; ++iteration) {
     double h_max = 0.0;
     for (std::size_t k : active) h_max = std::max(h_max, h_[k]);
     ensure_search_radius(mpi_max(h_max), false);
+    if (pairs_built_at_rebuild_ != scene_->neighbourhood.rebuilds()) prune_pairs();
     const NeighbourList<D>& nl = scene_->neighbourhood.list();
 
     std::vector<std::size_t> still;
@@ -195,7 +218,7 @@ template <int D> void CompressibleSolver<D>::solve_density() {
       s.drho_dh = P.m[i] * dW_dh(D, W0, 0.0, 0.0, h);
       double div = 0.0;
       Eigen::Vector3d curl = Eigen::Vector3d::Zero();
-      for_each_gather_neighbour(P, nl, i, K, [&](int j, const Vector<D>& rij, double r) {
+      auto gather = [&](int j, const Vector<D>& rij, double r) {
         const double W = K.W(r), dW = K.dWdr(r);
         s.rho += P.m[j] * W;
         s.drho_dh += P.m[j] * dW_dh(D, W, r, dW, h);
@@ -204,9 +227,11 @@ template <int D> void CompressibleSolver<D>::solve_density() {
           div += divergence_term(P.m[j], vij, gradW);
           curl += curl_term(P.m[j], vij, gradW);
         }
-      });
-      const double h_new = newton_h_update(D, P.m[i], eta_, h, s, bracket[i]);
-      if (getenv("SPH_DEBUG_H") && active.size() <= 2) fprintf(stderr, "   i=%zu h=%.15g f=%.6e df=%.6e hnew=%.15g\n", i, h, s.rho - density_from_h(D, P.m[i], eta_, h), s.drho_dh + D * density_from_h(D, P.m[i], eta_, h) / h, h_new);
+      };
+      // The pruned list while it covers this h, the full list when the iteration has gone beyond it.
+      if (K.support_radius() <= pairs_.reach(i)) for_each_gather_neighbour(P, pairs_, i, K, gather);
+      else for_each_gather_neighbour(P, nl, i, K, gather);
+      const double h_new = newton_h_update(D, P.m[i], eta_, h, s, bracket[i], iteration > 10);
       const bool closed = bracket[i].hi > 0.0 && bracket[i].hi - bracket[i].lo <= h_tolerance_ * h;
       if (std::abs(h_new - h) <= h_tolerance_ * h || closed) {
         // Converged: the sums were taken at this h.
@@ -220,7 +245,6 @@ template <int D> void CompressibleSolver<D>::solve_density() {
     }
     active.swap(still);
     density_iterations_max_ = std::max<long>(density_iterations_max_, iteration);
-    if (getenv("SPH_DEBUG_H") && !active.empty()) fprintf(stderr, "it %d active %zu e.g. i=%zu h=%.10g lo=%.10g hi=%.10g\n", iteration, active.size(), active[0], h_[active[0]], bracket[active[0]].lo, bracket[active[0]].hi);
     double left = static_cast<double>(active.size());
     MPI_Allreduce(MPI_IN_PLACE, &left, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
     if (left == 0.0) break;
@@ -277,7 +301,8 @@ template <int D> void CompressibleSolver<D>::compute_forces() {
   std::vector<double> pdv(n, 0.0), heat(n, 0.0);
   vsig_.assign(n, 0.0);
 
-  for_each_gas_pair(P, scene_->neighbourhood.list(), kernels_, [&](int i, int j, const GasPair<D>& g) {
+  if (!pairs_valid()) prune_pairs();
+  for_each_gas_pair(P, pairs_, kernels_, [&](int i, int j, const GasPair<D>& g) {
     const Vector<D> vij = P.v[i] - P.v[j];
     acc_[i] += pressure_acceleration(P.m[j], q_[i], q_[j], g);
     pdv[i] += pdv_heating(P.m[j], q_[i], vij, g);
@@ -354,6 +379,7 @@ template <int D> StepReport CompressibleSolver<D>::step(double dt) {
   }
   check_thermal_state();
   scene_->neighbourhood.update(P);
+  prune_pairs();  // particles moved: distances changed
   solve_density();
   update_thermodynamics();
   compute_forces();
@@ -440,7 +466,40 @@ template <int D> nlohmann::json CompressibleSolver<D>::describe() const {
           {"smoothing_length_range", {h_min_seen_, h_max_seen_}},
           {"density_iterations_max", density_iterations_max_},
           {"search_radius_changes", radius_changes_},
+          {"neighbour_rebuilds", scene_->neighbourhood.rebuilds()},
           {"conservation", conservation}};
+}
+
+template <int D> std::vector<CheckpointField> CompressibleSolver<D>::checkpoint_fields() {
+  const std::size_t n = scene_->particles.n_owned;
+  for (auto* f : {&thermal_, &u_, &h_, &alpha_, &dthermal_, &dalpha_, &vsig_}) f->resize(n);
+  acc_.resize(n);
+  return {{"thermal_variable", thermal_.data(), 1}, {"thermal_energy", u_.data(), 1},
+          {"smoothing_length", h_.data(), 1},    {"alpha", alpha_.data(), 1},
+          {"acceleration", acc_.empty() ? nullptr : acc_[0].data(), D},
+          {"thermal_rate", dthermal_.data(), 1}, {"alpha_rate", dalpha_.data(), 1},
+          {"signal_velocity", vsig_.data(), 1}};
+}
+
+template <int D> nlohmann::json CompressibleSolver<D>::checkpoint_scalars() const {
+  return {{"energy_initial", energy0_},
+          {"momentum_initial", std::vector<double>(momentum0_.data(), momentum0_.data() + D)},
+          {"momentum_scale_initial", momentum_scale0_},
+          {"search_radius", scene_->neighbourhood.support_radius()},
+          {"density_iterations_max", density_iterations_max_},
+          {"search_radius_changes", radius_changes_},
+          {"h_range", {h_min_seen_, h_max_seen_}}};
+}
+
+template <int D> void CompressibleSolver<D>::restore_scalars(const nlohmann::json& j) {
+  energy0_ = j.at("energy_initial").get<double>();
+  const auto m = j.at("momentum_initial").get<std::vector<double>>();
+  for (int a = 0; a < D; ++a) momentum0_[a] = m.at(a);
+  momentum_scale0_ = j.at("momentum_scale_initial").get<double>();
+  density_iterations_max_ = j.at("density_iterations_max").get<long>();
+  radius_changes_ = j.at("search_radius_changes").get<long>();
+  h_min_seen_ = j.at("h_range")[0].get<double>(), h_max_seen_ = j.at("h_range")[1].get<double>();
+  scene_->neighbourhood.set_support_radius(j.at("search_radius").get<double>());  // the driver rebuilds next
 }
 
 template class CompressibleSolver<1>;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "solvers/compressible/compressible_iact.hpp"
+#include "solvers/compressible/pruned_pairs.hpp"
 #include "solvers/solver.hpp"
 
 namespace sph {
@@ -29,6 +30,11 @@ template <int D> class CompressibleSolver : public Solver<D> {
   double stable_dt() const override;
   StepReport step(double dt) override;
   nlohmann::json describe() const override;
+  // The leapfrog carries rates and the thermal state between steps; h is the Newton start; the search
+  // radius decides when lists are rebuilt (and positions wrapped): all of it is needed for an exact restart.
+  std::vector<CheckpointField> checkpoint_fields() override;
+  nlohmann::json checkpoint_scalars() const override;
+  void restore_scalars(const nlohmann::json& j) override;
 
   // Per-particle state (owned entries), public for tests and diagnostics.
   const std::vector<double>& smoothing_lengths() const { return h_; }
@@ -46,6 +52,10 @@ template <int D> class CompressibleSolver : public Solver<D> {
   // Accelerations and rates of the thermal variable and alpha at the current state.
   void compute_forces();
   void ensure_search_radius(double h_max, bool allow_shrink);
+  // Re-prunes the pair list at the current positions and smoothing lengths (fills ghost h first).
+  void prune_pairs();
+  // Whether the pruned list still holds every pair the current smoothing lengths reach.
+  bool pairs_valid() const;
   void check_thermal_state() const;
 
   Scene<D>* scene_ = nullptr;
@@ -66,6 +76,8 @@ template <int D> class CompressibleSolver : public Solver<D> {
   std::vector<double> h_, omega_, u_, cs_, alpha_, balsara_factor_, q_;
   std::vector<double> thermal_;  // u, or A in entropy mode
   std::vector<Kernel<D>> kernels_;
+  compressible::PrunedPairs<D> pairs_;
+  long pairs_built_at_rebuild_ = -1;  // the neighbourhood's rebuild count the pruned list belongs to
   // Owned only.
   std::vector<Vector<D>> acc_;
   std::vector<double> dthermal_, dalpha_, divv_, curlv_, vsig_;

@@ -44,6 +44,7 @@ template <int D> void IsphSolver<D>::set_from_options() {
 }
 
 template <int D> void IsphSolver<D>::setup(Scene<D>& scene) {
+  refuse_unmodelled(scene.physics, name(), false, false);
   scene_ = &scene;
   Particles<D>& P = scene.particles;
   // Divergence-free ISPH: density stays at its reference value (walls included).

@@ -67,6 +67,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
 }
 
 template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
+  refuse_unmodelled(scene.physics, name(), false, false);
   scene_ = &scene;
   Particles<D>& P = scene.particles;
   eos_.rho0 = scene.physics.rho0;

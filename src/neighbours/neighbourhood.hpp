@@ -10,7 +10,7 @@ namespace sph {
 template <int D> class Neighbourhood {
  public:
   Neighbourhood(const Domain<D>& domain, double support_radius, double skin)
-      : domain_(domain), support_(support_radius), skin_(skin) {}
+      : domain_(domain), support_(support_radius), skin_(skin), skin_fraction_(skin / support_radius) {}
 
   // Call after owned positions changed. Rebuilds (wrapping owned particles back into a periodic box,
   // re-making ghosts and lists) when needed or forced; otherwise refreshes ghost positions and
@@ -21,13 +21,14 @@ template <int D> class Neighbourhood {
   const Halo<D>& halo() const { return halo_; }
   const Domain<D>& domain() const { return domain_; }
   double support_radius() const { return support_; }
-  // Schemes with variable smoothing lengths widen or narrow the search; the next update() rebuilds.
-  void set_support_radius(double support) { support_ = support, x_at_build_.clear(); }
+  // Schemes with variable smoothing lengths widen or narrow the search; the skin keeps its fraction of
+  // the support, and the next update() rebuilds.
+  void set_support_radius(double support) { support_ = support, skin_ = skin_fraction_ * support, x_at_build_.clear(); }
   long rebuilds() const { return rebuilds_; }
 
  private:
   Domain<D> domain_;
-  double support_, skin_;
+  double support_, skin_, skin_fraction_;
   Halo<D> halo_;
   NeighbourList<D> list_;
   std::vector<Vector<D>> x_at_build_;

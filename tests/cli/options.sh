@@ -26,6 +26,8 @@ expect_error "unknown case|Unknown|case" -case no_such_case
 expect_error "-cfl must be" $small -cfl 5
 expect_error "kernel" $small -kernel no_such_kernel
 expect_error "options|file|PETSc" -options_file "$tmp/missing.opts"
+expect_error "use -solver compressible" -case sod -solver wcsph -nx 48 -progress 0
+expect_error "use -solver compressible" -case toy_star -solver isph -nx 50 -progress 0
 
 # -help: exit 0, documents case, solver, driver and PETSc KSP options with defaults.
 "$sph" -help >"$tmp/help" 2>&1 || { echo "FAIL: -help exited non-zero"; fail=1; }
