@@ -3,6 +3,10 @@
 #include <petscsys.h>
 
 #include <algorithm>
+#include <cstdarg>
+#include <regex>
+
+#include <unistd.h>
 #include <cstdio>
 #include <sstream>
 
@@ -58,22 +62,69 @@ Unused unused_options() {
 
 }  // namespace
 
-std::vector<std::string> used_option_names() {
-  // PETSc keeps a "used" flag per option; options the user did not set are not in the database,
-  // so suggestions come from a list of this program's documented options instead.
-  return {"case",       "solver",     "dim",        "nx",         "re",         "t_end",
-          "dt",         "max_steps",  "output_dir", "output_interval", "kernel", "h_over_dx",
-          "neighbour_skin", "progress", "cfl",      "shifting",   "shift_coefficient",
-          "pressure_gradient", "rho0",  "U"};
+namespace {
+std::string g_help_text;
+
+PetscErrorCode capture_help(MPI_Comm, const char format[], ...) {
+  char buf[4096];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buf, sizeof buf, format, args);
+  va_end(args);
+  g_help_text += buf;
+  return 0;
+}
+}  // namespace
+
+std::vector<std::string> documented_options(const std::function<void()>& read_all) {
+  g_help_text.clear();
+  const auto saved = PetscHelpPrintf;
+  PetscHelpPrintf = capture_help;
+  // PETSc prints each options block once per run; a fresh record makes the blocks already read
+  // by this run print again.
+  PetscOptionsHelpPrinted printed = PetscOptionsHelpPrintedSingleton;
+  // Lists of types (-ksp_type ...) go straight to standard output rather than through
+  // PetscHelpPrintf: capture the file descriptor too.
+  std::FILE* type_lists = std::tmpfile();
+  std::fflush(stdout);
+  const int stdout_saved = type_lists ? dup(STDOUT_FILENO) : -1;
+  if (stdout_saved >= 0) dup2(fileno(type_lists), STDOUT_FILENO);
+  SPH_PETSC(PetscOptionsHelpPrintedCreate(&PetscOptionsHelpPrintedSingleton));
+  SPH_PETSC(PetscOptionsSetValue(nullptr, "-help", nullptr));
+  try {
+    read_all();
+  } catch (const Error&) {
+    // Reading the blocks is all that matters here; value checks may fail for other components.
+  }
+  SPH_PETSC(PetscOptionsClearValue(nullptr, "-help"));
+  SPH_PETSC(PetscOptionsHelpPrintedDestroy(&PetscOptionsHelpPrintedSingleton));
+  PetscOptionsHelpPrintedSingleton = printed;
+  PetscHelpPrintf = saved;
+  std::fflush(stdout);
+  if (stdout_saved >= 0) {
+    dup2(stdout_saved, STDOUT_FILENO);
+    close(stdout_saved);
+  }
+  if (type_lists) {
+    std::rewind(type_lists);
+    char line[4096];
+    while (std::fgets(line, sizeof line, type_lists)) g_help_text += line;
+    std::fclose(type_lists);
+  }
+  std::vector<std::string> names;
+  const std::regex option("\\n  -([A-Za-z0-9_]+)");
+  for (auto it = std::sregex_iterator(g_help_text.begin(), g_help_text.end(), option); it != std::sregex_iterator(); ++it)
+    names.push_back((*it)[1].str());
+  return names;
 }
 
-void check_unused_options() {
+void check_unused_options(const std::function<void()>& list_all_options) {
   const Unused u = unused_options();
   for (const std::string& name : u.names) {
     if (read_late(name)) continue;
     std::string best;
     std::size_t best_d = 3;  // suggest only close matches
-    for (const std::string& known : used_option_names()) {
+    for (const std::string& known : documented_options(list_all_options)) {
       const std::size_t d = edit_distance(name, known);
       if (d < best_d) best_d = d, best = known;
     }

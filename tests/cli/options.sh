@@ -20,6 +20,8 @@ small="-case taylor_green -nx 8 -t_end 0.01 -progress 0"
 expect_error "unknown option -foo" $small -foo 1
 expect_error "did you mean -shifting" $small -shiftng 0
 expect_error "unknown option -ksp_typo" $small -ksp_typo cg
+expect_error "did you mean -ksp_type" $small -ksp_tpye cg
+expect_error "did you mean -c0" -case taylor_green -solver wcsph -nx 8 -c00 3
 expect_error "-nx must be" $small -nx -3
 expect_error "-re must be positive" $small -re 0
 expect_error "unknown case|Unknown|case" -case no_such_case
