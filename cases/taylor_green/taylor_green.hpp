@@ -27,6 +27,7 @@ class TaylorGreen : public Case<2> {
  private:
   PetscInt nx_ = 64;
   PetscReal re_ = 100.0, U_ = 1.0, rho0_ = 1.0;
+  PetscReal perturbation_ = 0.0;  // random start: each particle moved up to this fraction of dx
 };
 
 }  // namespace sph
