@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "cases/common/lattice.hpp"
+#include "cases/common/wall_options.hpp"
 #include "src/core/options.hpp"
 #include "src/io/reference_data.hpp"
 
@@ -17,9 +18,7 @@ PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* a, PetscR
   PetscCall(PetscOptionsReal("-column_width", "Column width a (height 2a, tank 4a)", "", *a, a, nullptr));
   PetscCall(PetscOptionsReal("-g", "Gravity", "", *g, g, nullptr));
   PetscCall(PetscOptionsReal("-re", "Reynolds number sqrt(g a^3) / nu", "", *re, re, nullptr));
-  PetscCall(PetscOptionsReal("-rho0", "Density", "", *rho0, rho0, nullptr));
-  PetscCall(PetscOptionsInt("-wall_layers", "Layers of wall particles (must cover the kernel support)", "", *layers,
-                            layers, nullptr));
+  PetscCall(read_wall_scene_options(PetscOptionsObject, layers, rho0));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -31,8 +30,7 @@ void DamBreak::set_from_options() {
   require(a_ > 0, "-column_width", "positive", a_);
   require(g_ > 0, "-g", "positive", g_);
   require(re_ > 0, "-re", "positive", re_);
-  require(rho0_ > 0, "-rho0", "positive", rho0_);
-  require(wall_layers_ >= 1, "-wall_layers", "at least 1", wall_layers_);
+  check_wall_scene_options(wall_layers_, rho0_);
 }
 
 double DamBreak::time_scale() const { return std::sqrt(a_ / (2.0 * g_)); }

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "cases/common/lattice.hpp"
+#include "cases/common/wall_options.hpp"
 #include "src/core/options.hpp"
 #include "src/io/reference_data.hpp"
 #include "src/sph/interpolation.hpp"
@@ -17,9 +18,7 @@ PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* re, Petsc
   PetscCall(PetscOptionsInt("-nx", "Fluid particles per side of the unit cavity", "", *nx, nx, nullptr));
   PetscCall(PetscOptionsReal("-re", "Reynolds number U L / nu (Ghia et al. reference: 100, 400, 1000)", "", *re, re, nullptr));
   PetscCall(PetscOptionsReal("-U", "Lid speed", "", *U, U, nullptr));
-  PetscCall(PetscOptionsReal("-rho0", "Density", "", *rho0, rho0, nullptr));
-  PetscCall(PetscOptionsInt("-wall_layers", "Layers of wall particles (must cover the kernel support)", "", *layers,
-                            layers, nullptr));
+  PetscCall(read_wall_scene_options(PetscOptionsObject, layers, rho0));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -37,8 +36,7 @@ void LidDrivenCavity::set_from_options() {
   require(nx_ >= 8, "-nx", "at least 8", nx_);
   require(re_ > 0, "-re", "positive", re_);
   require(U_ > 0, "-U", "positive", U_);
-  require(rho0_ > 0, "-rho0", "positive", rho0_);
-  require(wall_layers_ >= 1, "-wall_layers", "at least 1", wall_layers_);
+  check_wall_scene_options(wall_layers_, rho0_);
 }
 
 Physics<2> LidDrivenCavity::physics() const {

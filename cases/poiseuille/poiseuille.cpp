@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cases/common/lattice.hpp"
+#include "cases/common/wall_options.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -14,9 +15,7 @@ PetscErrorCode read_options(PetscInt* ny, PetscInt* layers, PetscReal* re, Petsc
   PetscCall(PetscOptionsInt("-nx", "Fluid particles across the channel", "", *ny, ny, nullptr));
   PetscCall(PetscOptionsReal("-re", "Reynolds number U L / nu of the steady flow", "", *re, re, nullptr));
   PetscCall(PetscOptionsReal("-U", "Steady centreline speed (sets the body force)", "", *U, U, nullptr));
-  PetscCall(PetscOptionsReal("-rho0", "Density", "", *rho0, rho0, nullptr));
-  PetscCall(PetscOptionsInt("-wall_layers", "Layers of wall particles (must cover the kernel support)", "", *layers,
-                            layers, nullptr));
+  PetscCall(read_wall_scene_options(PetscOptionsObject, layers, rho0));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -27,8 +26,7 @@ void Poiseuille::set_from_options() {
   require(ny_ >= 8, "-nx", "at least 8", ny_);
   require(re_ > 0, "-re", "positive", re_);
   require(U_ > 0, "-U", "positive", U_);
-  require(rho0_ > 0, "-rho0", "positive", rho0_);
-  require(wall_layers_ >= 1, "-wall_layers", "at least 1", wall_layers_);
+  check_wall_scene_options(wall_layers_, rho0_);
 }
 
 Physics<2> Poiseuille::physics() const {
