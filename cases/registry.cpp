@@ -4,6 +4,7 @@
 #include "cases/lid_driven_cavity/lid_driven_cavity.hpp"
 #include "cases/poiseuille/poiseuille.hpp"
 #include "cases/sod/sod.hpp"
+#include "cases/square_patch/square_patch.hpp"
 #include "cases/taylor_green/taylor_green.hpp"
 #include "cases/toy_star/toy_star.hpp"
 #include "src/core/error.hpp"
@@ -18,6 +19,8 @@ const std::vector<CaseEntry>& case_registry() {
        2, nullptr, [] { return std::make_unique<LidDrivenCavity>(); }, nullptr},
       {"dam_break", "collapsing water column (a x 2a) in a 4a tank, free surface; Martin & Moyce (1952) front", 2,
        nullptr, [] { return std::make_unique<DamBreak>(); }, nullptr},
+      {"square_patch", "rotating square of fluid in vacuum, free surface; invariants of inviscid flow", 2, nullptr,
+       [] { return std::make_unique<SquarePatch>(); }, nullptr},
       {"poiseuille", "body-force-driven channel between walls, periodic in x; series solution (Morris et al. 1997)", 2,
        nullptr, [] { return std::make_unique<Poiseuille>(); }, nullptr},
       {"sod", "Sod shock tube (gamma = 1.4), periodic x in [-1, 1), 1D/2D/3D; exact Riemann solution (Toro 2009)", 1,

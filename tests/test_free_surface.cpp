@@ -1,5 +1,8 @@
-// End-to-end: ISPH free surface (Lind et al. 2012) on the dam break against Martin & Moyce (1952).
+// End-to-end: ISPH free surface (Lind et al. 2012) on the dam break against Martin & Moyce (1952)
+// and on the rotating square patch.
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "run_sph.hpp"
 
@@ -20,6 +23,21 @@ TEST(DamBreak, IsphFrontFollowsMartinMoyce) {
   EXPECT_LT(r.summary["errors"]["front_position_rel"].get<double>(), 0.15);
   EXPECT_GT(r.summary["errors"]["front_position"].get<double>(), 2.0);  // the column did collapse
   EXPECT_EQ(r.summary["models"]["free_surface"]["model"], "LindFreeSurface");
+}
+
+}  // namespace
+
+namespace {
+
+// Rotating square patch (Colagrossi 2005): inviscid, so angular momentum and kinetic energy are
+// invariants of the exact flow. The scheme breaks them only through the free-surface treatment and
+// shifting: measured 0.7% / 0.8% at nx 24 to t = 0.5 (0.8% / 1.5% at nx 40 to t = 1). A 3% bound
+// catches a patch that flies apart or whose corners collapse (tensile instability).
+TEST(SquarePatch, IsphKeepsInviscidInvariants) {
+  const auto r = run_sph("square_patch_isph", "-case square_patch -solver isph -nx 24 -t_end 0.5 -output_interval 0");
+  ASSERT_EQ(r.exit_code, 0) << r.summary.dump();
+  EXPECT_LT(r.summary["errors"]["angular_momentum_drift_rel"].get<double>(), 0.03);
+  EXPECT_LT(std::abs(r.summary["errors"]["kinetic_energy_change_rel"].get<double>()), 0.03);
 }
 
 }  // namespace
