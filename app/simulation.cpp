@@ -16,7 +16,9 @@
 #include "src/io/csv_writer.hpp"
 #include "src/io/json_file.hpp"
 #include "src/io/particle_writer.hpp"
+#include "src/neighbours/partition.hpp"
 #include "src/run/diagnostics.hpp"
+#include "src/run/log_events.hpp"
 #include "src/run/progress.hpp"
 
 namespace sph {
@@ -64,6 +66,7 @@ struct DriverOptions {
   PetscReal skin = 0.2;             // Verlet skin as a fraction of the support radius
   PetscReal steady_tol = -1;        // -1: the case's default
   PetscReal checkpoint_interval = -1;  // -1: with every VTK frame, 0: never
+  PetscInt partition_interval = 50;    // steps between re-partitions along the space-filling curve
   char restart[PETSC_MAX_PATH_LEN] = "";
   PetscBool progress = PETSC_TRUE;
   char output_dir[PETSC_MAX_PATH_LEN] = "";
@@ -94,6 +97,10 @@ PetscErrorCode read_driver_options(DriverOptions* o) {
   PetscCall(PetscOptionsReal("-checkpoint_interval",
                              "Time between checkpoints (<output_dir>/checkpoint.bin; -1: with every frame, 0: never)", "",
                              o->checkpoint_interval, &o->checkpoint_interval, nullptr));
+  PetscCall(PetscOptionsInt("-partition_interval",
+                            "Steps between re-orderings of the particles along a space-filling curve, which also "
+                            "re-balances them over MPI ranks (0: only at start-up and at checkpoints)",
+                            "", o->partition_interval, &o->partition_interval, nullptr));
   PetscCall(PetscOptionsString("-restart", "Resume from this checkpoint (same case, solver and options)", "", o->restart,
                                o->restart, sizeof(o->restart), nullptr));
   PetscCall(PetscOptionsBool("-progress", "Print a progress line on stderr about once a second", "", o->progress,
@@ -118,6 +125,7 @@ template <int D> struct Run {
     require(opt.dt >= 0, "-dt", "non-negative", opt.dt);
     require(opt.h_over_dx == -1 || opt.h_over_dx > 0, "-h_over_dx", "positive", opt.h_over_dx);
     require(opt.skin >= 0 && opt.skin <= 1, "-neighbour_skin", "in [0, 1]", opt.skin);
+    require(opt.partition_interval >= 0, "-partition_interval", "non-negative", opt.partition_interval);
     if (opt.output_interval < 0) opt.output_interval = opt.t_end / 20;
     if (opt.steady_tol < 0) opt.steady_tol = scene_case->steady_tolerance();
     output_dir = opt.output_dir[0] ? std::string(opt.output_dir)
@@ -135,6 +143,8 @@ template <int D> void Run<D>::execute() {
   Domain<D> domain;
   scene_case->create(P, domain);
   assign_global_indices(P);
+  double imbalance = partition_along_curve(P, domain);
+  long partitions = 1;
 
   const KernelType ktype = static_cast<KernelType>(opt.kernel);
   const double dx = scene_case->spacing();
@@ -148,18 +158,27 @@ template <int D> void Run<D>::execute() {
   Scene<D> scene{P, nh, kernel, scene_case->physics(), dx};
   solver->setup(scene);
 
-  // A restart overwrites the freshly set-up state with the checkpoint's, then rebuilds the
-  // neighbourhood exactly as the writing run did after writing it.
+  // Re-orders and re-balances the particles (with the solver's per-particle state) along the curve
+  // and rebuilds the neighbourhood: the canonical state, which depends only on the particles.
+  auto repartition = [&] {
+    imbalance = partition_along_curve(P, domain, [&] { return solver->checkpoint_fields(); });
+    ++partitions;
+    nh.update(P, true);
+  };
+
+  // A restart overwrites the freshly set-up state with the checkpoint's, then brings it into the
+  // canonical state, as the writing run did before writing it.
   const bool restarting = opt.restart[0] != '\0';
   CheckpointState<D> resumed;
   if (restarting) {
     resumed = read_checkpoint(opt.restart, P, solver->checkpoint_fields());
     solver->restore_scalars(resumed.scalars);
-    nh.update(P, true);
+    repartition();
   }
   const std::string checkpoint_path = output_dir + "/checkpoint.bin";
   auto write_state = [&](double t_now, long step_now) {
-    nh.update(P, true);  // the canonical neighbour state a restart starts from
+    repartition();
+    const LogEventScope log_checkpoint(LogEvent::Checkpoint);
     write_checkpoint(checkpoint_path, P, solver->checkpoint_fields(), {t_now, step_now, solver->checkpoint_scalars()});
   };
 
@@ -225,6 +244,8 @@ template <int D> void Run<D>::execute() {
     // Total momentum change relative to the initial sum of |m v|: round-off for pairwise-symmetric
     // schemes without shifting (shifting's Taylor correction and corrected gradients do not conserve it).
     const Totals<D> now = totals(P);
+    summary["partition"] = {{"curve", "morton"}, {"interval", opt.partition_interval}, {"count", partitions},
+                            {"imbalance", imbalance}};
     summary["conservation"] = {{"momentum_drift", (now.momentum - initial.momentum).norm() /
                                                       std::max(initial.momentum_scale, 1e-300)}};
     for (auto it = solver_info.begin(); it != solver_info.end(); ++it) {
@@ -238,6 +259,7 @@ template <int D> void Run<D>::execute() {
   };
 
   try {
+    const TimeLoopLogStage log_stage;
     while (t < opt.t_end * (1.0 - 1e-12) && (opt.max_steps < 0 || step < opt.max_steps) && !steady.reached()) {
       const double stable = solver->stable_dt();
       double dt = opt.dt > 0 ? opt.dt : stable;
@@ -250,11 +272,15 @@ template <int D> void Run<D>::execute() {
       // (ISPH's pressure scales with 1/dt).
       const double remaining = opt.t_end - t;
       dt = remaining / std::ceil(remaining / dt * (1.0 - 1e-12));
+      LogEventScope log_step(LogEvent::Step);
       const StepReport report = solver->step(dt);
+      log_step.end();
       t += dt;
       ++step;
       stats.add(report);
+      LogEventScope log_diagnostics(LogEvent::Diagnostics);
       check_health(P, domain, ke_bound);
+      if (opt.partition_interval > 0 && step % opt.partition_interval == 0) repartition();
 
       const Totals<D> tot = totals(P);
       steady.add(t, tot.kinetic_energy);
@@ -264,8 +290,10 @@ template <int D> void Run<D>::execute() {
       row.push_back(report.linear_reason);
       for (const auto& e : scene_case->errors(P, t)) row.push_back(e.second);
       series.row(row);
+      log_diagnostics.end();
       progress.update(step, t, dt, report.linear_iterations);
       if (t >= next_output * (1.0 - 1e-12) || t >= opt.t_end * (1.0 - 1e-12)) {
+        const LogEventScope log_output(LogEvent::Output);
         writer.write(P, t);
         last_frame_t = t;
         while (next_output <= t * (1.0 + 1e-12)) next_output += frame_interval;
@@ -284,6 +312,7 @@ template <int D> void Run<D>::execute() {
     throw Error(msg.str() + " [earlier frames and the last checkpoint are kept in " + output_dir + "]");
   }
   progress.done(step, t);
+  const LogEventScope log_output(LogEvent::Output);
   if (opt.steady_tol > 0) summary["steady_state_reached"] = steady.reached();
   scene_case->write_outputs(P, t, output_dir);
   if (last_frame_t < t) writer.write(P, t);  // e.g. stopped at steady state between frames

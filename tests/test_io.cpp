@@ -90,14 +90,14 @@ template <int D> Particles<D> make_particles(int n) {
   }
   P.n_global = static_cast<sph::GlobalIndex>(n) * ranks();
   P.first_gid = static_cast<sph::GlobalIndex>(n) * r;
-  for (int i = 0; i < n; ++i) P.gid[i] = P.first_gid + i;
+  for (int i = 0; i < n; ++i) P.gid[i] = P.first_gid + i, P.id[i] = 1000 + P.gid[i];  // labels differ from gids
   P.set_ghost_count(3);
   for (std::size_t g = P.n_owned; g < P.size(); ++g) {
     P.x[g] = Vector<D>::Constant(-99.0);
     P.v[g] = Vector<D>::Constant(-99.0);
     P.m[g] = P.rho[g] = P.p[g] = -99.0;
     P.kind[g] = 7;
-    P.gid[g] = 424242;
+    P.gid[g] = P.id[g] = 424242;
   }
   return P;
 }
@@ -141,7 +141,7 @@ void expect_frame_matches(vtkPolyData* poly, const Particles<D>& P, const std::s
     EXPECT_EQ(dens->GetComponent(i, 0), P.rho[i]);
     EXPECT_EQ(mass->GetComponent(i, 0), P.m[i]);
     EXPECT_EQ(vtkIntArray::SafeDownCast(kind)->GetValue(i), P.kind[i]);
-    EXPECT_EQ(static_cast<long long>(id->GetComponent(i, 0)), static_cast<long long>(P.gid[i]));
+    EXPECT_EQ(static_cast<long long>(id->GetComponent(i, 0)), static_cast<long long>(P.id[i]));
     EXPECT_EQ(ex->GetComponent(i, 0), extra[i]);
   }
   vtkDataArray* t = poly->GetFieldData()->GetArray("TIME");
@@ -207,7 +207,7 @@ template <int D> void round_trip_frame(const std::string& test_name, int n) {
     ASSERT_TRUE(fs::is_regular_file(dir + piece));
     expect_frame_matches<D>(read_vtp(dir + piece), P, "vorticity", vort, time);
     if (rank() == 0) {
-      // The master joins every rank's piece: all global indices once, same arrays.
+      // The master joins every rank's piece: every particle label once, same arrays.
       vtkSmartPointer<vtkPolyData> all = read_pvtp(path);
       ASSERT_EQ(all->GetNumberOfPoints(), static_cast<vtkIdType>(P.n_global));
       vtkDataArray* id = all->GetPointData()->GetArray("id");
@@ -215,8 +215,8 @@ template <int D> void round_trip_frame(const std::string& test_name, int n) {
       std::set<long long> ids;
       for (vtkIdType i = 0; i < all->GetNumberOfPoints(); ++i) ids.insert(static_cast<long long>(id->GetComponent(i, 0)));
       EXPECT_EQ(ids.size(), static_cast<std::size_t>(P.n_global));
-      EXPECT_EQ(*ids.begin(), 0);
-      EXPECT_EQ(*ids.rbegin(), static_cast<long long>(P.n_global) - 1);
+      EXPECT_EQ(*ids.begin(), 1000);
+      EXPECT_EQ(*ids.rbegin(), 1000 + static_cast<long long>(P.n_global) - 1);
       for (const char* name : {"velocity", "pressure", "density", "mass", "kind", "vorticity"})
         EXPECT_NE(all->GetPointData()->GetArray(name), nullptr) << name;
     }

@@ -391,14 +391,22 @@ TEST(NeighbourHalo, UpdateCopiesOwnedValuesIntoGhosts) {
   EXPECT_EQ(P.size(), P.n_owned + halo.n_ghost());
   for (std::size_t g = 0; g < halo.n_ghost(); ++g) EXPECT_EQ(halo.owner_rank(g), 0);
   check_ghosts(P, dom);
-  // Every owned particle within 0.2 of a periodic face has an image; none further in has one.
+  // A particle has an image for each periodic shift that lands within 0.2 of the particles' bounding
+  // box (so within reach of particles across the face), and no other.
   std::vector<int> images(P.n_owned, 0);
   for (std::size_t g = P.n_owned; g < P.size(); ++g) ++images[P.gid[g]];
+  Vector<3> lo = P.x[0], hi = P.x[0];
+  for (std::size_t i = 0; i < P.n_owned; ++i) lo = lo.cwiseMin(P.x[i]), hi = hi.cwiseMax(P.x[i]);
+  const Vector<3> L = dom.length();
   for (std::size_t i = 0; i < P.n_owned; ++i) {
-    int near_faces = 0;
-    for (int a = 0; a < 2; ++a)
-      if (P.x[i][a] < dom.lo[a] + 0.2 || P.x[i][a] >= dom.hi[a] - 0.2) ++near_faces;
-    EXPECT_EQ(images[i], (1 << near_faces) - 1) << "particle " << i;
+    int expected = 0;
+    for (int sx = -1; sx <= 1; ++sx)
+      for (int sy = -1; sy <= 1; ++sy) {
+        if (sx == 0 && sy == 0) continue;
+        const Vector<3> y = P.x[i] + Vector<3>(sx * L[0], sy * L[1], 0.0);
+        if (((y.array() >= lo.array() - 0.2) && (y.array() <= hi.array() + 0.2)).all()) ++expected;
+      }
+    EXPECT_EQ(images[i], expected) << "particle " << i;
   }
 
   const std::size_t n = P.n_owned, ng = halo.n_ghost();

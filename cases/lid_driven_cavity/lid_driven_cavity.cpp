@@ -110,6 +110,7 @@ void LidDrivenCavity::write_outputs(const Particles<2>& P, double t, const std::
   for (int k = 0; k < m; ++k) pts.emplace_back(k / double(m - 1), 0.5);
   const Kernel<2> K(KernelType::WendlandC2, 1.5 * spacing());
   const std::vector<Vector<2>> u = shepard_velocity(P, K, pts);
+  const Profiles pr = has_reference() ? centreline_profiles(P) : Profiles{};  // collective: every rank
   PetscMPIInt rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   if (rank != 0) return;
@@ -120,7 +121,6 @@ void LidDrivenCavity::write_outputs(const Particles<2>& P, double t, const std::
   for (int k = 0; k < m; ++k) cu << pts[k][1] << "," << u[k][0] / U_ << "\n";
   for (int k = 0; k < m; ++k) cv << pts[m + k][0] << "," << u[m + k][1] / U_ << "\n";
   if (!has_reference()) return;
-  const Profiles pr = centreline_profiles(P);
   std::ofstream cg(dir + "/centreline_ghia.csv");
   cg.precision(10);
   cg << "profile,coordinate,sph,ghia1982\n";

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "src/core/options.hpp"
+#include "src/run/log_events.hpp"
 
 namespace sph {
 
@@ -171,6 +172,7 @@ template <int D> void CompressibleSolver<D>::ensure_search_radius(double h_max, 
 constexpr double prune_margin = 1.2;
 
 template <int D> void CompressibleSolver<D>::prune_pairs() {
+  const LogEventScope log_pairs(LogEvent::GasPairs);
   Particles<D>& P = scene_->particles;
   const Neighbourhood<D>& nh = scene_->neighbourhood;
   h_.resize(P.n_owned);
@@ -190,6 +192,7 @@ template <int D> bool CompressibleSolver<D>::pairs_valid() const {
 
 template <int D> void CompressibleSolver<D>::solve_density() {
   using namespace compressible;
+  const LogEventScope log_density_h(LogEvent::GasDensityH);
   Particles<D>& P = scene_->particles;
   const std::size_t n = P.n_owned;
   const KernelType type = scene_->kernel.type();
@@ -264,6 +267,7 @@ template <int D> void CompressibleSolver<D>::solve_density() {
 }
 
 template <int D> void CompressibleSolver<D>::update_thermodynamics() {
+  const LogEventScope log_density(LogEvent::Density);
   Particles<D>& P = scene_->particles;
   const std::size_t n = P.n_owned;
   u_.resize(n), cs_.resize(n), balsara_factor_.resize(n), q_.resize(n);
@@ -292,6 +296,7 @@ template <int D> void CompressibleSolver<D>::update_thermodynamics() {
 
 template <int D> void CompressibleSolver<D>::compute_forces() {
   using namespace compressible;
+  const LogEventScope log_forces(LogEvent::Forces);
   Particles<D>& P = scene_->particles;
   const Physics<D>& phys = scene_->physics;
   const std::size_t n = P.n_owned;

@@ -4,6 +4,7 @@
 
 #include "src/boundary/adami_wall.hpp"
 #include "src/core/options.hpp"
+#include "src/run/log_events.hpp"
 #include "src/sph/free_surface.hpp"
 #include "src/sph/operators.hpp"
 
@@ -96,6 +97,7 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   auto fluid = [&](std::size_t i) { return P.kind[i] == kFluid; };  // walls keep their prescribed motion
 
   // Prediction with the non-pressure forces at x^n.
+  LogEventScope log_forces(LogEvent::Forces);
   const std::vector<Vector<D>> u_old(P.v.begin(), P.v.begin() + n);
   std::vector<Vector<D>> u_star = P.v;
   if (phys.viscous()) {
@@ -110,6 +112,7 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   if (phys.has_body_force())
     for (std::size_t i = 0; i < n; ++i)
       if (fluid(i)) u_star[i] += dt * phys.gravity;
+  log_forces.end();
 
   // Advect to x* = x^n + dt u^n, where the projection is made: the pressure then balances this
   // step's motion (Cummins & Rudman 1999; Lind et al. 2012) instead of lagging a step behind.
@@ -119,24 +122,30 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   nh.halo().update(u_star);
 
   // Projection: div(grad p / rho) = div(u*) / dt.
+  LogEventScope log_assembly(LogEvent::PpeAssembly);
   std::vector<double> source = divergence(P, nh.list(), K, u_star);
   for (double& s : source) s /= dt;
   // Free surface (Lind et al. 2012): surface particles at x* get p = 0.
   std::vector<char> surface;
   if (phys.free_surface) surface = free_surface_particles(P, nh.list(), K, free_surface_threshold_);
   ppe_.assemble(P, nh, K, phys.gravity, phys.free_surface ? &surface : nullptr);
+  log_assembly.end();
+  LogEventScope log_solve(LogEvent::PpeSolve);
   // The first solve starts from zero: the case's initial pressure is not the projection's.
   const StepReport report = ppe_.solve(source, P.m, P.p, solves_ > 0);
   ++solves_;
+  log_solve.end();
   nh.halo().update(P.p);
 
   // Correction, and the trapezoidal position update x^{n+1} = x^n + dt (u^n + u^{n+1}) / 2.
+  LogEventScope log_correction(LogEvent::Forces);
   const std::vector<Vector<D>> grad_p = pressure_gradient();
   for (std::size_t i = 0; i < n; ++i) {
     if (!fluid(i)) continue;
     P.v[i] = u_star[i] - (dt / P.rho[i]) * grad_p[i];
     P.x[i] += (0.5 * dt) * (P.v[i] - u_old[i]);
   }
+  log_correction.end();
   if (shifting_) shift();
   return report;
 }

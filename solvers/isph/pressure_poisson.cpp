@@ -1,5 +1,7 @@
 #include "solvers/isph/pressure_poisson.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <sstream>
 
 #include "src/core/error.hpp"
@@ -73,13 +75,20 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
                          o_nnz.data(), &A_));
   SPH_PETSC(MatSetOption(A_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
 
-  // Closed domains (walls, no free surface) pin the first fluid particle of rank 0 to p = 0: the
-  // wall rows make the matrix non-symmetric, so its left null space is unknown and the right-hand side
-  // cannot be projected; dropping one continuity equation instead makes the system regular.
+  // Closed domains (walls, no free surface) pin one fluid particle to p = 0: the wall rows make the
+  // matrix non-symmetric, so its left null space is unknown and the right-hand side cannot be
+  // projected; dropping one continuity equation instead makes the system regular. The pinned particle
+  // is the fluid particle with the smallest label, so the system does not depend on the partition.
   pinned_ = -1;
-  if (walls_ && !any_dirichlet && rank == 0)
+  if (walls_ && !any_dirichlet) {
+    long long lowest = std::numeric_limits<long long>::max();
+    for (std::size_t i = 0; i < n; ++i)
+      if (P.kind[i] == kFluid) lowest = std::min<long long>(lowest, P.id[i]);
+    long long global_lowest = lowest;
+    MPI_Allreduce(&lowest, &global_lowest, 1, MPI_LONG_LONG, MPI_MIN, PETSC_COMM_WORLD);
     for (std::size_t i = 0; i < n && pinned_ < 0; ++i)
-      if (P.kind[i] == kFluid) pinned_ = static_cast<long>(i);
+      if (P.kind[i] == kFluid && P.id[i] == global_lowest) pinned_ = static_cast<long>(i);
+  }
   row_rhs_.assign(n, 0.0);
 
   std::vector<PetscInt> cols;

@@ -4,6 +4,7 @@
 
 #include "src/boundary/adami_wall.hpp"
 #include "src/core/options.hpp"
+#include "src/run/log_events.hpp"
 #include "src/sph/free_surface.hpp"
 #include "src/sph/operators.hpp"
 
@@ -111,6 +112,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   const std::size_t n = P.n_owned;
   const double h = K.h();
 
+  LogEventScope log_density(LogEvent::Density);
   if (density_ == DensityMethod::Summation) {
     const std::vector<double> rho = density_summation(P, nl, K);
     std::copy(rho.begin(), rho.end(), P.rho.begin());
@@ -124,6 +126,8 @@ template <int D> void WcsphSolver<D>::compute_rates() {
     grad_rho = gradient_corrected(P, nl, K, correction_matrices(P, nl, K), P.rho);
     nh.halo().update(grad_rho);
   }
+  log_density.end();
+  const LogEventScope log_forces(LogEvent::Forces);
   const Vector<D> zero = Vector<D>::Zero();
   const double delta_h_c0 = delta_ * h * eos_.c0;
   const bool diffuse = diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity;
@@ -218,6 +222,7 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
       surface = free_surface_particles(P, nh.list(), scene_->kernel, default_free_surface_threshold<D>());
     shift_particles(P, nh, scene_->kernel, shifting_model_, scene_->dx, {&P.rho}, surface.empty() ? nullptr : &surface);
   }
+  const LogEventScope log_density(LogEvent::Density);
   nh.halo().update(P.rho);
   update_pressure();
   return {};

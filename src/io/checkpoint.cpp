@@ -1,5 +1,6 @@
 #include "src/io/checkpoint.hpp"
 
+#include <petscis.h>
 #include <petscvec.h>
 #include <petscviewer.h>
 
@@ -21,14 +22,35 @@ template <int D> std::vector<CheckpointField> particle_fields(Particles<D>& P, s
           {"kind", kind.data(), 1}};
 }
 
-void transfer(::Vec vec, double* data, std::size_t count, bool to_vec) {
-  PetscScalar* a;
-  SPH_PETSC(VecGetArray(vec, &a));
-  for (std::size_t k = 0; k < count; ++k) {
-    if (to_vec) a[k] = data[k];
-    else data[k] = a[k];
-  }
-  SPH_PETSC(VecRestoreArray(vec, &a));
+// This rank's share of the id range in the file's vectors (whole particles, so blocks stay whole).
+template <int D> PetscInt id_share(const Particles<D>& P) {
+  PetscInt local = PETSC_DECIDE, total = static_cast<PetscInt>(P.n_global);
+  SPH_PETSC(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &total));
+  return local;
+}
+
+// Moves a field between this rank's particles and a global vector ordered by permanent particle id
+// (entry id * components + c), whichever rank holds the particle: what makes a checkpoint readable on
+// another rank count and independent of how the particles were partitioned.
+template <int D>
+void transfer(::Vec global, const Particles<D>& P, double* data, int components, bool to_global) {
+  const PetscInt n = static_cast<PetscInt>(P.n_owned) * components;
+  std::vector<PetscInt> where(n);
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    for (int c = 0; c < components; ++c) where[i * components + c] = static_cast<PetscInt>(P.id[i]) * components + c;
+  ::Vec local;
+  IS is;
+  VecScatter scatter;
+  SPH_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, data, &local));
+  SPH_PETSC(ISCreateGeneral(PETSC_COMM_SELF, n, where.data(), PETSC_USE_POINTER, &is));
+  SPH_PETSC(VecScatterCreate(local, nullptr, global, is, &scatter));
+  const ScatterMode mode = to_global ? SCATTER_FORWARD : SCATTER_REVERSE;
+  ::Vec from = to_global ? local : global, to = to_global ? global : local;
+  SPH_PETSC(VecScatterBegin(scatter, from, to, INSERT_VALUES, mode));
+  SPH_PETSC(VecScatterEnd(scatter, from, to, INSERT_VALUES, mode));
+  SPH_PETSC(VecScatterDestroy(&scatter));
+  SPH_PETSC(ISDestroy(&is));
+  SPH_PETSC(VecDestroy(&local));
 }
 
 PetscViewer open_viewer(const std::string& path, PetscFileMode mode) {
@@ -59,9 +81,9 @@ void write_checkpoint(const std::string& path, Particles<D>& P, const std::vecto
                         {"scalars", state.scalars}, {"fields", nlohmann::json::array()}};
   for (const CheckpointField& f : fields) {
     ::Vec vec;
-    SPH_PETSC(VecCreateMPI(PETSC_COMM_WORLD, static_cast<PetscInt>(P.n_owned * f.components), PETSC_DETERMINE, &vec));
+    SPH_PETSC(VecCreateMPI(PETSC_COMM_WORLD, id_share(P) * f.components, PETSC_DETERMINE, &vec));
     SPH_PETSC(VecSetBlockSize(vec, f.components));
-    transfer(vec, f.data, P.n_owned * f.components, true);
+    transfer(vec, P, f.data, f.components, true);
     SPH_PETSC(VecView(vec, viewer));
     SPH_PETSC(VecDestroy(&vec));
     header["fields"].push_back({{"name", f.name}, {"components", f.components}});
@@ -104,11 +126,11 @@ CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P, con
                   header["fields"][k]["name"].get<std::string>() + "', expected '" + f.name + "'");
     ::Vec vec;
     SPH_PETSC(VecCreate(PETSC_COMM_WORLD, &vec));
-    SPH_PETSC(VecSetSizes(vec, static_cast<PetscInt>(P.n_owned * f.components), PETSC_DETERMINE));
+    SPH_PETSC(VecSetSizes(vec, id_share(P) * f.components, PETSC_DETERMINE));
     SPH_PETSC(VecSetBlockSize(vec, f.components));
     SPH_PETSC(VecSetType(vec, VECMPI));
     SPH_PETSC(VecLoad(vec, viewer));
-    transfer(vec, f.data, P.n_owned * f.components, false);
+    transfer(vec, P, f.data, f.components, false);
     SPH_PETSC(VecDestroy(&vec));
   }
   SPH_PETSC(PetscViewerDestroy(&viewer));

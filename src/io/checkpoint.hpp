@@ -1,5 +1,5 @@
 #pragma once
-// Checkpoints for restart: every particle field in global-index order, written with PETSc's binary
+// Checkpoints for restart: every particle field in permanent-id order, written with PETSc's binary
 // viewer (so a checkpoint written on N ranks can be read on M), plus a JSON header with the time,
 // step, field names and whatever scalars the solver needs. Written to a temporary name and renamed,
 // so the previous checkpoint survives a crash during writing.

@@ -146,7 +146,7 @@ std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const s
     verts->InsertNextCell(1, &k);
     velocity->SetTypedTuple(k, v);
     kind->SetValue(k, P.kind[i]);
-    id->SetValue(k, static_cast<vtkTypeInt64>(P.gid[i]));
+    id->SetValue(k, static_cast<vtkTypeInt64>(P.id[i]));
   }
   vtkNew<vtkPolyData> poly;
   poly->SetPoints(points);

@@ -1,6 +1,6 @@
 #include "src/neighbours/halo.hpp"
 
-#include <array>
+#include <limits>
 
 #include "src/core/error.hpp"
 
@@ -16,54 +16,91 @@ template <int D> void Halo<D>::build(Particles<D>& P, const Domain<D>& domain, d
   PetscMPIInt size, rank;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  if (size > 1)
-    throw Error("running on more than one MPI rank is not supported yet (no cross-rank halo); run without mpirun");
   const Vector<D> L = domain.length();
   for (int a = 0; a < D; ++a)
     if (domain.periodic[a] && 2.0 * width >= L[a])
       throw Error("periodic box is too small for the kernel support (needs length > " +
                   std::to_string(2.0 * width) + " along axis " + std::to_string(a) +
                   "); use more particles or a smaller -h_over_dx");
-
   n_owned_ = P.n_owned;
-  shift_.clear();
-  owner_rank_.clear();
-  std::vector<PetscInt> leaf;
-  std::vector<PetscSFNode> root;
 
-  // Every non-zero shift s in {-1,0,1}^D along periodic axes; a particle gets the image x + s*L
-  // when it lies within `width` of each face the shift crosses.
+  // Every rank's bounding box of owned particles, grown by the width: a particle (or a periodic image
+  // of it) inside rank r's grown box may be within `width` of one of r's particles, so r gets a ghost
+  // of it. A superset of what is needed; the neighbour lists keep only pairs within reach.
+  std::vector<double> boxes(2 * D * size);
+  {
+    Vector<D> lo = Vector<D>::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (std::size_t i = 0; i < n_owned_; ++i) lo = lo.cwiseMin(P.x[i]), hi = hi.cwiseMax(P.x[i]);
+    std::vector<double> mine(2 * D);
+    for (int a = 0; a < D; ++a) mine[a] = lo[a] - width, mine[D + a] = hi[a] + width;
+    MPI_Allgather(mine.data(), 2 * D, MPI_DOUBLE, boxes.data(), 2 * D, MPI_DOUBLE, PETSC_COMM_WORLD);
+  }
+  auto inside = [&](int r, const Vector<D>& y) {
+    for (int a = 0; a < D; ++a)
+      if (y[a] < boxes[2 * D * r + a] || y[a] > boxes[2 * D * r + D + a]) return false;
+    return true;
+  };
+
+  // Shifts s in {-1,0,1}^D (non-zero only along periodic axes), numbered c = sum_a (s_a + 1) 3^a.
   int combos = 1;
   for (int a = 0; a < D; ++a) combos *= 3;
-  for (std::size_t i = 0; i < n_owned_; ++i) {
-    for (int c = 0; c < combos; ++c) {
-      std::array<int, D> s;
-      bool any = false, ok = true;
-      for (int a = 0, k = c; a < D; ++a, k /= 3) {
-        s[a] = k % 3 - 1;
-        if (s[a] == 0) continue;
-        any = true;
-        if (!domain.periodic[a]) ok = false;
-        else if (s[a] < 0 && P.x[i][a] < domain.hi[a] - width) ok = false;
-        else if (s[a] > 0 && P.x[i][a] >= domain.lo[a] + width) ok = false;
-      }
-      if (!any || !ok) continue;
-      Vector<D> sh;
-      for (int a = 0; a < D; ++a) sh[a] = s[a] * L[a];
-      leaf.push_back(static_cast<PetscInt>(n_owned_ + shift_.size()));
-      root.push_back({rank, static_cast<PetscInt>(i)});
-      shift_.push_back(sh);
-      owner_rank_.push_back(rank);
-    }
+  auto shift_of = [&](int c) {
+    Vector<D> sh;
+    for (int a = 0; a < D; ++a, c /= 3) sh[a] = (c % 3 - 1) * L[a];
+    return sh;
+  };
+  std::vector<int> allowed;  // shift codes the domain's periodicity allows
+  for (int c = 0; c < combos; ++c) {
+    bool ok = true;
+    for (int a = 0, k = c; a < D; ++a, k /= 3)
+      if (k % 3 != 1 && !domain.periodic[a]) ok = false;
+    if (ok) allowed.push_back(c);
   }
+  const int zero_shift = (combos - 1) / 2;
+
+  // (source index, shift code) pairs for each destination rank.
+  std::vector<std::vector<int>> outgoing(size);
+  for (std::size_t i = 0; i < n_owned_; ++i)
+    for (int c : allowed) {
+      const Vector<D> y = P.x[i] + shift_of(c);
+      for (int r = 0; r < size; ++r) {
+        if (r == rank && c == zero_shift) continue;  // the particle itself
+        if (inside(r, y)) outgoing[r].push_back(static_cast<int>(i)), outgoing[r].push_back(c);
+      }
+    }
+  std::vector<int> send_count(size), recv_count(size), send_displ(size, 0), recv_displ(size, 0);
+  for (int r = 0; r < size; ++r) send_count[r] = static_cast<int>(outgoing[r].size());
+  MPI_Alltoall(send_count.data(), 1, MPI_INT, recv_count.data(), 1, MPI_INT, PETSC_COMM_WORLD);
+  for (int r = 1; r < size; ++r) {
+    send_displ[r] = send_displ[r - 1] + send_count[r - 1];
+    recv_displ[r] = recv_displ[r - 1] + recv_count[r - 1];
+  }
+  std::vector<int> send, recv(static_cast<std::size_t>(recv_displ[size - 1]) + recv_count[size - 1]);
+  for (const auto& o : outgoing) send.insert(send.end(), o.begin(), o.end());
+  MPI_Alltoallv(send.data(), send_count.data(), send_displ.data(), MPI_INT, recv.data(), recv_count.data(),
+                recv_displ.data(), MPI_INT, PETSC_COMM_WORLD);
+
+  // Ghosts in order of source rank, then of the source's order.
+  const std::size_t n_ghost = recv.size() / 2;
+  shift_.resize(n_ghost);
+  owner_rank_.resize(n_ghost);
+  std::vector<PetscInt> leaf(n_ghost);
+  std::vector<PetscSFNode> root(n_ghost);
+  for (int r = 0, g = 0; r < size; ++r)
+    for (int k = recv_displ[r]; k < recv_displ[r] + recv_count[r]; k += 2, ++g) {
+      leaf[g] = static_cast<PetscInt>(n_owned_ + g);
+      root[g] = {r, static_cast<PetscInt>(recv[k])};
+      shift_[g] = shift_of(recv[k + 1]);
+      owner_rank_[g] = r;
+    }
 
   if (sf_) SPH_PETSC(PetscSFDestroy(&sf_));
   SPH_PETSC(PetscSFCreate(PETSC_COMM_WORLD, &sf_));
-  SPH_PETSC(PetscSFSetGraph(sf_, static_cast<PetscInt>(n_owned_), static_cast<PetscInt>(leaf.size()),
-                            leaf.data(), PETSC_COPY_VALUES, root.data(), PETSC_COPY_VALUES));
+  SPH_PETSC(PetscSFSetGraph(sf_, static_cast<PetscInt>(n_owned_), static_cast<PetscInt>(n_ghost), leaf.data(),
+                            PETSC_COPY_VALUES, root.data(), PETSC_COPY_VALUES));
   SPH_PETSC(PetscSFSetUp(sf_));
 
-  P.set_ghost_count(shift_.size());
+  P.set_ghost_count(n_ghost);
   update_all(P);
 }
 
@@ -80,6 +117,7 @@ template <int D> void Halo<D>::update_all(Particles<D>& P) const {
   update(P.p);
   update(P.kind);
   update(P.gid);
+  update(P.id);
 }
 
 template class Halo<1>;

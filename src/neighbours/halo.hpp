@@ -1,6 +1,6 @@
 #pragma once
 // Ghost (halo) particles: copies of particles within a given width of this rank's particles that
-// live across a periodic face (or, with domain decomposition, on another rank). Each ghost knows its
+// live on another rank or across a periodic face (or both). Each ghost knows its
 // source (owner rank + owner's local index) and a position shift (the periodic offset). Field
 // refreshes go through a PetscSF, so one rank is simply the case where every source is local.
 #include <petscsf.h>

@@ -2,23 +2,28 @@
 
 #include <mpi.h>
 
+#include <cmath>
+#include <limits>
+
+#include "src/run/log_events.hpp"
+
 namespace sph {
 
 template <int D> bool Neighbourhood<D>::update(Particles<D>& P, bool force) {
-  bool rebuild = force || x_at_build_.size() != P.n_owned;
-  if (!rebuild) {
-    double max_disp2 = 0.0;
-    for (std::size_t i = 0; i < P.n_owned; ++i)
-      max_disp2 = std::max(max_disp2, (P.x[i] - x_at_build_[i]).squaredNorm());
-    MPI_Allreduce(MPI_IN_PLACE, &max_disp2, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
-    // Two particles each moving skin/2 towards each other is the worst case the skin covers.
-    rebuild = 2.0 * std::sqrt(max_disp2) >= skin_;
-  }
+  const LogEventScope log_update(LogEvent::NeighbourUpdate);
+  // Every rank takes the same decision (the rebuild is collective).
+  double max_disp2 = force || x_at_build_.size() != P.n_owned ? std::numeric_limits<double>::infinity() : 0.0;
+  for (std::size_t i = 0; i < P.n_owned && x_at_build_.size() == P.n_owned; ++i)
+    max_disp2 = std::max(max_disp2, (P.x[i] - x_at_build_[i]).squaredNorm());
+  MPI_Allreduce(MPI_IN_PLACE, &max_disp2, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+  // Two particles each moving skin/2 towards each other is the worst case the skin covers.
+  const bool rebuild = 2.0 * std::sqrt(max_disp2) >= skin_;
   if (!rebuild) {
     halo_.update_positions(P.x);
     halo_.update(P.v);
     return false;
   }
+  const LogEventScope log_rebuild(LogEvent::NeighbourRebuild);
   for (std::size_t i = 0; i < P.n_owned; ++i) P.x[i] = domain_.wrap(P.x[i]);
   const double radius = support_ + skin_;
   halo_.build(P, domain_, radius);

@@ -20,7 +20,11 @@ template <int D> struct Particles {
   std::vector<Vector<D>> x, v;            // position, velocity
   std::vector<double> m, rho, p;       // mass, density, pressure
   std::vector<int> kind;               // ParticleKind
-  std::vector<GlobalIndex> gid;        // global index (a ghost carries its source's)
+  // gid: the particle's current global index (PETSc row): owned particles of rank r are numbered
+  // contiguously after those of ranks < r, and renumbered whenever particles migrate.
+  // id: the particle's permanent label (its first gid), for output and checkpoints.
+  // A ghost carries its source's gid and id.
+  std::vector<GlobalIndex> gid, id;
 
   std::size_t size() const { return n_owned + n_ghost; }
 
@@ -34,6 +38,7 @@ template <int D> struct Particles {
     p.push_back(pressure);
     kind.push_back(k);
     gid.push_back(0);
+    id.push_back(-1);  // labelled by assign_global_indices
     ++n_owned;
   }
 
@@ -41,7 +46,7 @@ template <int D> struct Particles {
   void set_ghost_count(std::size_t ng) {
     n_ghost = ng;
     const std::size_t n = size();
-    x.resize(n), v.resize(n), m.resize(n), rho.resize(n), p.resize(n), kind.resize(n), gid.resize(n);
+    x.resize(n), v.resize(n), m.resize(n), rho.resize(n), p.resize(n), kind.resize(n), gid.resize(n), id.resize(n);
   }
 };
 

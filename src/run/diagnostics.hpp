@@ -5,22 +5,9 @@
 
 #include "src/core/domain.hpp"
 #include "src/core/error.hpp"
-#include "src/particles/particles.hpp"
+#include "src/particles/global_indices.hpp"
 
 namespace sph {
-
-// Gives owned particles contiguous global indices, rank by rank (PETSc's row ownership).
-template <int D> void assign_global_indices(Particles<D>& P) {
-  GlobalIndex n = static_cast<GlobalIndex>(P.n_owned), first = 0, total = 0;
-  MPI_Exscan(&n, &first, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
-  MPI_Allreduce(&n, &total, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
-  PetscMPIInt rank;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  if (rank == 0) first = 0;  // MPI_Exscan leaves rank 0's result undefined
-  P.first_gid = first;
-  P.n_global = total;
-  for (std::size_t i = 0; i < P.n_owned; ++i) P.gid[i] = first + static_cast<GlobalIndex>(i);
-}
 
 // Fluid particles only.
 template <int D> struct Totals {

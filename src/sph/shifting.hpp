@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "src/neighbours/neighbourhood.hpp"
+#include "src/run/log_events.hpp"
 #include "src/sph/operators.hpp"
 
 namespace sph {
@@ -52,6 +53,7 @@ template <int D>
 void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, const LindShifting& model,
                      double dx, const std::vector<std::vector<double>*>& scalars = {},
                      const std::vector<char>* surface = nullptr) {
+  const LogEventScope log_shifting(LogEvent::Shifting);
   const NeighbourList<D>& nl = nh.list();
   std::vector<Vector<D>> dr = model.displacement(P, nl, K, dx);
   if (surface)

@@ -1,0 +1,34 @@
+#pragma once
+// Domain decomposition by a space-filling curve: owned particles are ordered along a Morton (Z-order)
+// curve through the bounding box of all particles, and rank r receives the r-th of `size` equal
+// contiguous pieces of that order. Neighbours along the curve are mostly neighbours in space, so each
+// rank's particles form a compact region (few ghosts) and, on any rank count, memory order follows
+// space (cache locality of the pair loops).
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "src/core/domain.hpp"
+#include "src/io/checkpoint.hpp"
+#include "src/particles/particles.hpp"
+
+namespace sph {
+
+// Morton key of x in the box [lo, hi] (bits interleaved, 64/D bits per axis).
+template <int D> std::uint64_t morton_key(const Vector<D>& x, const Vector<D>& lo, const Vector<D>& hi);
+
+// Per-particle arrays beyond the Particles fields that must follow a particle to its new rank and
+// slot: the solver's checkpoint fields (the state it carries from one step to the next). The function
+// is called before the move (to pack, sized to the old owned count) and after it (to unpack, sized to
+// the new owned count).
+using ParticleArrays = std::function<std::vector<CheckpointField>()>;
+
+// Wraps owned particles into the periodic box, re-orders (and on several ranks migrates) them along
+// the curve, renumbers global indices, and drops the ghosts (the caller rebuilds its neighbourhood).
+// Deterministic: the result depends only on the set of particles (ties broken by permanent id), not on
+// where they were.
+// Returns the load imbalance afterwards: max owned count / mean owned count.
+template <int D>
+double partition_along_curve(Particles<D>& P, const Domain<D>& domain, const ParticleArrays& arrays = {});
+
+}  // namespace sph
