@@ -3,6 +3,7 @@
 #include "cases/dam_break/dam_break.hpp"
 #include "cases/lid_driven_cavity/lid_driven_cavity.hpp"
 #include "cases/poiseuille/poiseuille.hpp"
+#include "cases/sedov/sedov.hpp"
 #include "cases/sod/sod.hpp"
 #include "cases/square_patch/square_patch.hpp"
 #include "cases/taylor_green/taylor_green.hpp"
@@ -28,6 +29,8 @@ const std::vector<CaseEntry>& case_registry() {
        [] { return std::make_unique<SodShockTube<3>>(); }},
       {"toy_star", "1D polytropic toy star in -Omega^2 x, breathing; exact ODE solution (Monaghan & Price 2004)", 1,
        [] { return std::make_unique<ToyStar>(); }, nullptr, nullptr},
+      {"sedov", "2D Sedov-Taylor blast wave (gamma = 1.4), periodic box; self-similar solution (Sedov 1959)", 2,
+       nullptr, [] { return std::make_unique<SedovBlast>(); }, nullptr},
   };
   return entries;
 }
