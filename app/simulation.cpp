@@ -225,6 +225,8 @@ template <int D> void Run<D>::execute() {
   double last_frame_t = t;
   const double ke_bound = 1e3 * 0.5 * fluid_mass(P) * scene.physics.U * scene.physics.U;
   bool warned_dt = false;
+  NeighbourCountCheck<D> check_neighbours(scene.physics.free_surface);
+  check_neighbours(P, nh.list(), nh.support_radius());  // the reference counts
   const auto loop_start = std::chrono::steady_clock::now();
   auto finish = [&](const std::string& status, const std::string& failure) {
     const double loop_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
@@ -280,6 +282,7 @@ template <int D> void Run<D>::execute() {
       stats.add(report);
       LogEventScope log_diagnostics(LogEvent::Diagnostics);
       check_health(P, domain, ke_bound);
+      check_neighbours(P, nh.list(), nh.support_radius());
       if (opt.partition_interval > 0 && step % opt.partition_interval == 0) repartition();
 
       const Totals<D> tot = totals(P);

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "run_sph.hpp"
+#include "src/neighbours/neighbourhood.hpp"
 #include "src/run/diagnostics.hpp"
 
 namespace {
@@ -93,6 +94,45 @@ TEST(Health, DivergedPressureSolveStopsTheRun) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.summary["status"], "failed");
   EXPECT_NE(r.summary["failure"].get<std::string>().find("did not converge"), std::string::npos);
+}
+
+// A periodic lattice with its neighbour lists, for the neighbour-count check.
+struct Lattice {
+  sph::Particles<2> P;
+  sph::Domain<2> domain;
+  sph::Neighbourhood<2> nh{make_domain(), 0.3, 0.0};
+  static sph::Domain<2> make_domain() {
+    sph::Domain<2> d;
+    d.periodic = {true, true};
+    return d;
+  }
+  Lattice() {
+    domain = make_domain();
+    for (int j = 0; j < 20; ++j)
+      for (int i = 0; i < 20; ++i)
+        P.add(sph::Vector<2>((i + 0.5) / 20, (j + 0.5) / 20), sph::Vector<2>::Zero(), 1.0, 1.0);
+    sph::assign_global_indices(P);
+    nh.update(P, true);
+  }
+};
+
+TEST(Health, NeighbourCountCollapseStopsTheRun) {
+  for (bool free_surface : {false, true}) {
+    Lattice a;  // support 0.3 = 6 dx: about 113 neighbours each
+    sph::NeighbourCountCheck<2> check(free_surface);
+    check(a.P, a.nh.list(), 0.3);  // reference counts
+    EXPECT_NO_THROW(check(a.P, a.nh.list(), 0.3));
+    // One particle in a void (its old neighbours out of reach): a collapse only without a free surface.
+    a.P.x[210] += sph::Vector<2>(0.5, 0.5);
+    if (free_surface) EXPECT_NO_THROW(check(a.P, a.nh.list(), 0.3));
+    else EXPECT_THROW(check(a.P, a.nh.list(), 0.3), sph::Error);
+  }
+  // The whole lattice spread to twice its spacing: a quarter of the neighbours on average.
+  Lattice b;
+  sph::NeighbourCountCheck<2> check(true);
+  check(b.P, b.nh.list(), 0.3);
+  for (std::size_t i = 0; i < b.P.size(); ++i) b.P.x[i] *= 2.0;
+  EXPECT_THROW(check(b.P, b.nh.list(), 0.3), sph::Error);
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
 #pragma once
 // Whole-system figures and run-health checks, reduced over all ranks.
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "src/core/domain.hpp"
 #include "src/core/error.hpp"
+#include "src/neighbours/neighbour_list.hpp"
 #include "src/particles/global_indices.hpp"
 
 namespace sph {
@@ -60,5 +62,47 @@ template <int D> void check_health(const Particles<D>& P, const Domain<D>& domai
     throw Error("kinetic energy " + std::to_string(ke) + " exceeds 1000 x its reference scale (1/2 M U^2): the run "
                 "blew up; reduce -cfl or -dt");
 }
+
+// Neighbour-count collapse. The fluid particles' mean count of neighbours inside the kernel support
+// falling below half its value at the start means the particles scattered (a blow-up under way, or a
+// free surface torn apart); in scenes without a free surface, a fluid particle left with fewer than a
+// quarter of the smallest count at the start means a void opened beside it (tensile instability).
+// Counted on the current lists, which may miss pairs that came within reach since the last rebuild.
+template <int D> class NeighbourCountCheck {
+ public:
+  explicit NeighbourCountCheck(bool free_surface) : free_surface_(free_surface) {}
+
+  void operator()(const Particles<D>& P, const NeighbourList<D>& nl, double support) {
+    double sum = 0.0, count = 0.0, fewest = std::numeric_limits<double>::infinity();
+    const double rc2 = support * support;
+    for (std::size_t i = 0; i < P.n_owned && i < nl.size(); ++i) {
+      if (P.kind[i] != kFluid) continue;
+      double k = 0.0;
+      for (const int* j = nl.begin(i); j != nl.end(i); ++j) k += (P.x[i] - P.x[*j]).squaredNorm() < rc2;
+      sum += k, count += 1.0, fewest = std::min(fewest, k);
+    }
+    double buf[2] = {sum, count};
+    MPI_Allreduce(MPI_IN_PLACE, buf, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    MPI_Allreduce(MPI_IN_PLACE, &fewest, 1, MPI_DOUBLE, MPI_MIN, PETSC_COMM_WORLD);
+    if (buf[1] == 0.0) return;
+    const double mean = buf[0] / buf[1];
+    if (mean0_ < 0) {
+      mean0_ = mean, fewest0_ = fewest;
+      return;
+    }
+    std::ostringstream msg;
+    if (mean < 0.5 * mean0_)
+      msg << "neighbour count collapsed: fluid particles have " << mean << " neighbours on average (" << mean0_
+          << " at the start): the particles scattered; reduce -cfl or -dt";
+    else if (!free_surface_ && fewest < 0.25 * fewest0_)
+      msg << "neighbour count collapsed: a fluid particle has " << fewest << " neighbours (at least " << fewest0_
+          << " at the start): a void opened in the fluid (tensile instability); keep shifting on or reduce -cfl";
+    if (!msg.str().empty()) throw Error(msg.str());
+  }
+
+ private:
+  bool free_surface_;
+  double mean0_ = -1.0, fewest0_ = 0.0;
+};
 
 }  // namespace sph
