@@ -1,0 +1,92 @@
+// The PPE matrix is preallocated from the pair counts, so assembling it must never allocate inside
+// MatSetValues (each such malloc copies the row storage; PETSc's -info reports them as "Number of
+// mallocs during MatSetValues()"): on a periodic lattice, a disordered one, and a walled box with its
+// extrapolation rows, pinned row and Dirichlet (free-surface) rows.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "cases/registry.hpp"
+#include "solvers/isph/pressure_poisson.hpp"
+#include "src/run/diagnostics.hpp"
+
+namespace {
+
+using namespace sph;
+
+struct AssemblyInfo {
+  double mallocs, nz_used, nz_allocated;
+};
+
+AssemblyInfo info_of(::Mat A) {
+  MatInfo info;
+  EXPECT_EQ(MatGetInfo(A, MAT_GLOBAL_SUM, &info), 0);
+  return {info.mallocs, info.nz_used, info.nz_allocated};
+}
+
+// A scene of the given case (2D) with neighbour lists built with a Verlet skin, as in a run.
+struct Scene2 {
+  Particles<2> P;
+  Domain<2> domain;
+  double dx;
+  Kernel<2> kernel;
+  Neighbourhood<2> nh;
+
+  Scene2(const std::string& case_name, int nx)
+      : dx(make(case_name, nx)), kernel(KernelType::WendlandC2, 1.5 * dx), nh(domain, 3.0 * dx, 0.6 * dx) {
+    assign_global_indices(P);
+    nh.update(P, true);
+  }
+
+  double make(const std::string& case_name, int nx) {
+    PetscOptionsSetValue(nullptr, "-nx", std::to_string(nx).c_str());
+    auto c = create_case<2>(case_name);
+    c->set_from_options();
+    PetscOptionsClearValue(nullptr, "-nx");
+    c->create(P, domain);
+    return c->spacing();
+  }
+
+  // Moves the fluid particles by up to `amount` dx (reproducibly), as a step would between assemblies.
+  void disorder(double amount) {
+    unsigned seed = 2024;
+    auto rnd = [&] { seed = seed * 1103515245u + 12345u; return ((seed >> 8) & 0xffff) / 65535.0 - 0.5; };
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      if (P.kind[i] == kFluid) P.x[i] += amount * dx * Vector<2>(rnd(), rnd());
+    nh.update(P);
+  }
+};
+
+void expect_no_mallocs(const char* what, PressurePoisson<2>& ppe, Scene2& s, const std::vector<char>* dirichlet = nullptr) {
+  ppe.assemble(s.P, s.nh, s.kernel, Vector<2>(0.0, -1.0), dirichlet);
+  const AssemblyInfo info = info_of(ppe.matrix());
+  std::printf("%s: N = %zu, mallocs %g, nonzeros used %g of %g allocated\n", what, s.P.n_owned, info.mallocs,
+              info.nz_used, info.nz_allocated);
+  EXPECT_EQ(info.mallocs, 0.0) << what;
+  EXPECT_GT(info.nz_used, 0.0) << what;
+}
+
+TEST(PpeAssembly, PeriodicLatticeNeedsNoMallocs) {
+  Scene2 s("taylor_green", 24);
+  PressurePoisson<2> ppe;
+  ppe.set_from_options();
+  expect_no_mallocs("periodic lattice", ppe, s);
+  s.disorder(0.3);  // skin neighbours now fall in and out of the support
+  expect_no_mallocs("periodic, disordered", ppe, s);
+}
+
+TEST(PpeAssembly, WalledBoxNeedsNoMallocs) {
+  Scene2 s("lid_driven_cavity", 16);
+  PressurePoisson<2> ppe;
+  ppe.set_from_options();
+  ppe.use_nonsymmetric(true);
+  expect_no_mallocs("walled box", ppe, s);
+  s.disorder(0.3);
+  expect_no_mallocs("walled box, disordered", ppe, s);
+  std::vector<char> surface(s.P.n_owned, 0);
+  for (std::size_t i = 0; i < s.P.n_owned; i += 7)
+    if (s.P.kind[i] == kFluid) surface[i] = 1;
+  expect_no_mallocs("walled box, Dirichlet rows", ppe, s, &surface);
+}
+
+}  // namespace
