@@ -35,13 +35,26 @@ TEST(Walls, WcsphPoiseuilleMatchesSeriesSolution) {
 
 // Cavity Re = 100 at 30 x 30 particles, run to steady state. The issue's target is 2% RMS at
 // nx = 100; at nx = 30 we require 5% for u (the interior Ghia values themselves have an RMS of about
-// 0.35, so a stagnant or wrongly-driven cavity fails by far) and 2% for v (measured 2.4% and 0.4%).
+// 0.35, so a stagnant or wrongly-driven cavity fails by far) and 2% for v (measured 2.2% and 0.9%).
 TEST(Walls, IsphCavityRe100MatchesGhia) {
   const auto r = run_sph("cavity_isph_30", "-case lid_driven_cavity -solver isph -nx 30 -re 100");
   ASSERT_EQ(r.exit_code, 0);
   EXPECT_TRUE(r.summary["steady_state_reached"].get<bool>());
   EXPECT_LT(error(r, "centreline_rms_u"), 0.05);
   EXPECT_LT(error(r, "centreline_rms_v"), 0.02);
+}
+
+// Cavity Re = 1000 at 30 x 30 particles. Its thin corner and wall layers are where particles used to
+// leave through the lid/side-wall corner (a health-check failure); the run must reach steady state
+// inside the box. Ghia's Re = 1000 centreline values have RMS 0.41 (u) and 0.31 (v), so 15% still
+// separates a cavity with the right vortex from a stagnant or wrong one; measured 8.8% and 10.8%
+// (5.3% and 6.5% at nx = 50: the error falls with resolution, see the issue 4 note).
+TEST(Walls, IsphCavityRe1000StaysInsideAndApproachesGhia) {
+  const auto r = run_sph("cavity_isph_30_re1000", "-case lid_driven_cavity -solver isph -nx 30 -re 1000");
+  ASSERT_EQ(r.exit_code, 0);
+  EXPECT_TRUE(r.summary["steady_state_reached"].get<bool>());
+  EXPECT_LT(error(r, "centreline_rms_u"), 0.15);
+  EXPECT_LT(error(r, "centreline_rms_v"), 0.15);
 }
 
 TEST(Walls, ThinWallLayersAreRefused) {
