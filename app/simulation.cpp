@@ -20,6 +20,7 @@
 #include "src/run/diagnostics.hpp"
 #include "src/run/log_events.hpp"
 #include "src/run/progress.hpp"
+#include "src/run/threads.hpp"
 
 namespace sph {
 
@@ -67,6 +68,7 @@ struct DriverOptions {
   PetscReal steady_tol = -1;        // -1: the case's default
   PetscReal checkpoint_interval = -1;  // -1: with every VTK frame, 0: never
   PetscInt partition_interval = 50;    // steps between re-partitions along the space-filling curve
+  PetscInt threads = 0;                // OpenMP threads per rank (0: see configure_threads)
   char restart[PETSC_MAX_PATH_LEN] = "";
   PetscBool progress = PETSC_TRUE;
   char output_dir[PETSC_MAX_PATH_LEN] = "";
@@ -101,6 +103,10 @@ PetscErrorCode read_driver_options(DriverOptions* o) {
                             "Steps between re-orderings of the particles along a space-filling curve, which also "
                             "re-balances them over MPI ranks (0: only at start-up and at checkpoints)",
                             "", o->partition_interval, &o->partition_interval, nullptr));
+  PetscCall(PetscOptionsInt("-threads",
+                            "OpenMP threads per MPI rank for the pair loops, neighbour search and hypre (0: "
+                            "OMP_NUM_THREADS if set, else this rank's cores shared with the other ranks on the node)",
+                            "", o->threads, &o->threads, nullptr));
   PetscCall(PetscOptionsString("-restart", "Resume from this checkpoint (same case, solver and options)", "", o->restart,
                                o->restart, sizeof(o->restart), nullptr));
   PetscCall(PetscOptionsBool("-progress", "Print a progress line on stderr about once a second", "", o->progress,
@@ -126,6 +132,8 @@ template <int D> struct Run {
     require(opt.h_over_dx == -1 || opt.h_over_dx > 0, "-h_over_dx", "positive", opt.h_over_dx);
     require(opt.skin >= 0 && opt.skin <= 1, "-neighbour_skin", "in [0, 1]", opt.skin);
     require(opt.partition_interval >= 0, "-partition_interval", "non-negative", opt.partition_interval);
+    require(opt.threads >= 0, "-threads", "non-negative", opt.threads);
+    opt.threads = configure_threads(static_cast<int>(opt.threads));
     if (opt.output_interval < 0) opt.output_interval = opt.t_end / 20;
     if (opt.steady_tol < 0) opt.steady_tol = scene_case->steady_tolerance();
     output_dir = opt.output_dir[0] ? std::string(opt.output_dir)
@@ -209,6 +217,7 @@ template <int D> void Run<D>::execute() {
   PetscMPIInt ranks;
   MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
   summary["mpi_ranks"] = ranks;
+  summary["threads_per_rank"] = opt.threads;
 
   const Totals<D> initial = totals(P);
   SteadyState steady(opt.steady_tol);

@@ -119,7 +119,7 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
     SPH_PETSC(MatSetValues(A_, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(), vals.data(), ADD_VALUES));
     cols.clear(), vals.clear(), wall_cols.clear(), wall_w.clear(), wall_g.clear(), diag = 0.0;
   };
-  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+  for_each_pair_in_order(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     while (current < static_cast<std::size_t>(i)) flush_row(current++);
     if (P.gid[j] == P.gid[i]) return;  // a periodic image of i itself: p_i - p_i = 0
     const double c = P.m[i] * ppe_pair_coefficient(P.m[j], P.rho[i], P.rho[j], morris_factor(g, K.h()));

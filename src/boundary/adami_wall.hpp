@@ -30,7 +30,7 @@ template <int D> struct AdamiWall {
     s.offset.assign(P.n_owned + 1, 0);
     std::vector<double> sum(P.n_owned, 0.0);
     std::size_t current = 0;
-    for_each_pair(P, nl, K, [&](int w, int f, const PairGeometry<D>& g) {
+    for_each_pair_in_order(P, nl, K, [&](int w, int f, const PairGeometry<D>& g) {
       if (P.kind[w] != kWall || P.kind[f] != kFluid) return;
       while (current < static_cast<std::size_t>(w)) s.offset[++current] = s.fluid.size();
       s.fluid.push_back(f);

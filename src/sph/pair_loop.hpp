@@ -2,6 +2,8 @@
 // The one neighbour loop of the code. Schemes supply the physics of a single i-j pair as a callable;
 // the loop supplies the pair geometry (separation, kernel value and gradient), evaluated at current
 // positions (lists may hold skin neighbours outside the support: those are skipped here).
+#include <cmath>
+
 #include "src/kernels/kernel.hpp"
 #include "src/neighbours/neighbour_list.hpp"
 #include "src/particles/particles.hpp"
@@ -16,24 +18,44 @@ template <int D> struct PairGeometry {
   Vector<D> gradW;    // grad_i W_ij
 };
 
-// f(i, j, geometry) for every owned particle i and neighbour j with 0 < r_ij < support.
+namespace detail {
+// f(i, j, geometry) for the neighbours j of one particle i, in list order.
+template <int D, class PairFn>
+inline void pairs_of(std::size_t i, const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                     double rc2, PairFn& f) {
+  PairGeometry<D> g;
+  for (const int* it = nl.begin(i); it != nl.end(i); ++it) {
+    const int j = *it;
+    g.rij = P.x[i] - P.x[j];
+    const double r2 = g.rij.squaredNorm();
+    if (r2 >= rc2 || r2 == 0.0) continue;
+    g.r = std::sqrt(r2);
+    g.W = K.W(g.r);
+    g.dWdr = K.dWdr(g.r);
+    g.gradW = (g.dWdr / g.r) * g.rij;
+    f(static_cast<int>(i), j, g);
+  }
+}
+}  // namespace detail
+
+// f(i, j, geometry) for every owned particle i and neighbour j with 0 < r_ij < support, with the
+// particles i shared among OpenMP threads. Contract: f writes only to entries of i (it may read
+// anything) and does not throw. Each i's pairs still run in list order on one thread, so every sum
+// is bitwise the same on any thread count.
 template <int D, class PairFn>
 void for_each_pair(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, PairFn&& f) {
   const double rc2 = K.support_radius() * K.support_radius();
-  PairGeometry<D> g;
-  for (std::size_t i = 0; i < P.n_owned; ++i) {
-    for (const int* it = nl.begin(i); it != nl.end(i); ++it) {
-      const int j = *it;
-      g.rij = P.x[i] - P.x[j];
-      const double r2 = g.rij.squaredNorm();
-      if (r2 >= rc2 || r2 == 0.0) continue;
-      g.r = std::sqrt(r2);
-      g.W = K.W(g.r);
-      g.dWdr = K.dWdr(g.r);
-      g.gradW = (g.dWdr / g.r) * g.rij;
-      f(static_cast<int>(i), j, g);
-    }
-  }
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < n; ++i) detail::pairs_of(static_cast<std::size_t>(i), P, nl, K, rc2, f);
+}
+
+// The same pairs on one thread, i ascending: for callers that build output in order (matrix rows,
+// compressed stencils) or write to shared state.
+template <int D, class PairFn>
+void for_each_pair_in_order(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, PairFn&& f) {
+  const double rc2 = K.support_radius() * K.support_radius();
+  for (std::size_t i = 0; i < P.n_owned; ++i) detail::pairs_of(i, P, nl, K, rc2, f);
 }
 
 }  // namespace sph

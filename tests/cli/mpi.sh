@@ -7,37 +7,7 @@ set -u
 sph="$1"; src="$2"; tmp=${KEEP_TMP:-$(mktemp -d)}; [ -n "${KEEP_TMP:-}" ] || trap 'rm -rf "$tmp"' EXIT
 mpiexec="${MPIEXEC:-mpiexec}"
 fail=0
-# run <label> <ranks> <args...>
-run() {
-  local label="$1" n="$2"; shift 2
-  if ! "$mpiexec" -n "$n" "$sph" "$@" -output_dir "$tmp/$label" -progress 0 -output_interval 0 >"$tmp/$label.log" 2>&1; then
-    echo "FAIL: $label ($n ranks) exited non-zero:"; tail -5 "$tmp/$label.log"; fail=1
-  fi
-}
-# compare <label a> <label b> <relative tolerance on every error norm>
-compare() {
-  python3 - "$tmp/$1/summary.json" "$tmp/$2/summary.json" "$3" <<'PY' || fail=1
-import csv, json, math, sys
-a, b = (json.load(open(p)) for p in sys.argv[1:3])
-ksp_a, ksp_b = ([float(r["ksp_iterations"]) for r in csv.DictReader(open(p.replace("summary.json", "timeseries.csv")))]
-                for p in sys.argv[1:3])
-tol = float(sys.argv[3])
-ok = a["status"] == b["status"] == "completed" and a["steps"] == b["steps"]
-worst = 0.0
-for k, va in a["errors"].items():
-    vb = b["errors"][k]
-    if va is None and vb is None: continue  # NaN (e.g. a plateau not formed yet) in both
-    rel = abs(va - vb) / max(abs(va), 1e-300)
-    worst = max(worst, rel)
-    ok &= rel <= tol
-# Per step (a resumed run's series holds only the steps after the restart).
-ksp_a = ksp_a[len(ksp_a) - len(ksp_b):]
-ok &= all(abs(x - y) <= 1 for x, y in zip(ksp_a, ksp_b))
-print(("ok" if ok else "FAIL") + f": {sys.argv[1].split('/')[-2]} vs {sys.argv[2].split('/')[-2]}: "
-      f"largest relative difference of the error norms {worst:.2e} (tolerance {tol:g}), ranks {a['mpi_ranks']} / {b['mpi_ranks']}")
-sys.exit(0 if ok else 1)
-PY
-}
+source "$(dirname "$0")/lib/compare_runs.sh"
 
 tgv="-case taylor_green -nx 24 -t_end 0.2"
 run isph1 1 $tgv -solver isph -ksp_rtol 1e-10
