@@ -55,8 +55,12 @@ template <int D> struct GasPair {
 // gather", what the symmetric force needs). kernels[k] is particle k's kernel (owned and ghosts).
 template <int D, class List, class Fn>
 void for_each_gas_pair(const Particles<D>& P, const List& nl, const std::vector<Kernel<D>>& kernels, Fn&& f) {
-  GasPair<D> g;
-  for (std::size_t i = 0; i < P.n_owned; ++i) {
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
+  // Threads share the particles i; f writes only to entries of i (as for sph::for_each_pair).
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    GasPair<D> g;
     const Kernel<D>& Ki = kernels[i];
     const double rci = Ki.support_radius();
     for (const int* it = nl.begin(i); it != nl.end(i); ++it) {

@@ -211,8 +211,13 @@ template <int D> void CompressibleSolver<D>::solve_density() {
     if (pairs_built_at_rebuild_ != scene_->neighbourhood.rebuilds()) prune_pairs();
     const NeighbourList<D>& nl = scene_->neighbourhood.list();
 
-    std::vector<std::size_t> still;
-    for (std::size_t i : active) {
+    // Threads share the active particles; each writes only its own entries. Which ones stay active
+    // is collected afterwards, in order.
+    std::vector<char> converged(active.size(), 0);
+    const std::ptrdiff_t n_active = static_cast<std::ptrdiff_t>(active.size());
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t k = 0; k < n_active; ++k) {
+      const std::size_t i = active[k];
       const double h = h_[i];
       const Kernel<D> K(type, h);
       DensitySums s;
@@ -241,11 +246,14 @@ template <int D> void CompressibleSolver<D>::solve_density() {
         P.rho[i] = s.rho;
         omega_[i] = grad_h_factor(D, h, s);
         if (need_div) divv_[i] = div / (omega_[i] * s.rho), curlv_[i] = curl.norm() / (omega_[i] * s.rho);
+        converged[k] = 1;
       } else {
         h_[i] = h_new;
-        still.push_back(i);
       }
     }
+    std::vector<std::size_t> still;
+    for (std::size_t k = 0; k < active.size(); ++k)
+      if (!converged[k]) still.push_back(active[k]);
     active.swap(still);
     density_iterations_max_ = std::max<long>(density_iterations_max_, iteration);
     double left = static_cast<double>(active.size());

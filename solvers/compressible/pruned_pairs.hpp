@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "src/neighbours/compressed_rows.hpp"
 #include "src/neighbours/neighbour_list.hpp"
 #include "src/particles/particles.hpp"
 
@@ -21,18 +22,15 @@ template <int D> class PrunedPairs {
   void build(const Particles<D>& P, const NeighbourList<D>& nl, const std::vector<double>& h, double kappa,
              double margin) {
     const std::size_t n = P.n_owned;
-    offset_.assign(n + 1, 0);
-    index_.clear();
     reach_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      reach_[i] = margin * kappa * h[i];
+    for (std::size_t i = 0; i < n; ++i) reach_[i] = margin * kappa * h[i];
+    build_compressed_rows(n, offset_, index_, [&](std::size_t i, std::vector<int>& out) {
       for (const int* it = nl.begin(i); it != nl.end(i); ++it) {
         const int j = *it;
         const double reach = std::max(reach_[i], margin * kappa * h[j]);
-        if ((P.x[i] - P.x[j]).squaredNorm() < reach * reach) index_.push_back(j);
+        if ((P.x[i] - P.x[j]).squaredNorm() < reach * reach) out.push_back(j);
       }
-      offset_[i + 1] = index_.size();
-    }
+    });
   }
 
   const int* begin(std::size_t i) const { return index_.data() + offset_[i]; }

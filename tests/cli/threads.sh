@@ -22,4 +22,5 @@ same_on_1_and_2_threads wcsph -case taylor_green -solver wcsph -nx 32 -t_end 0.1
 same_on_1_and_2_threads cavity -case lid_driven_cavity -solver isph -nx 16 -t_end 0.3
 same_on_1_and_2_threads dam -case dam_break -solver isph -nx 12 -t_end 0.3
 same_on_1_and_2_threads sod -options_file "$src/cases/sod.opts" -nx 200 -t_end 0.1
+same_on_1_and_2_threads sedov -options_file "$src/cases/sedov.opts" -nx 32
 exit $fail

@@ -1,0 +1,44 @@
+#pragma once
+// Builds a compressed-row list (offsets + column indices) with OpenMP threads: each thread fills a
+// contiguous block of rows into its own buffer and the blocks are joined in row order, so the result
+// is the same on any thread count.
+#include <cstddef>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace sph {
+
+// fill_row(i, out) appends row i's entries to `out` (a per-thread buffer) and must not throw.
+// On return offset has n_rows + 1 entries and index holds the rows back to back.
+template <class FillRow>
+void build_compressed_rows(std::size_t n_rows, std::vector<std::size_t>& offset, std::vector<int>& index,
+                           FillRow&& fill_row) {
+  offset.assign(n_rows + 1, 0);
+  std::vector<std::vector<int>> block_index;
+#pragma omp parallel
+  {
+    int thread = 0, threads = 1;
+#ifdef _OPENMP
+    thread = omp_get_thread_num();
+    threads = omp_get_num_threads();
+#endif
+#pragma omp single
+    block_index.resize(threads);  // implicit barrier: every thread sees the resized vector
+    const std::size_t lo = n_rows * thread / threads, hi = n_rows * (thread + 1) / threads;
+    std::vector<int>& out = block_index[thread];
+    for (std::size_t i = lo; i < hi; ++i) {
+      const std::size_t start = out.size();
+      fill_row(i, out);
+      offset[i + 1] = out.size() - start;  // the row's length; prefix-summed below
+    }
+  }
+  for (std::size_t i = 0; i < n_rows; ++i) offset[i + 1] += offset[i];
+  index.clear();
+  index.reserve(offset[n_rows]);
+  for (const auto& b : block_index) index.insert(index.end(), b.begin(), b.end());
+}
+
+}  // namespace sph
