@@ -30,6 +30,9 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STAGE = "SPH time loop"
 COMMON = ["-output_interval", "0", "-checkpoint_interval", "0", "-progress", "0"]
+# Set by --ranks/--threads: the launcher in front of the program and the cores a run may use.
+LAUNCH = []
+CORES_USED = 1
 
 # name, solver label, dim, steps, arguments, when: False (always), True (with --large), "explicit" (only
 # when --only names it: gas3d-1e6 needs about 9 GB and a quarter of an hour on 2 cores). Sizes: nx^2 in 2D; the 3D Sod tube holds about
@@ -150,7 +153,7 @@ def run_workload(sph, args, steps, folder, env, extra=()):
     os.makedirs(folder)
     log = os.path.join(folder, "log_view.txt")
     out_dir = os.path.join(folder, "run")
-    cmd = [sph, *args, "-max_steps", str(steps), *COMMON, *extra, "-output_dir", out_dir, "-log_view", ":" + log]
+    cmd = [*LAUNCH, sph, *args, "-max_steps", str(steps), *COMMON, *extra, "-output_dir", out_dir, "-log_view", ":" + log]
     rc, wall, cpu, rss = run_child(cmd, os.path.join(folder, "stderr.txt"), env)
     if rc != 0:
         with open(os.path.join(folder, "stderr.txt")) as f:
@@ -208,7 +211,7 @@ def write_default_results(folder, results, baseline_rss, meta):
         extra_rss = r["rss"] - baseline_rss if baseline_rss else r["rss"]
         rows.append({
             "workload": name, "solver": solver, "dim": dim, "n_particles": r["n"], "steps": r["steps"],
-            "wall_s": round(r["wall_s"], 3), "cpu_over_wall": round(r.get("cpu_s", 0.0) / r["wall_s"], 3),
+            "wall_s": round(r["wall_s"], 3), "cpu_over_wall": round(r.get("cpu_s", 0.0) / (r["wall_s"] * CORES_USED), 3),
             "loop_s_per_ps": f["loop"], "step_s_per_ps": f["step"],
             "ppe_fraction": round(f["ppe_fraction"], 4) if solver == "isph" else "",
             "ksp_its_mean": r["ksp_its_mean"], "ksp_its_max": r["ksp_its_max"],
@@ -228,7 +231,7 @@ def write_default_results(folder, results, baseline_rss, meta):
     md = [f"# Benchmark `{meta['label']}`", "",
           f"Last run {meta['date']}, commit {meta['git']['commit']}"
           + (f" with uncommitted changes in {', '.join(meta['git']['dirty_files'])}" if meta["git"]["dirty_files"] else "")
-          + f", {meta['cpus']} CPUs, OMP_NUM_THREADS={meta['omp_num_threads']}. Times in seconds per particle-step "
+          + f", {meta['cpus']} CPUs, {meta.get('ranks', 1)} MPI rank(s) x OMP_NUM_THREADS={meta['omp_num_threads']}. Times in seconds per particle-step "
           "(event time over steps x particles) within the time-loop stage; PETSc events are inclusive "
           "(rebuild is part of neighbours; PCSetUp and KSPSolve are parts of ppe solve); other = step minus its "
           "top-level phases (integration loops, halo exchanges of fields, dt).", ""]
@@ -252,7 +255,7 @@ def write_default_results(folder, results, baseline_rss, meta):
                   f"{fmt(row['rebuild_s_per_particle'])} | {row['peak_rss_mib']} | "
                   f"{row['bytes_per_particle']} | {row['cpu_over_wall']} |")
     md += ["", f"bytes/particle = (peak RSS - {baseline_rss / 2**20:.1f} MiB of a {BASELINE[1][-3]}^2-particle run) / N. "
-           "CPU/wall: the run's CPU time over its wall time; well below 1 means it shared its core with other work "
+           "CPU/wall: the run's CPU time over its wall time and the cores it used (ranks x threads); well below 1 means it shared its cores with other work, or its threads waited "
            "(its times are inflated).", ""]
     # Scaling in N: each phase's s/ps at the largest size over the smallest, per solver (1 = linear).
     groups = {}
@@ -368,6 +371,8 @@ def main():
     ap.add_argument("--repeat", type=int, help="runs per workload; the fastest time-loop is kept "
                     "(default 1; the amg suite: 3, each time the minimum)")
     ap.add_argument("--sets", nargs="+", metavar="NAME", help="amg suite: these option sets (and the default)")
+    ap.add_argument("--threads", type=int, help="OpenMP threads per rank (sets OMP_NUM_THREADS; default: its value, else 1)")
+    ap.add_argument("--ranks", type=int, default=1, help="MPI ranks (runs under mpiexec -n RANKS; default 1, no mpiexec)")
     ap.add_argument("--compare", nargs=2, metavar=("A", "B"), help="print B/A ratios of two earlier labels and exit")
     ap.add_argument("--list", action="store_true", help="list the workloads and exit")
     args = ap.parse_args()
@@ -392,9 +397,18 @@ def main():
     os.makedirs(folder, exist_ok=True)
     env = dict(os.environ)
     env.setdefault("OMP_NUM_THREADS", "1")
+    if args.threads:
+        env["OMP_NUM_THREADS"] = str(args.threads)
+    global LAUNCH, CORES_USED
+    CORES_USED = args.ranks * int(env["OMP_NUM_THREADS"])
+    if args.ranks > 1:
+        # Open MPI binds each of up to 2 ranks to one core: threads then need --bind-to none.
+        LAUNCH = ["mpiexec", "-n", str(args.ranks)] + (["--bind-to", "none"] if CORES_USED > args.ranks else [])
+        env.update({"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+                    "OMPI_MCA_rmaps_base_oversubscribe": "1"})
     meta = {"label": label, "suite": args.suite, "date": datetime.datetime.now().isoformat(timespec="seconds"),
             "argv": sys.argv[1:], "git": git, "sph": args.sph,
-            "sph_built": datetime.datetime.fromtimestamp(os.path.getmtime(args.sph)).isoformat(timespec="seconds"), "cpus": os.cpu_count(), "omp_num_threads": env["OMP_NUM_THREADS"],
+            "sph_built": datetime.datetime.fromtimestamp(os.path.getmtime(args.sph)).isoformat(timespec="seconds"), "cpus": os.cpu_count(), "omp_num_threads": env["OMP_NUM_THREADS"], "ranks": args.ranks,
             "load_average_at_start": os.getloadavg()}
     runs_path = os.path.join(folder, "meta.json")
     runs = []
