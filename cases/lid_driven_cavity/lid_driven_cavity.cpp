@@ -59,13 +59,15 @@ void LidDrivenCavity::create(Particles<2>& P, Domain<2>& domain) const {
       const Vector<2> x((i + 0.5) * dx, (j + 0.5) * dx);
       const bool fluid = i >= 0 && i < n && j >= 0 && j < n;
       // Where the lid meets a side wall, the wall velocity jumps from U to 0 inside the kernel support
-      // of the corner fluid, and every discrete divergence (the PPE source, the continuity equation)
-      // reads the jump as a line of wall divergence +-U/dx. With both corner blocks fixed that is an
-      // expansion at the upstream corner (x = 0), a mass sink that drew fluid particles through the gap
-      // between lid and corner block at Re = 1000. So the upstream corner block moves with the lid (the
-      // jump there lies across y = 1, a shear, as in the continuum problem) and the downstream one stays
-      // fixed (a compression, which the pressure pushes away from the corner). Moving both failed at
-      // Re = 100 within 75 steps (a particle through the downstream corner); measured, see issue 4.
+      // of the corner fluid, and a discrete divergence (the ISPH pressure source) reads the jump as a
+      // line of wall divergence +-U/dx. With both corner blocks fixed that is an expansion at the
+      // upstream corner (x = 0), a mass sink that drew fluid particles through the gap between lid and
+      // corner block at Re = 1000. So the upstream corner block moves with the lid (the jump there lies
+      // across y = 1, a shear, as in the continuum problem) and the downstream one stays fixed (a
+      // compression, which raises the stagnation pressure in that corner). Moving both failed at
+      // Re = 100 within 75 steps: the moving downstream corner block dragged a particle out along
+      // y = 1. WCSPH's continuity equation sees walls at rest (see solvers/wcsph), so none of this
+      // changes its density.
       const bool lid = j >= n && i < n;
       const Vector<2> v = lid ? Vector<2>(U_, 0.0) : Vector<2>::Zero();
       all.add(x, v, mass, rho0_, 0.0, fluid ? kFluid : kWall);

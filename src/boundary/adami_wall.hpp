@@ -4,7 +4,8 @@
 // neighbours f (Shepard-weighted):
 //   pressure   p_w = [sum_f p_f W_wf + (g - a_w) . sum_f rho_f r_wf W_wf] / sum_f W_wf
 //   velocity   u_w = 2 v_w - sum_f u_f W_wf / sum_f W_wf     (no-slip: used in the viscous term only;
-//                                                               the prescribed v_w enters continuity)
+//                                                               the ISPH pressure source sees v_w, the
+//                                                               WCSPH continuity equation walls at rest)
 // where v_w is the wall's prescribed velocity (kept in Particles::v; a moving lid has v_w != 0) and
 // a_w its acceleration (zero for the walls here). Wall particles with no fluid neighbour keep p = 0
 // and u_w = v_w; no fluid particle sees them.
