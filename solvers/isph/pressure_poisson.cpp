@@ -80,7 +80,8 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   // projected; dropping one continuity equation instead makes the system regular. The pinned particle
   // is the fluid particle with the smallest label, so the system does not depend on the partition.
   pinned_ = -1;
-  if (walls_ && !any_dirichlet) {
+  closed_ = walls_ && !any_dirichlet;
+  if (closed_) {
     long long lowest = std::numeric_limits<long long>::max();
     for (std::size_t i = 0; i < n; ++i)
       if (P.kind[i] == kFluid) lowest = std::min<long long>(lowest, P.id[i]);
@@ -145,6 +146,30 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   SPH_PETSC(KSPSetOperators(ksp_, A_, A_));
 }
 
+// In a closed walled domain the continuity equations of the fluid, summed, say that no net mass
+// leaves it: the mass-weighted sources must add up to zero, or no pressure satisfies them all. Wall
+// ends (where a lid meets a corner) and round-off leave a net source; with one equation dropped for
+// the pinned particle, all of it would land on that particle as a point source, whose pressure
+// spike (a jump of 90 between it and its neighbours, lid-driven cavity Re 100 at nx 100) expelled it
+// through the wall. So the net source is spread evenly over the fluid rows instead.
+template <int D>
+void PressurePoisson<D>::remove_net_source(const std::vector<double>& source, const std::vector<double>& mass,
+                                           PetscScalar* b, PetscInt n) const {
+  // The pinned particle's continuity equation is dropped from the system but still counts here: once
+  // the sources of all fluid particles sum to zero, the dropped equation holds by itself.
+  double sums[2] = {0.0, 0.0};  // sum of -m s over the fluid particles, their number
+  for (PetscInt i = 0; i < n; ++i) {
+    if (kind_[i] != kFluid || dirichlet_[i]) continue;
+    sums[0] -= mass[i] * source[i];
+    sums[1] += 1.0;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  if (sums[1] == 0.0) return;
+  const double mean = sums[0] / sums[1];
+  for (PetscInt i = 0; i < n; ++i)
+    if (kind_[i] == kFluid && i != pinned_ && !dirichlet_[i]) b[i] -= mean;
+}
+
 template <int D>
 StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const std::vector<double>& mass,
                                      std::vector<double>& p, bool use_guess) {
@@ -158,6 +183,7 @@ StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const st
     b[i] = fluid_row ? -mass[i] * source[i] : row_rhs_[i];
     x[i] = use_guess ? p[i] : 0.0;
   }
+  if (closed_) remove_net_source(source, mass, b, n);
   SPH_PETSC(VecRestoreArray(b_, &b));
   SPH_PETSC(VecRestoreArray(x_, &x));
   // The discrete divergence of u* need not sum to zero exactly: project out the part of the

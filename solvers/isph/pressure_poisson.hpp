@@ -63,6 +63,9 @@ template <int D> class PressurePoisson {
   nlohmann::json describe() const;
 
  private:
+  // Closed domains: spreads the net mass source over the fluid rows of b (see the .cpp).
+  void remove_net_source(const std::vector<double>& source, const std::vector<double>& mass, PetscScalar* b,
+                         PetscInt n) const;
   void destroy_system();
 
   KSP ksp_ = nullptr;
@@ -71,6 +74,7 @@ template <int D> class PressurePoisson {
   MatNullSpace nullspace_ = nullptr;
   bool walls_ = false;
   long pinned_ = -1;             // local row pinned to p = 0 (closed domains), -1: none
+  bool closed_ = false;          // a closed domain: one fluid pressure is pinned on some rank
   std::vector<int> kind_;        // particle kind of each owned row
   std::vector<char> dirichlet_;  // rows with p = 0
   std::vector<double> row_rhs_;  // right-hand side of wall rows
