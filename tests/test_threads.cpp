@@ -1,5 +1,6 @@
 // Shared-memory threading must not change results: the pair loops give every particle's sums in list
-// order on one thread, and the threaded neighbour search joins its blocks in order. So 1 thread and
+// order on one thread, the threaded neighbour search joins its blocks in order, and the pressure
+// Poisson rows (walls, Dirichlet rows, a pinned row among them) are each built on one thread. So 1 thread and
 // several threads must agree bitwise, on a disordered periodic cloud in 2D and 3D (brute-force
 // equality, no tolerance). A build without OpenMP runs the same code on one thread and passes trivially.
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "solvers/isph/ppe_rows.hpp"
 #include "src/core/domain.hpp"
 #include "src/kernels/kernel.hpp"
 #include "src/neighbours/neighbourhood.hpp"
@@ -26,6 +28,7 @@ template <int D> struct Results {
   std::vector<double> rho, div;
   std::vector<Vector<D>> grad, lap;
   std::vector<Tensor<D>> L;
+  PpeRows ppe;
 };
 
 template <int D> Results<D> compute(int threads, int n_side) {
@@ -42,7 +45,8 @@ template <int D> Results<D> compute(int threads, int n_side) {
   for (int k = 0; k < total; ++k) {
     Vector<D> x;
     for (int d = 0, r = k; d < D; ++d, r /= n_side) x[d] = (r % n_side + 0.5) * dx + jitter(gen);
-    P.add(x, Vector<D>::Zero(), std::pow(dx, D), 1.0 + 0.1 * jitter(gen) / dx);
+    P.add(x, Vector<D>::Zero(), std::pow(dx, D), 1.0 + 0.1 * jitter(gen) / dx, 0.0,
+          k % 11 == 0 ? kWall : kFluid);
     P.gid.back() = k;
   }
   P.n_global = total;
@@ -67,6 +71,11 @@ template <int D> Results<D> compute(int threads, int n_side) {
   r.L = correction_matrices(P, nl, K);
   r.grad = gradient_corrected(P, nl, K, r.L, f);
   r.lap = laplacian_morris(P, nl, K, u);
+  std::vector<char> dirichlet(P.n_owned, 0);
+  for (std::size_t i = 0; i < P.n_owned; i += 17) dirichlet[i] = 1;
+  Vector<D> gravity = Vector<D>::Zero();
+  gravity[D - 1] = -9.81;
+  r.ppe.build(P, nl, K, gravity, dirichlet, 5);
   return r;
 }
 
@@ -86,6 +95,11 @@ template <int D> void expect_same_on_any_thread_count(int n_side) {
     EXPECT_EQ(one.lap[i], many.lap[i]) << i;
     EXPECT_EQ(one.L[i], many.L[i]) << i;
   }
+  EXPECT_EQ(one.ppe.di, many.ppe.di);
+  EXPECT_EQ(one.ppe.dj, many.ppe.dj);
+  EXPECT_EQ(one.ppe.da, many.ppe.da);
+  EXPECT_EQ(one.ppe.oi, many.ppe.oi);
+  EXPECT_EQ(one.ppe.rhs, many.ppe.rhs);
   configure_threads(1);
 }
 

@@ -14,6 +14,7 @@ template <int D> PressurePoisson<D>::~PressurePoisson() {
 }
 
 template <int D> void PressurePoisson<D>::destroy_system() {
+  if (ksp_) KSPReset(ksp_);
   if (nullspace_) MatNullSpaceDestroy(&nullspace_);
   if (A_) MatDestroy(&A_);
   if (b_) VecDestroy(&b_);
@@ -48,13 +49,6 @@ template <int D> void PressurePoisson<D>::use_nonsymmetric(bool nonsymmetric) {
 template <int D>
 void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
                                   const Vector<D>& body_force, const std::vector<char>* dirichlet) {
-  const NeighbourList<D>& nl = nh.list();
-  const Halo<D>& halo = nh.halo();
-  PetscMPIInt rank;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-
-  // Exact preallocation: one diagonal entry plus one per distinct-particle pair inside the support,
-  // split by whether the column's particle is owned by this rank.
   const std::size_t n = P.n_owned;
   kind_.assign(P.kind.begin(), P.kind.begin() + n);
   if (dirichlet) dirichlet_ = *dirichlet;
@@ -62,18 +56,6 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   int any_dirichlet = 0;
   for (char c : dirichlet_) any_dirichlet |= c;
   MPI_Allreduce(MPI_IN_PLACE, &any_dirichlet, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
-  std::vector<PetscInt> d_nnz(n, 1), o_nnz(n, 0);
-  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>&) {
-    if (P.gid[j] == P.gid[i]) return;
-    const bool local = static_cast<std::size_t>(j) < n || halo.owner_rank(j - n) == rank;
-    ++(local ? d_nnz[i] : o_nnz[i]);
-  });
-  for (std::size_t i = 0; i < n; ++i) d_nnz[i] = std::min<PetscInt>(d_nnz[i], n);
-
-  destroy_system();
-  SPH_PETSC(MatCreateAIJ(PETSC_COMM_WORLD, n, n, PETSC_DETERMINE, PETSC_DETERMINE, 0, d_nnz.data(), 0,
-                         o_nnz.data(), &A_));
-  SPH_PETSC(MatSetOption(A_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
 
   // Closed domains (walls, no free surface) pin one fluid particle to p = 0: the wall rows make the
   // matrix non-symmetric, so its left null space is unknown and the right-hand side cannot be
@@ -90,52 +72,14 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
     for (std::size_t i = 0; i < n && pinned_ < 0; ++i)
       if (P.kind[i] == kFluid && P.id[i] == global_lowest) pinned_ = static_cast<long>(i);
   }
-  row_rhs_.assign(n, 0.0);
 
-  std::vector<PetscInt> cols;
-  std::vector<PetscScalar> vals;
-  std::vector<PetscInt> wall_cols;
-  std::vector<double> wall_w, wall_g;  // W_wf and rho_f (g . r_wf) of the wall row's fluid neighbours
-  std::size_t current = 0;
-  double diag = 0.0;
-  auto flush_row = [&](std::size_t i) {
-    const PetscInt row = P.gid[i];
-    if (P.kind[i] == kWall) {
-      // Adami et al. (2012) extrapolation, scaled like a fluid row: s (p_w - sum_f w_f p_f) = s sum_f w_f rho_f g.r_wf
-      double sumW = 0.0;
-      for (double w : wall_w) sumW += w;
-      cols.assign(1, row), vals.assign(1, diag);
-      for (std::size_t k = 0; k < wall_cols.size(); ++k) {
-        cols.push_back(wall_cols[k]);
-        vals.push_back(-diag * wall_w[k] / sumW);
-        row_rhs_[i] += diag * wall_w[k] / sumW * wall_g[k];
-      }
-      if (wall_cols.empty()) vals[0] = 1.0;  // no fluid in reach: p_w = 0, seen by nobody
-    } else if (static_cast<long>(i) == pinned_ || dirichlet_[i]) {
-      cols.assign(1, row), vals.assign(1, diag > 0.0 ? diag : 1.0);
-    } else {
-      cols.push_back(row);
-      vals.push_back(diag);
-    }
-    SPH_PETSC(MatSetValues(A_, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(), vals.data(), ADD_VALUES));
-    cols.clear(), vals.clear(), wall_cols.clear(), wall_w.clear(), wall_g.clear(), diag = 0.0;
-  };
-  for_each_pair_in_order(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
-    while (current < static_cast<std::size_t>(i)) flush_row(current++);
-    if (P.gid[j] == P.gid[i]) return;  // a periodic image of i itself: p_i - p_i = 0
-    const double c = P.m[i] * ppe_pair_coefficient(P.m[j], P.rho[i], P.rho[j], morris_factor(g, K.h()));
-    cols.push_back(P.gid[j]);
-    vals.push_back(c);
-    diag -= c;
-    if (P.kind[i] == kWall && P.kind[j] == kFluid) {
-      wall_cols.push_back(P.gid[j]);
-      wall_w.push_back(g.W);
-      wall_g.push_back(P.rho[j] * body_force.dot(g.rij));
-    }
-  });
-  while (current < n) flush_row(current++);
-  SPH_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
-  SPH_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
+  // The matrix is made on the rows' arrays, without a copy; its predecessor used the same arrays, so it
+  // goes first (with the KSP's reference to it and the preconditioner's copy of it).
+  destroy_system();
+  rows_.build(P, nh.list(), K, body_force, dirichlet_, pinned_);
+  SPH_PETSC(MatCreateMPIAIJWithSplitArrays(PETSC_COMM_WORLD, n, n, PETSC_DETERMINE, PETSC_DETERMINE,
+                                           rows_.di.data(), rows_.dj.data(), rows_.da.data(), rows_.oi.data(),
+                                           rows_.oj.data(), rows_.oa.data(), &A_));  // and assembles it
 
   if (!walls_ && !any_dirichlet) {
     SPH_PETSC(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_TRUE, 0, nullptr, &nullspace_));
@@ -180,7 +124,7 @@ StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const st
   SPH_PETSC(VecGetArray(x_, &x));
   for (PetscInt i = 0; i < n; ++i) {
     const bool fluid_row = kind_[i] == kFluid && i != pinned_ && !dirichlet_[i];
-    b[i] = fluid_row ? -mass[i] * source[i] : row_rhs_[i];
+    b[i] = fluid_row ? -mass[i] * source[i] : rows_.rhs[i];
     x[i] = use_guess ? p[i] : 0.0;
   }
   if (closed_) remove_net_source(source, mass, b, n);

@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "solvers/solver.hpp"
-#include "src/sph/pair_terms.hpp"
+#include "solvers/isph/ppe_rows.hpp"
 
 namespace sph {
 
@@ -77,7 +77,7 @@ template <int D> class PressurePoisson {
   bool closed_ = false;          // a closed domain: one fluid pressure is pinned on some rank
   std::vector<int> kind_;        // particle kind of each owned row
   std::vector<char> dirichlet_;  // rows with p = 0
-  std::vector<double> row_rhs_;  // right-hand side of wall rows
+  PpeRows rows_;                 // the matrix rows, and the right-hand side of wall rows
 };
 
 }  // namespace sph

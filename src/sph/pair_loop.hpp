@@ -18,6 +18,10 @@ template <int D> struct PairGeometry {
   Vector<D> gradW;    // grad_i W_ij
 };
 
+// Whether a listed neighbour at squared distance r2 forms a pair: inside the support (rc2 its square)
+// and not at the particle's own position.
+inline bool in_support(double r2, double rc2) { return r2 < rc2 && r2 != 0.0; }
+
 namespace detail {
 // f(i, j, geometry) for the neighbours j of one particle i, in list order.
 template <int D, class PairFn>
@@ -28,7 +32,7 @@ inline void pairs_of(std::size_t i, const Particles<D>& P, const NeighbourList<D
     const int j = *it;
     g.rij = P.x[i] - P.x[j];
     const double r2 = g.rij.squaredNorm();
-    if (r2 >= rc2 || r2 == 0.0) continue;
+    if (!in_support(r2, rc2)) continue;
     g.r = std::sqrt(r2);
     g.W = K.W(g.r);
     g.dWdr = K.dWdr(g.r);
@@ -48,6 +52,17 @@ void for_each_pair(const Particles<D>& P, const NeighbourList<D>& nl, const Kern
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t i = 0; i < n; ++i) detail::pairs_of(static_cast<std::size_t>(i), P, nl, K, rc2, f);
+}
+
+// f(i, j) for the same pairs, without evaluating the kernel (to count them), threaded like for_each_pair.
+template <int D, class IndexFn>
+void for_each_pair_index(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, IndexFn&& f) {
+  const double rc2 = K.support_radius() * K.support_radius();
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < n; ++i)
+    for (const int* it = nl.begin(i); it != nl.end(i); ++it)
+      if (in_support((P.x[i] - P.x[*it]).squaredNorm(), rc2)) f(static_cast<int>(i), *it);
 }
 
 // The same pairs on one thread, i ascending: for callers that build output in order (matrix rows,

@@ -1,0 +1,142 @@
+#pragma once
+// The rows of the pressure Poisson matrix, assembled straight into the compressed sparse rows that
+// PETSc's MPIAIJ matrix uses as its own storage (MatCreateMPIAIJWithSplitArrays: no copy, no
+// MatSetValues). Each row depends only on its own particle's neighbours, so rows are counted, filled
+// and sorted by the OpenMP threads of the pair loops, and every row is bitwise the same on any thread
+// count. The equations are described in pressure_poisson.hpp.
+#include <petscsys.h>
+
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+#include "src/sph/pair_loop.hpp"
+#include "src/sph/pair_terms.hpp"
+
+namespace sph {
+
+struct PpeRows {
+  // This rank's rows split as MPIAIJ keeps them: the "diagonal" block of the columns this rank owns
+  // (local column indices) and the "off-diagonal" rest (global indices). Row i is [di[i], di[i + 1]).
+  // Columns are ascending within a row. A matrix made from these arrays uses them in place: it must
+  // be destroyed before the next build.
+  std::vector<PetscInt> di, dj, oi, oj;
+  std::vector<PetscScalar> da, oa;
+  std::vector<double> rhs;  // right-hand side of wall rows (the body-force head), 0 elsewhere
+
+  // Rows of the owned particles of P. Wall rows hold the Adami extrapolation; rows flagged in
+  // `dirichlet` and the row `pinned` (-1: none) hold only their diagonal.
+  template <int D>
+  void build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const Vector<D>& body_force,
+             const std::vector<char>& dirichlet, long pinned);
+
+ private:
+  std::vector<PetscInt> dlen_, olen_;  // entries filled per row
+  std::vector<double> head_;           // wall rows: sum over fluid neighbours of W_wf rho_f g . r_wf
+};
+
+namespace detail {
+
+// Sorts entries [begin, begin + length) by column and adds up repeated columns (periodic images of one
+// particle); returns the new length.
+inline PetscInt sort_and_merge(PetscInt* col, PetscScalar* val, PetscInt length,
+                               std::vector<std::pair<PetscInt, PetscScalar>>& scratch) {
+  scratch.clear();
+  for (PetscInt k = 0; k < length; ++k) scratch.emplace_back(col[k], val[k]);
+  std::sort(scratch.begin(), scratch.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  PetscInt out = -1;
+  for (const auto& [c, v] : scratch) {
+    if (out >= 0 && col[out] == c) val[out] += v;
+    else col[++out] = c, val[out] = v;
+  }
+  return out + 1;
+}
+
+// Closes the gaps merging left at row ends (row r filled [ptr[r], ptr[r] + length[r])), in place.
+inline void close_gaps(std::vector<PetscInt>& ptr, const std::vector<PetscInt>& length, std::vector<PetscInt>& col,
+                       std::vector<PetscScalar>& val) {
+  PetscInt out = 0;
+  for (std::size_t r = 0; r + 1 < ptr.size(); ++r) {
+    const PetscInt from = ptr[r];
+    ptr[r] = out;
+    for (PetscInt k = from; k < from + length[r]; ++k, ++out) col[out] = col[k], val[out] = val[k];
+  }
+  ptr.back() = out;
+}
+
+}  // namespace detail
+
+template <int D>
+void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                    const Vector<D>& body_force, const std::vector<char>& dirichlet, long pinned) {
+  const std::size_t n = P.n_owned;
+  const PetscInt first = P.first_gid, end = first + static_cast<PetscInt>(n);
+  auto owned_column = [&](int j) { return P.gid[j] >= first && P.gid[j] < end; };
+  // Row i has an entry for neighbour j: fluid rows for every neighbour, wall rows for fluid ones,
+  // one-entry rows for none. A periodic image of i itself has none (p_i - p_i = 0).
+  auto has_entry = [&](int i, int j) {
+    if (P.gid[j] == P.gid[i]) return false;
+    if (P.kind[i] == kWall) return P.kind[j] == kFluid;
+    return static_cast<long>(i) != pinned && !dirichlet[i];
+  };
+
+  // Count, then lay the rows out: the diagonal comes first in its row until the rows are sorted.
+  dlen_.assign(n, 1), olen_.assign(n, 0);
+  for_each_pair_index(P, nl, K, [&](int i, int j) {
+    if (has_entry(i, j)) ++(owned_column(j) ? dlen_[i] : olen_[i]);
+  });
+  di.resize(n + 1), oi.resize(n + 1);
+  di[0] = oi[0] = 0;
+  for (std::size_t i = 0; i < n; ++i) di[i + 1] = di[i] + dlen_[i], oi[i + 1] = oi[i] + olen_[i];
+  // One spare entry: PETSc is handed valid pointers even when a block is empty.
+  dj.resize(di[n] + 1), da.resize(di[n] + 1), oj.resize(oi[n] + 1), oa.resize(oi[n] + 1);
+  rhs.assign(n, 0.0), head_.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    dj[di[i]] = P.gid[i] - first, da[di[i]] = 0.0, dlen_[i] = 1, olen_[i] = 0;
+
+  // Fluid rows: c_ij off the diagonal, -sum_j c_ij on it. Wall rows keep their diagonal (the scale of
+  // a fluid row) and, for now, the kernel weights W_wf of their fluid neighbours.
+  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+    if (P.gid[j] == P.gid[i]) return;
+    const double c = P.m[i] * ppe_pair_coefficient(P.m[j], P.rho[i], P.rho[j], morris_factor(g, K.h()));
+    da[di[i]] -= c;
+    if (!has_entry(i, j)) return;
+    const double value = P.kind[i] == kWall ? g.W : c;
+    if (owned_column(j)) dj[di[i] + dlen_[i]] = P.gid[j] - first, da[di[i] + dlen_[i]++] = value;
+    else oj[oi[i] + olen_[i]] = P.gid[j], oa[oi[i] + olen_[i]++] = value;
+    if (P.kind[i] == kWall) head_[i] += g.W * P.rho[j] * body_force.dot(g.rij);
+  });
+
+  const std::ptrdiff_t rows = static_cast<std::ptrdiff_t>(n);
+  int merged = 0;  // some row had repeated columns
+#pragma omp parallel reduction(| : merged)
+  {
+    std::vector<std::pair<PetscInt, PetscScalar>> scratch;
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+      const std::size_t i = static_cast<std::size_t>(r);
+      PetscScalar* d = &da[di[i]];
+      PetscScalar* o = &oa[oi[i]];
+      const double diag = d[0];
+      if (P.kind[i] == kWall) {
+        // Adami et al. (2012), scaled like a fluid row: s (p_w - sum_f w_f p_f) = s sum_f w_f rho_f g.r_wf
+        double sumW = 0.0;
+        for (PetscInt k = 1; k < dlen_[i]; ++k) sumW += d[k];
+        for (PetscInt k = 0; k < olen_[i]; ++k) sumW += o[k];
+        for (PetscInt k = 1; k < dlen_[i]; ++k) d[k] *= -diag / sumW;
+        for (PetscInt k = 0; k < olen_[i]; ++k) o[k] *= -diag / sumW;
+        if (sumW > 0.0) rhs[i] = diag * head_[i] / sumW;
+        else d[0] = 1.0;  // no fluid in reach: p_w = 0, seen by nobody
+      } else if (static_cast<long>(i) == pinned || dirichlet[i]) {
+        d[0] = diag > 0.0 ? diag : 1.0;
+      }
+      const PetscInt dn = detail::sort_and_merge(&dj[di[i]], d, dlen_[i], scratch);
+      const PetscInt on = detail::sort_and_merge(&oj[oi[i]], o, olen_[i], scratch);
+      merged |= dn < dlen_[i] || on < olen_[i];
+      dlen_[i] = dn, olen_[i] = on;
+    }
+  }
+  if (merged) detail::close_gaps(di, dlen_, dj, da), detail::close_gaps(oi, olen_, oj, oa);
+}
+
+}  // namespace sph
