@@ -31,6 +31,7 @@
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/particles/particles.hpp"
 #include "src/sph/operators.hpp"
+#include "src/sph/shifting.hpp"
 
 namespace {
 
@@ -414,6 +415,13 @@ TEST(OperatorDisordered, ConstantFieldsMomentumAndSingularMoments) {
   difference_forms_vanish_for_constant_fields();
   symmetric_gradient_conserves_momentum();
   singular_moment_matrix_falls_back_to_identity();
+}
+
+// The shifting term's power, by repeated squaring, agrees with std::pow to round-off.
+TEST(Shifting, IntegerPowerMatchesStdPow) {
+  for (double x : {0.0, 0.37, 1.0, 1.9, -2.5})
+    for (int n = 0; n <= 9; ++n)
+      EXPECT_NEAR(integer_power(x, n), std::pow(x, n), 4e-16 * std::max(1.0, std::abs(std::pow(x, n)))) << x << "^" << n;
 }
 
 }  // namespace
