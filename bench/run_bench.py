@@ -65,6 +65,7 @@ AMG_CASES = [
 HMIS = ["-pc_hypre_boomeramg_coarsen_type", "HMIS", "-pc_hypre_boomeramg_interp_type", "ext+i"]
 PMIS = ["-pc_hypre_boomeramg_coarsen_type", "PMIS", "-pc_hypre_boomeramg_interp_type", "ext+i"]
 THETA = "-pc_hypre_boomeramg_strong_threshold"
+RELAX = "-pc_hypre_boomeramg_relax_type_all"  # smoother on every level (default: hybrid symmetric Gauss-Seidel)
 AMG_SETS = [
     ("default", []),
     ("hmis-ei-0.5", HMIS + [THETA, "0.5"]),
@@ -75,6 +76,9 @@ AMG_SETS = [
     ("hmis-ei-0.5-pmax4", HMIS + [THETA, "0.5", "-pc_hypre_boomeramg_P_max", "4"]),
     ("falgout-0.5", [THETA, "0.5"]),
     ("falgout-agg1", ["-pc_hypre_boomeramg_agg_nl", "1"]),
+    ("chebyshev", [RELAX, "Chebyshev"]),
+    ("l1-jacobi", [RELAX, "l1scaled-Jacobi"]),
+    ("l1-sor", [RELAX, "l1scaled-SOR/Jacobi"]),
 ]
 
 # Phases of the table: (column, events added up). Nested events are left out of the sum that makes

@@ -35,13 +35,15 @@ inline double density_diffusion_pair(double delta_h_c0, double rho_i, double rho
 struct MonaghanAV {
   double alpha = 0.0, beta = 0.0, epsilon = 0.01;
   bool active() const { return alpha > 0.0 || beta > 0.0; }
+  // The sound speeds come from the equation of state, and only for approaching pairs: std::pow.
   template <int D>
-  double Pi(double h, double ci, double cj, double rho_i, double rho_j, const Vector<D>& uij,
+  double Pi(double h, const TaitEos& eos, double rho_i, double rho_j, const Vector<D>& uij,
             const PairGeometry<D>& g) const {
     const double ur = uij.dot(g.rij);
     if (ur >= 0.0) return 0.0;
     const double mu = h * ur / (g.r * g.r + epsilon * h * h);
-    return (-alpha * 0.5 * (ci + cj) * mu + beta * mu * mu) / (0.5 * (rho_i + rho_j));
+    const double c_mean = 0.5 * (eos.sound_speed(rho_i) + eos.sound_speed(rho_j));
+    return (-alpha * c_mean * mu + beta * mu * mu) / (0.5 * (rho_i + rho_j));
   }
 };
 

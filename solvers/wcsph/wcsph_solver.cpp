@@ -148,9 +148,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
     if (P.kind[i] != kFluid) return;  // walls move as prescribed
     const Vector<D> uij = P.v[i] - P.v[j];
     const double Vj = P.m[j] / P.rho[j];
-    double Pi = 0.0;
-    if (av_.active())
-      Pi = av_.Pi(h, eos_.sound_speed(P.rho[i]), eos_.sound_speed(P.rho[j]), P.rho[i], P.rho[j], uij, g);
+    const double Pi = av_.active() ? av_.Pi(h, eos_, P.rho[i], P.rho[j], uij, g) : 0.0;
     acc_[i] += wcsph::pressure_acceleration_pair(P.m[j], P.p[i], P.p[j], P.rho[i], P.rho[j], Pi, g);
     const double F = morris_factor(g, h);
     if (phys.viscous())
