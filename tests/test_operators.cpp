@@ -424,4 +424,59 @@ TEST(Shifting, IntegerPowerMatchesStdPow) {
       EXPECT_NEAR(integer_power(x, n), std::pow(x, n), 4e-16 * std::max(1.0, std::abs(std::pow(x, n)))) << x << "^" << n;
 }
 
+// Shifting gathers all its sums in one fused pair loop: it must move particles and correct fields
+// bitwise as the separate operators do (the concentration gradient, correction_matrices,
+// vector_gradient_corrected and gradient_corrected, one pair loop each), free-surface particles and
+// walls included.
+TEST(Shifting, FusedPairLoopEqualsTheSeparateOperators) {
+  const int nx = 16;
+  Patch S(nx, kCases[0]);
+  Particles<2>& P = S.P;
+  const std::size_t n = P.n_owned;
+  std::vector<double> f(n);
+  std::vector<char> surface(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    P.v[i] = u_tg(P.x[i]);
+    f[i] = 1.0 + f_s(P.x[i]);
+    if (i % 7 == 0) surface[i] = 1;
+    if (i % 11 == 0) P.kind[i] = kWall;
+  }
+  const LindShifting model;
+  const double dx = 1.0 / nx;
+  const NeighbourList<2>& nl = S.nh->list();
+
+  std::vector<V2> dr(n, V2::Zero());
+  const double W_dx = S.K.W(dx);
+  for_each_pair(P, nl, S.K, [&](int i, int j, const PairGeometry<2>& g) {
+    dr[i] += (P.m[j] / P.rho[j] * (1.0 + model.R * integer_power(g.W / W_dx, model.n))) * g.gradW;
+  });
+  for (auto& d : dr) d *= -model.A * S.K.h() * S.K.h();
+  for (std::size_t i = 0; i < n; ++i)
+    if (surface[i]) {
+      const V2 normal = dr[i].normalized();
+      dr[i] -= normal.dot(dr[i]) * normal;
+    }
+  const std::vector<T2> L = correction_matrices(P, nl, S.K);
+  const std::vector<T2> grad_u = vector_gradient_corrected(P, nl, S.K, L, P.v);
+  const std::vector<V2> grad_f = gradient_corrected(P, nl, S.K, L, f);
+  std::vector<V2> x = P.x, v = P.v;
+  std::vector<double> f_expected = f;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (P.kind[i] != kFluid) continue;
+    x[i] += dr[i];
+    v[i] += grad_u[i].transpose() * dr[i];
+    f_expected[i] += grad_f[i].dot(dr[i]);
+  }
+
+  shift_particles(P, *S.nh, S.K, model, dx, {&f}, &surface);
+  for (std::size_t i = 0; i < n; ++i) {
+    ASSERT_EQ(P.x[i], x[i]) << i;
+    ASSERT_EQ(P.v[i], v[i]) << i;
+    ASSERT_EQ(f[i], f_expected[i]) << i;
+  }
+  double largest_shift = 0.0;
+  for (const V2& d : dr) largest_shift = std::max(largest_shift, d.norm());
+  EXPECT_GT(largest_shift, 1e-3 * dx);  // the disorder does make particles move
+}
+
 }  // namespace

@@ -55,16 +55,19 @@ std::vector<Vector<D>> gradient_symmetric(const Particles<D>& P, const Neighbour
 // Kernel-gradient correction L_i = (sum_j V_j grad_i W_ij (x_j - x_i)^T)^{-1} (Bonet & Lok 1999):
 // with it, sum_j V_j (f_j - f_i) L_i grad_i W_ij is exact for linear f on any particle distribution.
 // Where the moment matrix is singular (isolated particles) the identity is used.
+template <int D> Tensor<D> correction_from_moments(const Tensor<D>& M) {
+  const double det = M.determinant();
+  return std::abs(det) > 1e-8 * std::pow(M.norm(), D) ? Tensor<D>(M.inverse()) : Tensor<D>(Tensor<D>::Identity());
+}
+
+// The moment matrices sum_j V_j grad_i W_ij (x_j - x_i)^T, inverted.
 template <int D>
 std::vector<Tensor<D>> correction_matrices(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) {
   std::vector<Tensor<D>> M(P.n_owned, Tensor<D>::Zero());
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     M[i] -= (P.m[j] / P.rho[j]) * g.gradW * g.rij.transpose();
   });
-  for (auto& Mi : M) {
-    const double det = Mi.determinant();
-    Mi = std::abs(det) > 1e-8 * std::pow(Mi.norm(), D) ? Tensor<D>(Mi.inverse()) : Tensor<D>(Tensor<D>::Identity());
-  }
+  for (auto& Mi : M) Mi = correction_from_moments(Mi);
   return M;
 }
 
