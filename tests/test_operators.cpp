@@ -428,6 +428,18 @@ TEST(Shifting, IntegerPowerMatchesStdPow) {
 // bitwise as the separate operators do (the concentration gradient, correction_matrices,
 // vector_gradient_corrected and gradient_corrected, one pair loop each), free-surface particles and
 // walls included.
+// The corrected gradient that gathers its correction matrices in its own pair loop gives bitwise the
+// result of the two separate loops.
+TEST(OperatorDisordered, FusedCorrectedGradientEqualsTheSeparateLoops) {
+  Patch S(16, kCases[0]);
+  std::vector<double> f(S.P.size());
+  for (std::size_t i = 0; i < S.P.size(); ++i) f[i] = f_s(S.P.x[i]);
+  const std::vector<V2> fused = gradient_corrected(S.P, S.nl(), S.K, f);
+  const std::vector<V2> separate = gradient_corrected(S.P, S.nl(), S.K, correction_matrices(S.P, S.nl(), S.K), f);
+  ASSERT_EQ(fused.size(), separate.size());
+  for (std::size_t i = 0; i < fused.size(); ++i) ASSERT_EQ(fused[i], separate[i]) << i;
+}
+
 TEST(Shifting, FusedPairLoopEqualsTheSeparateOperators) {
   const int nx = 16;
   Patch S(nx, kCases[0]);

@@ -79,7 +79,7 @@ template <int D> std::vector<Vector<D>> IsphSolver<D>::pressure_gradient() const
   const Kernel<D>& K = scene_->kernel;
   switch (gradient_) {
     case PressureGradient::Corrected:
-      return gradient_corrected(P, nl, K, correction_matrices(P, nl, K), P.p);
+      return gradient_corrected(P, nl, K, P.p);
     case PressureGradient::Difference: return gradient_difference(P, nl, K, P.p);
     case PressureGradient::Symmetric: return gradient_symmetric(P, nl, K, P.p);
   }

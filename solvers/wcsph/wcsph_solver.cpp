@@ -123,7 +123,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   // Antuono's correction needs the renormalised density gradient on both sides of each pair.
   std::vector<Vector<D>> grad_rho;
   if (diffusion_ == DensityDiffusion::Antuono) {
-    grad_rho = gradient_corrected(P, nl, K, correction_matrices(P, nl, K), P.rho);
+    grad_rho = gradient_corrected(P, nl, K, P.rho);
     nh.halo().update(grad_rho);
   }
   log_density.end();
