@@ -15,6 +15,7 @@
 #include <tuple>
 #include <vector>
 
+#include "random_points.hpp"
 #include "src/core/domain.hpp"
 #include "src/neighbours/halo.hpp"
 #include "src/neighbours/neighbour_list.hpp"
@@ -56,14 +57,8 @@ template <int D> void add_particle(Particles<D>& P, const Vector<D>& x) {
 }
 
 template <int D> Particles<D> random_particles(const Domain<D>& dom, int n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
   Particles<D> P;
-  for (int k = 0; k < n; ++k) {
-    Vector<D> x;
-    for (int a = 0; a < D; ++a) x[a] = dom.lo[a] + u(gen) * (dom.hi[a] - dom.lo[a]);
-    add_particle(P, x);
-  }
+  for (const Vector<D>& x : test::random_points(dom, n, seed)) add_particle(P, x);
   return P;
 }
 

@@ -11,10 +11,10 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <random>
 #include <set>
 #include <vector>
 
+#include "random_points.hpp"
 #include "src/io/checkpoint.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/neighbours/partition.hpp"
@@ -45,14 +45,10 @@ template <int D> Domain<D> box(std::array<bool, D> periodic) {
 // Random particles: every rank draws the same global set and keeps a deliberately bad share
 // (every ranks()-th particle), so the partition has to move almost everything.
 template <int D> Particles<D> scattered_particles(const Domain<D>& dom, int n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const std::vector<Vector<D>> points = test::random_points(dom, n, seed);
   Particles<D> P;
-  for (int k = 0; k < n; ++k) {
-    Vector<D> x;
-    for (int a = 0; a < D; ++a) x[a] = dom.lo[a] + u(gen) * (dom.hi[a] - dom.lo[a]);
-    if (k % ranks() == rank()) P.add(x, Vector<D>::Zero(), 1.0, 1.0, 0.0);
-  }
+  for (int k = 0; k < n; ++k)
+    if (k % ranks() == rank()) P.add(points[k], Vector<D>::Zero(), 1.0, 1.0, 0.0);
   assign_global_indices(P);
   for (std::size_t i = 0; i < P.n_owned; ++i) P.v[i] = Vector<D>::Constant(static_cast<double>(P.id[i]));
   return P;
