@@ -7,6 +7,23 @@
 
 namespace sph {
 
+// Pair formulas shared by the operators below and by loops that gather several sums at once
+// (gradient_corrected, shift_particles); Vj = m_j / rho_j.
+// Term of sum_j V_j (f_j - f_i) grad_i W_ij.
+template <int D> inline Vector<D> difference_gradient_term(double Vj, double fi, double fj, const PairGeometry<D>& g) {
+  return (Vj * (fj - fi)) * g.gradW;
+}
+// Term of sum_j V_j grad_i W_ij (u_j - u_i)^T.
+template <int D>
+inline Tensor<D> difference_vector_gradient_term(double Vj, const Vector<D>& ui, const Vector<D>& uj,
+                                                 const PairGeometry<D>& g) {
+  return Vj * g.gradW * (uj - ui).transpose();
+}
+// Term of the moment matrix -sum_j V_j grad_i W_ij r_ij^T = sum_j V_j grad_i W_ij (x_j - x_i)^T.
+template <int D> inline Tensor<D> correction_moment_term(double Vj, const PairGeometry<D>& g) {
+  return -Vj * g.gradW * g.rij.transpose();
+}
+
 // rho_i = sum_j m_j W_ij (self term included).
 template <int D>
 std::vector<double> density_summation(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) {
@@ -34,7 +51,7 @@ std::vector<Vector<D>> gradient_difference(const Particles<D>& P, const Neighbou
                                         const std::vector<double>& f) {
   std::vector<Vector<D>> grad(P.n_owned, Vector<D>::Zero());
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
-    grad[i] += (P.m[j] / P.rho[j] * (f[j] - f[i])) * g.gradW;
+    grad[i] += difference_gradient_term(P.m[j] / P.rho[j], f[i], f[j], g);
   });
   return grad;
 }
@@ -65,7 +82,7 @@ template <int D>
 std::vector<Tensor<D>> correction_matrices(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) {
   std::vector<Tensor<D>> M(P.n_owned, Tensor<D>::Zero());
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
-    M[i] -= (P.m[j] / P.rho[j]) * g.gradW * g.rij.transpose();
+    M[i] += correction_moment_term(P.m[j] / P.rho[j], g);
   });
   for (auto& Mi : M) Mi = correction_from_moments(Mi);
   return M;
@@ -87,8 +104,9 @@ std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const Neighbour
   std::vector<Tensor<D>> M(P.n_owned, Tensor<D>::Zero());
   std::vector<Vector<D>> grad(P.n_owned, Vector<D>::Zero());
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
-    M[i] -= (P.m[j] / P.rho[j]) * g.gradW * g.rij.transpose();
-    grad[i] += (P.m[j] / P.rho[j] * (f[j] - f[i])) * g.gradW;
+    const double Vj = P.m[j] / P.rho[j];
+    M[i] += correction_moment_term(Vj, g);
+    grad[i] += difference_gradient_term(Vj, f[i], f[j], g);
   });
   for (std::size_t i = 0; i < P.n_owned; ++i) grad[i] = correction_from_moments(M[i]) * grad[i];
   return grad;
@@ -101,7 +119,7 @@ std::vector<Tensor<D>> vector_gradient_corrected(const Particles<D>& P, const Ne
                                               const std::vector<Vector<D>>& u) {
   std::vector<Tensor<D>> G(P.n_owned, Tensor<D>::Zero());
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
-    G[i] += (P.m[j] / P.rho[j]) * g.gradW * (u[j] - u[i]).transpose();
+    G[i] += difference_vector_gradient_term(P.m[j] / P.rho[j], u[i], u[j], g);
   });
   for (std::size_t i = 0; i < P.n_owned; ++i) G[i] = L[i] * G[i];
   return G;

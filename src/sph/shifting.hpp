@@ -64,11 +64,11 @@ void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, 
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     const double Vj = P.m[j] / P.rho[j];
     dr[i] += (Vj * (1.0 + model.R * integer_power(g.W / W_dx, model.n))) * g.gradW;
-    L[i] -= Vj * g.gradW * g.rij.transpose();
-    grad_u[i] += Vj * g.gradW * (P.v[j] - P.v[i]).transpose();
+    L[i] += correction_moment_term(Vj, g);
+    grad_u[i] += difference_vector_gradient_term(Vj, P.v[i], P.v[j], g);
     for (std::size_t k = 0; k < scalars.size(); ++k) {
       const std::vector<double>& f = *scalars[k];
-      grad_f[k][i] += (Vj * (f[j] - f[i])) * g.gradW;
+      grad_f[k][i] += difference_gradient_term(Vj, f[i], f[j], g);
     }
   });
   const double Dcoef = model.A * K.h() * K.h();
