@@ -462,7 +462,8 @@ TEST(Shifting, FusedPairLoopEqualsTheSeparateOperators) {
   for_each_pair(P, nl, S.K, [&](int i, int j, const PairGeometry<2>& g) {
     dr[i] += (P.m[j] / P.rho[j] * (1.0 + model.R * integer_power(g.W / W_dx, model.n))) * g.gradW;
   });
-  for (auto& d : dr) d *= -model.A * S.K.h() * S.K.h();
+  const double U = 1.0, dt = 0.2 * S.K.h() / U;  // D = A h U dt at CFL 0.2
+  for (auto& d : dr) d *= -model.coefficient(S.K.h(), U, dt);
   for (std::size_t i = 0; i < n; ++i)
     if (surface[i]) {
       const V2 normal = dr[i].normalized();
@@ -480,7 +481,7 @@ TEST(Shifting, FusedPairLoopEqualsTheSeparateOperators) {
     f_expected[i] += grad_f[i].dot(dr[i]);
   }
 
-  shift_particles(P, *S.nh, S.K, model, dx, {&f}, &surface);
+  shift_particles(P, *S.nh, S.K, model, dx, U, dt, {&f}, &surface);
   for (std::size_t i = 0; i < n; ++i) {
     ASSERT_EQ(P.x[i], x[i]) << i;
     ASSERT_EQ(P.v[i], v[i]) << i;

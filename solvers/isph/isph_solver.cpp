@@ -14,16 +14,20 @@ namespace {
 const char* const gradient_names[] = {"corrected", "difference", "symmetric"};
 
 PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscReal* shift_A, PetscInt* gradient,
-                            PetscReal* fs_threshold) {
+                            PetscReal* fs_threshold, PetscInt* operators) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "ISPH projection solver (-solver isph)", "Solver");
   PetscCall(PetscOptionsReal("-cfl", "Advective Courant number: dt <= cfl h / U", "", *cfl, cfl, nullptr));
   PetscCall(PetscOptionsBool("-shifting", "Particle shifting (Lind et al. 2012)", "", *shifting, shifting, nullptr));
-  PetscCall(PetscOptionsReal("-shift_coefficient", "Shifting coefficient A in D = A h^2 per step (stable up to ~0.5)", "", *shift_A,
+  PetscCall(PetscOptionsReal("-shift_coefficient", "Shifting coefficient A in D = A h U_ref dt (Lind et al. 2012; dt also kept below 0.5 h / (A U_ref))", "", *shift_A,
                              shift_A, nullptr));
   PetscCall(PetscOptionsEList("-pressure_gradient",
                               "Pressure gradient: corrected (Bonet & Lok), difference, symmetric (Monaghan)", "",
                               gradient_names, 3, gradient_names[*gradient], gradient, nullptr));
+  PetscCall(PetscOptionsEList("-operators",
+                              "Viscous and PPE Laplacian, PPE divergence: consistent (exact for quadratic / linear "
+                              "fields on any particle distribution) or classic (Morris, Cummins & Rudman, plain)",
+                              "", operator_set_names, 2, operator_set_names[*operators], operators, nullptr));
   PetscCall(PetscOptionsReal("-free_surface_threshold",
                              "Free-surface particles: div r below this (0: 1.5 in 2D, 2.4 in 3D; Lind et al. 2012)", "",
                              *fs_threshold, fs_threshold, nullptr));
@@ -34,13 +38,14 @@ PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscReal* shif
 
 template <int D> void IsphSolver<D>::set_from_options() {
   PetscReal cfl = cfl_, A = shifting_model_.A;
-  PetscInt gradient = static_cast<PetscInt>(gradient_);
-  SPH_PETSC(read_options(&cfl, &shifting_, &A, &gradient, &free_surface_threshold_));
+  PetscInt gradient = static_cast<PetscInt>(gradient_), operators = static_cast<PetscInt>(operators_);
+  SPH_PETSC(read_options(&cfl, &shifting_, &A, &gradient, &free_surface_threshold_, &operators));
   require(free_surface_threshold_ >= 0 && free_surface_threshold_ < D, "-free_surface_threshold",
           "in [0, dimension)", free_surface_threshold_);
   require(cfl > 0 && cfl <= 1.0, "-cfl", "in (0, 1]", cfl);
-  require(A >= 0 && A <= 1, "-shift_coefficient", "in [0, 1]", A);
+  require(A >= 0, "-shift_coefficient", "non-negative", A);
   cfl_ = cfl, shifting_model_.A = A, gradient_ = static_cast<PressureGradient>(gradient);
+  operators_ = static_cast<OperatorSet>(operators);
   ppe_.set_from_options();
 }
 
@@ -51,7 +56,7 @@ template <int D> void IsphSolver<D>::setup(Scene<D>& scene) {
   // Divergence-free ISPH: density stays at its reference value (walls included).
   for (std::size_t i = 0; i < P.n_owned; ++i) P.rho[i] = scene.physics.rho0;
   walls_ = has_walls(P);
-  ppe_.use_nonsymmetric(walls_ || scene.physics.free_surface);
+  ppe_.use_nonsymmetric(walls_ || scene.physics.free_surface || operators_ == OperatorSet::Consistent);
   if (free_surface_threshold_ <= 0) free_surface_threshold_ = default_free_surface_threshold<D>();
   scene.neighbourhood.update(P, true);
 }
@@ -70,6 +75,7 @@ template <int D> double IsphSolver<D>::stable_dt() const {
   // The reference speed bounds the step too, so a fluid at rest does not take an unbounded step.
   double dt = cfl_ * h / std::max(max_speed(), phys.U);
   if (phys.viscous()) dt = std::min(dt, viscous_dt_factor_ * h * h / phys.nu);  // Morris et al. (1997)
+  if (shifting_) dt = std::min(dt, shifting_model_.max_dt(h, phys.U));
   return dt;
 }
 
@@ -86,49 +92,51 @@ template <int D> std::vector<Vector<D>> IsphSolver<D>::pressure_gradient() const
   return {};
 }
 
-template <int D> StepReport IsphSolver<D>::step(double dt) {
+template <int D>
+std::vector<LaplacianCorrection<D>> IsphSolver<D>::laplacian_corrections_if_used() const {
+  if (operators_ != OperatorSet::Consistent) return {};
+  const Neighbourhood<D>& nh = scene_->neighbourhood;
+  return laplacian_corrections(scene_->particles, nh.list(), scene_->kernel);
+}
+
+template <int D>
+std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vector<D>>& u,
+                                                           const std::vector<LaplacianCorrection<D>>& corrections) const {
+  const Particles<D>& P = scene_->particles;
+  const Neighbourhood<D>& nh = scene_->neighbourhood;
+  const Kernel<D>& K = scene_->kernel;
+  // No-slip walls: the viscous term sees the mirrored wall velocity (Adami et al. 2012).
+  std::vector<Vector<D>> u_wall;
+  if (walls_) {
+    u_wall = AdamiWall<D>::viscous_velocity(AdamiWall<D>::stencil(P, nh.list(), K), P, &u);
+    nh.halo().update(u_wall);
+  }
+  const std::vector<Vector<D>>& uv = walls_ ? u_wall : u;
+  std::vector<Vector<D>> lap = operators_ == OperatorSet::Consistent
+                                   ? laplacian_consistent(P, nh.list(), K, corrections, uv)
+                                   : laplacian_morris(P, nh.list(), K, uv);
+  for (auto& a : lap) a *= scene_->physics.nu;
+  return lap;
+}
+
+template <int D>
+StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double tau,
+                                  const std::vector<LaplacianCorrection<D>>& corrections) {
   Particles<D>& P = scene_->particles;
   Neighbourhood<D>& nh = scene_->neighbourhood;
   const Kernel<D>& K = scene_->kernel;
   const Physics<D>& phys = scene_->physics;
-  const std::size_t n = P.n_owned;
-  nh.update(P);
+  const bool consistent = operators_ == OperatorSet::Consistent;
 
-  auto fluid = [&](std::size_t i) { return P.kind[i] == kFluid; };  // walls keep their prescribed motion
-
-  // Prediction with the non-pressure forces at x^n.
-  LogEventScope log_forces(LogEvent::Forces);
-  const std::vector<Vector<D>> u_old(P.v.begin(), P.v.begin() + n);
-  std::vector<Vector<D>> u_star = P.v;
-  if (phys.viscous()) {
-    // No-slip walls: the viscous term sees the mirrored wall velocity (Adami et al. 2012).
-    std::vector<Vector<D>> u_visc =
-        walls_ ? AdamiWall<D>::viscous_velocity(AdamiWall<D>::stencil(P, nh.list(), K), P) : P.v;
-    if (walls_) nh.halo().update(u_visc);
-    const std::vector<Vector<D>> lap = laplacian_morris(P, nh.list(), K, u_visc);
-    for (std::size_t i = 0; i < n; ++i)
-      if (fluid(i)) u_star[i] += dt * phys.nu * lap[i];
-  }
-  if (phys.has_body_force())
-    for (std::size_t i = 0; i < n; ++i)
-      if (fluid(i)) u_star[i] += dt * phys.gravity;
-  log_forces.end();
-
-  // Advect to x* = x^n + dt u^n, where the projection is made: the pressure then balances this
-  // step's motion (Cummins & Rudman 1999; Lind et al. 2012) instead of lagging a step behind.
-  for (std::size_t i = 0; i < n; ++i)
-    if (fluid(i)) P.x[i] += dt * u_old[i];
-  nh.update(P);
-  nh.halo().update(u_star);
-
-  // Projection: div(grad p / rho) = div(u*) / dt.
+  // div(grad p / rho) = div(u*) / tau.
   LogEventScope log_assembly(LogEvent::PpeAssembly);
-  std::vector<double> source = divergence(P, nh.list(), K, u_star);
-  for (double& s : source) s /= dt;
-  // Free surface (Lind et al. 2012): surface particles at x* get p = 0.
+  std::vector<double> source =
+      consistent ? divergence_corrected(P, nh.list(), K, u_star) : divergence(P, nh.list(), K, u_star);
+  for (double& s : source) s /= tau;
+  // Free surface (Lind et al. 2012): surface particles get p = 0.
   std::vector<char> surface;
   if (phys.free_surface) surface = free_surface_particles(P, nh.list(), K, free_surface_threshold_);
-  ppe_.assemble(P, nh, K, phys.gravity, phys.free_surface ? &surface : nullptr);
+  ppe_.assemble(P, nh, K, phys.gravity, phys.free_surface ? &surface : nullptr, consistent ? &corrections : nullptr);
   log_assembly.end();
   LogEventScope log_solve(LogEvent::PpeSolve);
   // The first solve starts from zero: the case's initial pressure is not the projection's.
@@ -137,39 +145,101 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   log_solve.end();
   nh.halo().update(P.p);
 
-  // Correction, and the trapezoidal position update x^{n+1} = x^n + dt (u^n + u^{n+1}) / 2.
-  LogEventScope log_correction(LogEvent::Forces);
+  const LogEventScope log_correction(LogEvent::Forces);
   const std::vector<Vector<D>> grad_p = pressure_gradient();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!fluid(i)) continue;
-    P.v[i] = u_star[i] - (dt / P.rho[i]) * grad_p[i];
-    P.x[i] += (0.5 * dt) * (P.v[i] - u_old[i]);
-  }
-  log_correction.end();
-  if (shifting_) shift();
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (P.kind[i] == kFluid) P.v[i] = u_star[i] - (tau / P.rho[i]) * grad_p[i];
   return report;
 }
 
-template <int D> void IsphSolver<D>::shift() {
+template <int D> StepReport IsphSolver<D>::step(double dt) {
+  Particles<D>& P = scene_->particles;
+  Neighbourhood<D>& nh = scene_->neighbourhood;
+  const Physics<D>& phys = scene_->physics;
+  const std::size_t n = P.n_owned;
+  auto fluid = [&](std::size_t i) { return P.kind[i] == kFluid; };  // walls keep their prescribed motion
+  nh.update(P);
+  nh.halo().update(P.p);
+
+  // Opening kick with a^n at x^n. Before the first projection there is no pressure of the scheme's
+  // own (a case's initial pressure need not be one), so that step projects the whole dt below.
+  LogEventScope log_forces(LogEvent::Forces);
+  const bool have_pressure = solves_ > 0;
+  std::vector<Vector<D>> acc(n, Vector<D>::Zero());
+  if (phys.viscous()) acc = viscous_acceleration(P.v, laplacian_corrections_if_used());
+  if (have_pressure) {
+    const std::vector<Vector<D>> grad_p = pressure_gradient();
+    for (std::size_t i = 0; i < n; ++i) acc[i] -= grad_p[i] / P.rho[i];
+  }
+  std::vector<Vector<D>> u_half = P.v;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!fluid(i)) continue;
+    acc[i] += phys.gravity;
+    u_half[i] += (0.5 * dt) * acc[i];
+    P.x[i] += dt * u_half[i];  // drift
+  }
+  log_forces.end();
+  nh.update(P);
+  nh.halo().update(u_half);
+  const std::vector<LaplacianCorrection<D>> corrections = laplacian_corrections_if_used();
+
+  // Closing kick: the non-pressure forces at x^{n+1}, the viscous one with the predicted end velocity
+  // u~ = u^{n+1/2} + dt/2 a^n (as the explicit schemes do), then the projection.
+  LogEventScope log_closing_forces(LogEvent::Forces);
+  std::vector<Vector<D>> u_star = u_half;
+  if (phys.viscous()) {
+    std::vector<Vector<D>> u_pred = u_half;
+    for (std::size_t i = 0; i < n; ++i)
+      if (fluid(i)) u_pred[i] += (0.5 * dt) * acc[i];
+    nh.halo().update(u_pred);
+    const std::vector<Vector<D>> visc = viscous_acceleration(u_pred, corrections);
+    for (std::size_t i = 0; i < n; ++i)
+      if (fluid(i)) u_star[i] += (0.5 * dt) * visc[i];
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (fluid(i)) u_star[i] += (0.5 * dt) * phys.gravity;
+  log_forces.end();
+  nh.halo().update(u_star);
+  const std::vector<double> p_start(P.p.begin(), P.p.begin() + n);
+  const StepReport report = project(u_star, have_pressure ? 0.5 * dt : dt, corrections);
+  // P.p holds psi: turn it into the step's mean pressure and its extrapolation to t^{n+1}.
+  mean_pressure_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double mean = have_pressure ? 0.5 * (p_start[i] + P.p[i]) : P.p[i];
+    P.p[i] = have_pressure ? mean + 0.5 * (mean - mean_pressure_[i]) : mean;
+    mean_pressure_[i] = mean;
+  }
+  nh.halo().update(P.p);
+  if (shifting_) shift(dt);
+  return report;
+}
+
+template <int D> void IsphSolver<D>::shift(double dt) {
   Particles<D>& P = scene_->particles;
   Neighbourhood<D>& nh = scene_->neighbourhood;
   nh.update(P);  // shifting works on the new positions
   std::vector<char> surface;
   if (scene_->physics.free_surface) surface = free_surface_particles(P, nh.list(), scene_->kernel, free_surface_threshold_);
-  shift_particles(P, nh, scene_->kernel, shifting_model_, scene_->dx, {}, surface.empty() ? nullptr : &surface);
+  // The pressures move with the particles too: the next opening kick and extrapolation use them.
+  nh.halo().update(mean_pressure_);
+  shift_particles(P, nh, scene_->kernel, shifting_model_, scene_->dx, scene_->physics.U, dt, {&P.p, &mean_pressure_}, surface.empty() ? nullptr : &surface);
 }
 
 template <int D> nlohmann::json IsphSolver<D>::describe() const {
   const Physics<D>& phys = scene_->physics;
   nlohmann::json models = nlohmann::json::object();
-  models["pressure_laplacian"] = "CumminsRudman";
+  const bool consistent = operators_ == OperatorSet::Consistent;
+  models["pressure_laplacian"] = consistent ? "ConsistentLaplacian" : "CumminsRudman";
+  models["ppe_source"] = consistent ? "corrected divergence" : "divergence";
+  models["time_integration"] = "kick-drift-kick, projection as the closing kick";
   if (walls_)
     models["walls"] = {{"model", "AdamiWall"},
                        {"ppe", phys.free_surface ? "extrapolation rows" : "extrapolation rows, one fluid pressure pinned"}};
   if (phys.free_surface)
     models["free_surface"] = {{"model", "LindFreeSurface"}, {"threshold_div_r", free_surface_threshold_}};
   models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
-  if (phys.viscous()) models["viscosity"] = {{"model", "MorrisViscosity"}, {"nu", phys.nu}};
+  if (phys.viscous())
+    models["viscosity"] = {{"model", consistent ? "ConsistentLaplacian" : "MorrisViscosity"}, {"nu", phys.nu}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
   if (shifting_) models["shifting"] = shifting_model_.describe();
   return {{"models", models}, {"cfl", cfl_}, {"ksp", ppe_.describe()}};

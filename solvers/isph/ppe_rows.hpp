@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "src/sph/pair_loop.hpp"
+#include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/pair_terms.hpp"
 
 namespace sph {
@@ -24,11 +24,13 @@ struct PpeRows {
   std::vector<PetscScalar> da, oa;
   std::vector<double> rhs;  // right-hand side of wall rows (the body-force head), 0 elsewhere
 
-  // Rows of the owned particles of P. Wall rows hold the Adami extrapolation; rows flagged in
-  // `dirichlet` and the row `pinned` (-1: none) hold only their diagonal.
+  // Rows of the owned particles of P. Fluid rows hold the consistent Laplacian when `consistent`
+  // holds its factors, else Cummins & Rudman's; wall rows hold the Adami extrapolation; rows flagged
+  // in `dirichlet` and the row `pinned` (-1: none) hold only their diagonal.
   template <int D>
   void build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const Vector<D>& body_force,
-             const std::vector<char>& dirichlet, long pinned);
+             const std::vector<char>& dirichlet, long pinned,
+             const std::vector<LaplacianCorrection<D>>* consistent = nullptr);
 
  private:
   std::vector<PetscInt> dlen_, olen_;  // entries filled per row
@@ -68,7 +70,8 @@ inline void close_gaps(std::vector<PetscInt>& ptr, const std::vector<PetscInt>& 
 
 template <int D>
 void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                    const Vector<D>& body_force, const std::vector<char>& dirichlet, long pinned) {
+                    const Vector<D>& body_force, const std::vector<char>& dirichlet, long pinned,
+                    const std::vector<LaplacianCorrection<D>>* consistent) {
   const std::size_t n = P.n_owned;
   const PetscInt first = P.first_gid, end = first + static_cast<PetscInt>(n);
   auto owned_column = [&](int j) { return P.gid[j] >= first && P.gid[j] < end; };
@@ -94,11 +97,15 @@ void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Ker
   for (std::size_t i = 0; i < n; ++i)
     dj[di[i]] = P.gid[i] - first, da[di[i]] = 0.0, dlen_[i] = 1, olen_[i] = 0;
 
-  // Fluid rows: c_ij off the diagonal, -sum_j c_ij on it. Wall rows keep their diagonal (the scale of
-  // a fluid row) and, for now, the kernel weights W_wf of their fluid neighbours.
+  // Fluid rows: c_ij off the diagonal, -sum_j c_ij on it; row i is div(grad p / rho)_i times -m_i.
+  // Wall rows keep their diagonal (the scale of a fluid row, from Cummins & Rudman's coefficients)
+  // and, for now, the kernel weights W_wf of their fluid neighbours.
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     if (P.gid[j] == P.gid[i]) return;
-    const double c = P.m[i] * ppe_pair_coefficient(P.m[j], P.rho[i], P.rho[j], morris_factor(g, K.h()));
+    const double c =
+        consistent && P.kind[i] == kFluid
+            ? -P.m[i] / P.rho[i] * consistent_laplacian_coefficient((*consistent)[i], P.m[j] / P.rho[j], g)
+            : P.m[i] * ppe_pair_coefficient(P.m[j], P.rho[i], P.rho[j], morris_factor(g, K.h()));
     da[di[i]] -= c;
     if (!has_entry(i, j)) return;
     const double value = P.kind[i] == kWall ? g.W : c;

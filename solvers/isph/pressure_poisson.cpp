@@ -36,19 +36,26 @@ template <int D> void PressurePoisson<D>::set_from_options() {
 }
 
 template <int D> void PressurePoisson<D>::use_nonsymmetric(bool nonsymmetric) {
-  walls_ = nonsymmetric;
+  nonsymmetric_ = nonsymmetric;
   if (!nonsymmetric) return;
-  PetscBool user_type = PETSC_FALSE;
+  PetscBool user_type = PETSC_FALSE, user_side = PETSC_FALSE;
   SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-ksp_type", &user_type));
+  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-ksp_pc_side", &user_side));
   if (!user_type) {
     SPH_PETSC(KSPSetType(ksp_, KSPGMRES));
+    // Right preconditioning: the tolerance then applies to the true residual. With left
+    // preconditioning it applies to the preconditioned one, which the near-null constant mode of a
+    // regularised periodic system (see assemble) inflates by 1/eps: the solution was then only good
+    // to 1e-4, and 1 and 2 ranks differed by that much.
+    if (!user_side) SPH_PETSC(KSPSetPCSide(ksp_, PC_RIGHT));
     SPH_PETSC(KSPSetFromOptions(ksp_));
   }
 }
 
 template <int D>
 void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
-                                  const Vector<D>& body_force, const std::vector<char>* dirichlet) {
+                                  const Vector<D>& body_force, const std::vector<char>* dirichlet,
+                                  const std::vector<LaplacianCorrection<D>>* consistent) {
   const std::size_t n = P.n_owned;
   kind_.assign(P.kind.begin(), P.kind.begin() + n);
   if (dirichlet) dirichlet_ = *dirichlet;
@@ -57,12 +64,23 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   for (char c : dirichlet_) any_dirichlet |= c;
   MPI_Allreduce(MPI_IN_PLACE, &any_dirichlet, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
 
-  // Closed domains (walls, no free surface) pin one fluid particle to p = 0: the wall rows make the
-  // matrix non-symmetric, so its left null space is unknown and the right-hand side cannot be
-  // projected; dropping one continuity equation instead makes the system regular. The pinned particle
-  // is the fluid particle with the smallest label, so the system does not depend on the partition.
+  int any_wall = 0;
+  for (std::size_t i = 0; i < n; ++i) any_wall |= P.kind[i] == kWall;
+  MPI_Allreduce(MPI_IN_PLACE, &any_wall, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+
+  // A non-symmetric singular matrix (no Dirichlet rows) has an unknown left null space, so the
+  // right-hand side cannot be projected onto its range.
+  //  - Walled domains pin one fluid particle to p = 0: dropping its continuity equation makes the
+  //    system regular. The pinned particle is the fluid particle with the smallest label, so the
+  //    system does not depend on the partition.
+  //  - Periodic domains (the consistent Laplacian) add eps * mean(diag) to the diagonal instead. With
+  //    p = c 1 + q, the constant part c absorbs the part of b outside the range, which the q part
+  //    then sees spread evenly over all rows; q is changed by O(eps) and c is removed afterwards.
+  //    A pin would put all of that part on one particle as a point source: measured on Taylor-Green,
+  //    the pinned particle's pressure sat 0.03-0.1 below its neighbours'.
   pinned_ = -1;
-  closed_ = walls_ && !any_dirichlet;
+  closed_ = nonsymmetric_ && !any_dirichlet && any_wall;
+  regularised_ = nonsymmetric_ && !any_dirichlet && !any_wall;
   if (closed_) {
     long long lowest = std::numeric_limits<long long>::max();
     for (std::size_t i = 0; i < n; ++i)
@@ -76,17 +94,25 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   // The matrix is made on the rows' arrays, without a copy; its predecessor used the same arrays, so it
   // goes first (with the KSP's reference to it and the preconditioner's copy of it).
   destroy_system();
-  rows_.build(P, nh.list(), K, body_force, dirichlet_, pinned_);
+  rows_.build(P, nh.list(), K, body_force, dirichlet_, pinned_, consistent);
   SPH_PETSC(MatCreateMPIAIJWithSplitArrays(PETSC_COMM_WORLD, n, n, PETSC_DETERMINE, PETSC_DETERMINE,
                                            rows_.di.data(), rows_.dj.data(), rows_.da.data(), rows_.oi.data(),
                                            rows_.oj.data(), rows_.oa.data(), &A_));  // and assembles it
 
-  if (!walls_ && !any_dirichlet) {
+  if (!nonsymmetric_ && !any_dirichlet) {  // symmetric and singular: the constants span both null spaces
     SPH_PETSC(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_TRUE, 0, nullptr, &nullspace_));
     SPH_PETSC(MatSetNullSpace(A_, nullspace_));
     SPH_PETSC(MatSetTransposeNullSpace(A_, nullspace_));
   }
   SPH_PETSC(MatCreateVecs(A_, &x_, &b_));
+  if (regularised_) {
+    PetscScalar trace;
+    PetscInt rows;
+    SPH_PETSC(MatGetDiagonal(A_, x_));
+    SPH_PETSC(VecSum(x_, &trace));
+    SPH_PETSC(VecGetSize(x_, &rows));
+    SPH_PETSC(MatShift(A_, regularisation * trace / rows));
+  }
   SPH_PETSC(KSPSetOperators(ksp_, A_, A_));
 }
 
@@ -128,6 +154,12 @@ StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const st
     x[i] = use_guess ? p[i] : 0.0;
   }
   if (closed_) remove_net_source(source, mass, b, n);
+  if (regularised_) {  // most of the part of b outside the range is its mean: spread it evenly
+    double sums[2] = {0.0, static_cast<double>(n)};
+    for (PetscInt i = 0; i < n; ++i) sums[0] += b[i];
+    MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    for (PetscInt i = 0; i < n; ++i) b[i] -= sums[0] / sums[1];
+  }
   SPH_PETSC(VecRestoreArray(b_, &b));
   SPH_PETSC(VecRestoreArray(x_, &x));
   // The discrete divergence of u* need not sum to zero exactly: project out the part of the
@@ -135,6 +167,13 @@ StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const st
   if (nullspace_) SPH_PETSC(MatNullSpaceRemove(nullspace_, b_));
   SPH_PETSC(KSPSolve(ksp_, b_, x_));
   if (nullspace_) SPH_PETSC(MatNullSpaceRemove(nullspace_, x_));
+  if (regularised_) {  // the constant part c (see assemble) carries no physics
+    PetscScalar sum;
+    PetscInt rows;
+    SPH_PETSC(VecSum(x_, &sum));
+    SPH_PETSC(VecGetSize(x_, &rows));
+    SPH_PETSC(VecShift(x_, -sum / rows));
+  }
 
   StepReport report;
   KSPConvergedReason reason;

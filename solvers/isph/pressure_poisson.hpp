@@ -3,12 +3,17 @@
 // a PETSc KSP (default: CG + hypre BoomerAMG; every KSP/PC choice can be changed with the ordinary
 // -ksp_* / -pc_* options).
 //
-// Discretisation: the Laplacian of Cummins & Rudman (1999),
-//   div(grad p / rho)_i = sum_j c_ij (p_i - p_j),  c_ij = 8 m_j F_ij / (rho_i + rho_j)^2,
-// with row i multiplied by -m_i. Because m_i c_ij = m_j c_ji the matrix is symmetric, and since
-// F_ij < 0 it is a positive semi-definite M-matrix: CG with AMG applies. With no Dirichlet rows
-// (periodic or closed domains) the constant vector spans its null space; it is attached with
-// MatSetNullSpace and removed from the right-hand side, which makes the singular system consistent.
+// Discretisation (fluid rows, each multiplied by -m_i):
+//  - by default the consistent Laplacian (src/sph/consistent_laplacian.hpp), div(grad p / rho)_i =
+//    sum_j w_ij (p_j - p_i) / rho_i with the density at rho0: exact for quadratic p on any particle
+//    distribution, positive weights, zero row sums, but not symmetric: GMRES with AMG. Periodic
+//    domains, where the system is singular, get a tiny diagonal shift (see assemble);
+//  - with -operators classic, the Laplacian of Cummins & Rudman (1999),
+//    div(grad p / rho)_i = sum_j c_ij (p_i - p_j),  c_ij = 8 m_j F_ij / (rho_i + rho_j)^2.
+//    Because m_i c_ij = m_j c_ji the matrix is symmetric, and since F_ij < 0 it is a positive
+//    semi-definite M-matrix: CG with AMG applies. With no Dirichlet rows (periodic or closed domains)
+//    the constant vector spans its null space; it is attached with MatSetNullSpace and removed from
+//    the right-hand side, which makes the singular system consistent.
 // Rows and columns use global particle indices, so the same code assembles a distributed matrix.
 //
 // Walls (Adami, Hu & Adams 2012): each wall particle has a row expressing its pressure as the
@@ -42,14 +47,16 @@ template <int D> class PressurePoisson {
   // Creates the KSP with the defaults above, then applies the user's -ksp_*/-pc_* options.
   void set_from_options();
 
-  // Tells the solver whether the matrix will be non-symmetric (walls, free surface): the default KSP
-  // becomes GMRES unless the user chose one.
+  // Tells the solver whether the matrix will be non-symmetric (walls, free surface, the consistent
+  // Laplacian): the default KSP becomes GMRES unless the user chose one, and a singular system pins
+  // one pressure instead of attaching a null space.
   void use_nonsymmetric(bool nonsymmetric);
 
   // Builds the matrix for the current particle positions (owned rows, global column indices).
   // Particles flagged in `dirichlet` (free surface) get the row p = 0.
   void assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
-                const Vector<D>& body_force = Vector<D>::Zero(), const std::vector<char>* dirichlet = nullptr);
+                const Vector<D>& body_force = Vector<D>::Zero(), const std::vector<char>* dirichlet = nullptr,
+                const std::vector<LaplacianCorrection<D>>* consistent = nullptr);
 
   // Solves div(grad p / rho) = source (one value per owned particle). With use_guess, p holds the
   // initial guess on entry (the previous step's pressure: a good one); otherwise the KSP starts from
@@ -72,9 +79,11 @@ template <int D> class PressurePoisson {
   ::Mat A_ = nullptr;
   ::Vec b_ = nullptr, x_ = nullptr;
   MatNullSpace nullspace_ = nullptr;
-  bool walls_ = false;
+  bool nonsymmetric_ = false;    // wall rows or the consistent Laplacian
   long pinned_ = -1;             // local row pinned to p = 0 (closed domains), -1: none
-  bool closed_ = false;          // a closed domain: one fluid pressure is pinned on some rank
+  bool closed_ = false;          // walls, no Dirichlet rows: one fluid pressure is pinned on some rank
+  bool regularised_ = false;     // periodic and non-symmetric: the diagonal is shifted (see assemble)
+  static constexpr double regularisation = 1e-8;  // eps: the shift over the mean diagonal
   std::vector<int> kind_;        // particle kind of each owned row
   std::vector<char> dirichlet_;  // rows with p = 0
   PpeRows rows_;                 // the matrix rows, and the right-hand side of wall rows

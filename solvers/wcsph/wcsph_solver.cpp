@@ -5,6 +5,7 @@
 #include "src/boundary/adami_wall.hpp"
 #include "src/core/options.hpp"
 #include "src/run/log_events.hpp"
+#include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/free_surface.hpp"
 #include "src/sph/operators.hpp"
 
@@ -13,10 +14,11 @@ namespace sph {
 namespace {
 const char* const density_names[] = {"continuity", "summation"};
 const char* const diffusion_names[] = {"none", "molteni", "antuono"};
+const char* const gradient_names[] = {"auto", "corrected", "symmetric"};
 
 struct RawOptions {
   PetscReal c0, c0_factor, gamma, cfl, delta, alpha, beta, epsilon, shift_A;
-  PetscInt density, diffusion;
+  PetscInt density, diffusion, operators, gradient;
   PetscBool shifting;
 };
 
@@ -37,9 +39,18 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscCall(PetscOptionsReal("-av_beta", "Monaghan artificial viscosity beta", "", o->beta, &o->beta, nullptr));
   PetscCall(PetscOptionsReal("-av_epsilon", "Artificial viscosity singularity guard epsilon", "", o->epsilon, &o->epsilon,
                              nullptr));
+  PetscCall(PetscOptionsEList("-operators",
+                              "Continuity divergence and viscous Laplacian: consistent (corrected divergence, "
+                              "consistent Laplacian) or classic (plain divergence, Morris)",
+                              "", operator_set_names, 2, operator_set_names[o->operators], &o->operators, nullptr));
+  PetscCall(PetscOptionsEList("-pressure_gradient",
+                              "Pressure force: corrected (Bonet & Lok, p_j - p_i), symmetric (Monaghan, momentum-"
+                              "conserving), auto (symmetric with a free surface, whose zero pressure it imposes; "
+                              "else corrected)",
+                              "", gradient_names, 3, gradient_names[o->gradient], &o->gradient, nullptr));
   PetscCall(PetscOptionsBool("-shifting", "Particle shifting (Lind et al. 2012) with Taylor-corrected u and rho", "",
                              o->shifting, &o->shifting, nullptr));
-  PetscCall(PetscOptionsReal("-shift_coefficient", "Shifting coefficient A in D = A h^2 per step (stable up to ~0.5)", "", o->shift_A,
+  PetscCall(PetscOptionsReal("-shift_coefficient", "Shifting coefficient A in D = A h U_ref dt (Lind et al. 2012; dt also kept below 0.5 h / (A U_ref))", "", o->shift_A,
                              &o->shift_A, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
@@ -48,7 +59,8 @@ PetscErrorCode read_options(RawOptions* o) {
 
 template <int D> void WcsphSolver<D>::set_from_options() {
   RawOptions o{c0_, c0_factor_, eos_.gamma, cfl_, delta_, av_.alpha, av_.beta, av_.epsilon,
-               shifting_model_.A, static_cast<PetscInt>(density_), static_cast<PetscInt>(diffusion_), shifting_};
+               shifting_model_.A, static_cast<PetscInt>(density_), static_cast<PetscInt>(diffusion_),
+               static_cast<PetscInt>(operators_), static_cast<PetscInt>(gradient_), shifting_};
   SPH_PETSC(read_options(&o));
   require(o.c0 >= 0, "-c0", "non-negative", o.c0);
   require(o.c0_factor > 0, "-c0_factor", "positive", o.c0_factor);
@@ -63,6 +75,8 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   c0_ = o.c0, c0_factor_ = o.c0_factor, eos_.gamma = o.gamma, cfl_ = o.cfl, delta_ = o.delta;
   av_.alpha = o.alpha, av_.beta = o.beta, av_.epsilon = o.epsilon;
   density_ = static_cast<DensityMethod>(o.density);
+  operators_ = static_cast<OperatorSet>(o.operators);
+  gradient_ = static_cast<WcsphGradient>(o.gradient);
   diffusion_ = static_cast<DensityDiffusion>(o.diffusion);
   if (delta_ == 0.0) diffusion_ = DensityDiffusion::None;
 }
@@ -80,6 +94,8 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
     P.rho[i] = rho;
   }
   walls_ = has_walls(P);
+  if (gradient_ == WcsphGradient::Auto)
+    gradient_ = scene.physics.free_surface ? WcsphGradient::Symmetric : WcsphGradient::Corrected;
   scene.neighbourhood.update(P, true);
   if (density_ == DensityMethod::Summation) {
     const std::vector<double> rho = density_summation(P, scene.neighbourhood.list(), scene.kernel);
@@ -140,20 +156,37 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   }
   const std::vector<Vector<D>>& uv = u_visc.empty() ? P.v : u_visc;
 
+  const bool consistent = operators_ == OperatorSet::Consistent;
+  const bool corrected_gradient = gradient_ == WcsphGradient::Corrected;
+  const bool continuity = density_ == DensityMethod::Continuity;
+  std::vector<LaplacianCorrection<D>> laplacian;
+  if (consistent && phys.viscous()) laplacian = laplacian_corrections(P, nl, K);
+  // Sums finished after the pair loop: the moment matrix of the kernel-gradient correction, the
+  // velocity gradient of the corrected continuity equation and the pressure-difference sum.
+  const bool moments = corrected_gradient || (consistent && continuity);
+  std::vector<Tensor<D>> M(moments ? n : 0, Tensor<D>::Zero()), grad_u(consistent && continuity ? n : 0, Tensor<D>::Zero());
+  std::vector<Vector<D>> grad_p(corrected_gradient ? n : 0, Vector<D>::Zero());
+
   acc_.assign(n, Vector<D>::Zero());
-  for (std::size_t i = 0; i < n; ++i)
-    if (P.kind[i] == kFluid) acc_[i] = phys.gravity;
   drho_.assign(n, 0.0);
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     if (P.kind[i] != kFluid) return;  // walls move as prescribed
     const Vector<D> uij = P.v[i] - P.v[j];
     const double Vj = P.m[j] / P.rho[j];
     const double Pi = av_.active() ? av_.Pi(h, eos_, P.rho[i], P.rho[j], uij, g) : 0.0;
-    acc_[i] += wcsph::pressure_acceleration_pair(P.m[j], P.p[i], P.p[j], P.rho[i], P.rho[j], Pi, g);
+    if (moments) M[i] += correction_moment_term(Vj, g);
+    if (corrected_gradient) {
+      grad_p[i] += difference_gradient_term(Vj, P.p[i], P.p[j], g);
+      if (Pi != 0.0) acc_[i] -= (P.m[j] * Pi) * g.gradW;
+    } else {
+      acc_[i] += wcsph::pressure_acceleration_pair(P.m[j], P.p[i], P.p[j], P.rho[i], P.rho[j], Pi, g);
+    }
     const double F = morris_factor(g, h);
     if (phys.viscous())
-      acc_[i] += morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], phys.nu, phys.nu, F, Vector<D>(uv[i] - uv[j]));
-    if (density_ == DensityMethod::Continuity) {
+      acc_[i] += consistent ? Vector<D>(phys.nu * consistent_laplacian_coefficient(laplacian[i], Vj, g) * (uv[j] - uv[i]))
+                            : morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], phys.nu, phys.nu, F,
+                                                          Vector<D>(uv[i] - uv[j]));
+    if (continuity) {
       // Walls count as at rest here: every wall is fixed or slides along itself (the cavity lid), so
       // no mass crosses it, and the sliding velocity must stay out of the density. Where the lid ends
       // at a fixed corner block its velocity jumps from U to 0 inside the kernel support, and the
@@ -162,13 +195,26 @@ template <int D> void WcsphSolver<D>::compute_rates() {
       // instead of 1.9% / 0.5%). ISPH keeps v_w in its pressure source: the projection does not
       // accumulate the source, which there only raises the stagnation pressure in the downstream
       // corner (with walls at rest, Re 1000 let a particle through that corner at CFL 0.2; measured).
-      drho_[i] += wcsph::continuity_pair(P.rho[i], Vj, P.kind[j] == kWall ? Vector<D>(P.v[i]) : uij, g);
+      const Vector<D> u_j = P.kind[j] == kWall ? Vector<D>::Zero() : Vector<D>(P.v[j]);
+      if (consistent) grad_u[i] += difference_vector_gradient_term(Vj, P.v[i], u_j, g);
+      else drho_[i] += wcsph::continuity_pair(P.rho[i], Vj, Vector<D>(P.v[i] - u_j), g);
       if (diffuse)
         drho_[i] += wcsph::density_diffusion_pair(delta_h_c0, P.rho[i], P.rho[j], Vj, F,
                                                   grad_rho.empty() ? zero : grad_rho[i],
                                                   grad_rho.empty() ? zero : grad_rho[j], g);
     }
   });
+  // The corrected forms: d rho_i/dt = -rho_i tr(L_i grad u_i) and a_i = -L_i grad p_i / rho_i, both
+  // exact for linear fields on any particle distribution (the plain forms are O(1) wrong in the
+  // disorder; Negi & Ramachandran 2022 found them the obstacle to second order).
+  for (std::size_t i = 0; i < n && moments; ++i) {
+    if (P.kind[i] != kFluid) continue;
+    const Tensor<D> L = correction_from_moments(M[i]);
+    if (corrected_gradient) acc_[i] -= (L * grad_p[i]) / P.rho[i];
+    if (consistent && continuity) drho_[i] -= P.rho[i] * (L * grad_u[i]).trace();
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (P.kind[i] == kFluid) acc_[i] += phys.gravity;
   double a2 = 0.0;
   for (const auto& a : acc_) a2 = std::max(a2, a.squaredNorm());
   MPI_Allreduce(MPI_IN_PLACE, &a2, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
@@ -188,6 +234,7 @@ template <int D> double WcsphSolver<D>::stable_dt() const {
   double dt = cfl_ * h / (buf[1] + std::sqrt(buf[0]));
   if (phys.viscous()) dt = std::min(dt, 0.125 * h * h / phys.nu);
   if (max_acc_ > 0.0) dt = std::min(dt, 0.25 * std::sqrt(h / max_acc_));
+  if (shifting_) dt = std::min(dt, shifting_model_.max_dt(h, phys.U));
   return dt;
 }
 
@@ -226,7 +273,7 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
     std::vector<char> surface;
     if (scene_->physics.free_surface)
       surface = free_surface_particles(P, nh.list(), scene_->kernel, default_free_surface_threshold<D>());
-    shift_particles(P, nh, scene_->kernel, shifting_model_, scene_->dx, {&P.rho}, surface.empty() ? nullptr : &surface);
+    shift_particles(P, nh, scene_->kernel, shifting_model_, scene_->dx, scene_->physics.U, dt, {&P.rho}, surface.empty() ? nullptr : &surface);
   }
   const LogEventScope log_density(LogEvent::Density);
   nh.halo().update(P.rho);
@@ -245,9 +292,13 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
   if (av_.active())
     models["artificial_viscosity"] = {{"model", "MonaghanAV"}, {"alpha", av_.alpha}, {"beta", av_.beta},
                                       {"epsilon", av_.epsilon}};
-  if (phys.viscous()) models["viscosity"] = {{"model", "MorrisViscosity"}, {"nu", phys.nu}};
+  if (phys.viscous())
+    models["viscosity"] = {{"model", operators_ == OperatorSet::Consistent ? "ConsistentLaplacian" : "MorrisViscosity"},
+                           {"nu", phys.nu}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
   if (walls_) models["walls"] = {{"model", "AdamiWall"}};
+  models["operators"] = operator_set_names[static_cast<int>(operators_)];
+  models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
   if (shifting_) models["shifting"] = shifting_model_.describe();
   return {{"models", models}, {"cfl", cfl_}};
 }

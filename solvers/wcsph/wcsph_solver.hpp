@@ -6,12 +6,14 @@
 // leapfrog (Monaghan 2005, sec. 5.3); dt from the acoustic CFL, viscous and force limits.
 #include "solvers/solver.hpp"
 #include "solvers/wcsph/wcsph_iact.hpp"
+#include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/shifting.hpp"
 
 namespace sph {
 
 enum class DensityMethod { Continuity, Summation };
 enum class DensityDiffusion { None, Molteni, Antuono };
+enum class WcsphGradient { Auto, Corrected, Symmetric };
 
 template <int D> class WcsphSolver : public Solver<D> {
  public:
@@ -41,6 +43,8 @@ template <int D> class WcsphSolver : public Solver<D> {
   PetscReal delta_ = 0.1;
   DensityMethod density_ = DensityMethod::Continuity;
   DensityDiffusion diffusion_ = DensityDiffusion::Molteni;
+  OperatorSet operators_ = OperatorSet::Consistent;
+  WcsphGradient gradient_ = WcsphGradient::Auto;
   PetscBool shifting_ = PETSC_TRUE;
   LindShifting shifting_model_;
   std::vector<Vector<D>> acc_;

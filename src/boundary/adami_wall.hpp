@@ -58,13 +58,16 @@ template <int D> struct AdamiWall {
     }
   }
 
-  // Velocity seen by the viscous term: the fluid's own, and the no-slip mirror on walls.
-  static std::vector<Vector<D>> viscous_velocity(const Stencil& s, const Particles<D>& P) {
-    std::vector<Vector<D>> u(P.v.begin(), P.v.begin() + P.n_owned);
+  // Velocity seen by the viscous term: the fluid's own, and the no-slip mirror on walls, for the
+  // velocity field v (P.v by default; walls keep their prescribed P.v).
+  static std::vector<Vector<D>> viscous_velocity(const Stencil& s, const Particles<D>& P,
+                                                 const std::vector<Vector<D>>* field = nullptr) {
+    const std::vector<Vector<D>>& v = field ? *field : P.v;
+    std::vector<Vector<D>> u(v.begin(), v.begin() + P.n_owned);
     for (std::size_t w = 0; w < P.n_owned; ++w) {
       if (P.kind[w] != kWall || s.offset[w] == s.offset[w + 1]) continue;
       Vector<D> avg = Vector<D>::Zero();
-      for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) avg += s.weight[k] * P.v[s.fluid[k]];
+      for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) avg += s.weight[k] * v[s.fluid[k]];
       u[w] = 2.0 * P.v[w] - avg;
     }
     return u;

@@ -54,6 +54,20 @@ void for_each_pair(const Particles<D>& P, const NeighbourList<D>& nl, const Kern
   for (std::ptrdiff_t i = 0; i < n; ++i) detail::pairs_of(static_cast<std::size_t>(i), P, nl, K, rc2, f);
 }
 
+// f(i, visit_pairs) for every owned particle i, threaded like for_each_pair, where visit_pairs(pf) runs
+// pf(i, j, geometry) over i's pairs in list order (as often as f likes): for sums that live only as
+// long as one particle's computation (moment matrices solved on the spot), kept in f's locals.
+template <int D, class ParticleFn>
+void for_each_particle_pairs(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, ParticleFn&& f) {
+  const double rc2 = K.support_radius() * K.support_radius();
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    const std::size_t ii = static_cast<std::size_t>(i);
+    f(ii, [&](auto&& pair_fn) { detail::pairs_of(ii, P, nl, K, rc2, pair_fn); });
+  }
+}
+
 // f(i, j) for the same pairs, without evaluating the kernel (to count them), threaded like for_each_pair.
 template <int D, class IndexFn>
 void for_each_pair_index(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, IndexFn&& f) {

@@ -4,14 +4,15 @@
 // (avoiding the clustering and voids that ruin Lagrangian SPH), and fields are Taylor-corrected to the
 // shifted positions.
 //
-// D = A h^2 per step (the Fickian form). Lind et al. write D = A_L h U_max dt; at the advective step
-// dt = CFL h / U_max the two agree with A = A_L CFL. We measured on the Taylor-Green vortex (Re 100)
-// that what matters is the shift per step, not per unit time, in both schemes:
-//  - ISPH, nx 64: with A_L = 2, halving dt from CFL 0.2 to 0.1 tripled the velocity error
-//    (0.17% -> 0.59%); doubling A_L at CFL 0.1 restored it (0.22%); A_L = 4 at CFL 0.2 (A = 0.8) blew up.
-//  - WCSPH, nx 32 (dt ten times smaller than ISPH's): A_L = 2 gave 12% error, A_L = 20 (A ~ 0.45) 0.66%.
-// The disorder shifting removes is made per step, so the per-step form also keeps working when dt is
-// set by the viscous or acoustic limit. Stable up to A ~ 0.5.
+// D = A h U dt (Lind et al. 2012, with the case's reference speed U): a shift per unit time, so that
+// the total shift over a time interval does not depend on how many steps cut it. An earlier version
+// shifted by D = A h^2 per step and recorded that this worked better; it did only because the
+// projection's operators were inconsistent and made an error per step of their own (fixed: see
+// solvers/isph/isph_solver.hpp). Measured on Taylor-Green, Re 100, ISPH nx 64 (l1_velocity at
+// CFL 0.2 / 0.1 / 0.05): per step 1.10e-3 / 1.44e-3 / 1.58e-3, rising as dt falls; per unit time
+// 1.10e-3 / 1.23e-3 / 1.26e-3, approaching the spatial error. With A = 2 the shift at CFL 0.2 is
+// the former A h^2 = 0.4 h^2 per step. The explicit update is stable for D <= 0.5 h^2 per step
+// (measured: 0.8 h^2 blew up), which the solvers add to their time-step limit (max_dt).
 //   grad C_i = sum_j V_j [1 + R (W_ij / W(dx))^n] grad_i W_ij  (R = 0.2, n = 4: the tensile-instability
 //   term of Monaghan 2000 that Lind et al. add to stop pairing).
 #include <vector>
@@ -33,14 +34,20 @@ inline double integer_power(double x, int n) {
 }
 
 struct LindShifting {
-  double A = 0.4;   // D = A h^2 per step
+  double A = 2.0;   // D = A h U dt
   double R = 0.2;   // tensile-correction strength
   int n = 4;        // tensile-correction exponent
+  static constexpr double max_D_over_h2 = 0.5;  // stability of the explicit shift
 
-  nlohmann::json describe() const { return {{"model", "LindShifting"}, {"A", A}, {"R", R}, {"n", n}}; }
+  double coefficient(double h, double U, double dt) const { return A * h * U * dt; }
+  // The largest step for which D <= max_D_over_h2 h^2.
+  double max_dt(double h, double U) const { return A > 0.0 ? max_D_over_h2 * h / (A * U) : 1e300; }
+  nlohmann::json describe() const {
+    return {{"model", "LindShifting"}, {"D", "A h U dt"}, {"A", A}, {"R", R}, {"n", n}};
+  }
 };
 
-// Shifts the owned particles by -D grad C (on free-surface particles only along the surface: the
+// Shifts the owned particles by -D grad C, D = model.coefficient(h, U, dt), (on free-surface particles only along the surface: the
 // normal part, n = -grad C / |grad C|, is removed, Lind et al. 2012) and Taylor-corrects the velocity,
 // u + (dr . grad) u with the corrected gradient, and the listed scalar fields likewise. Positions must
 // be current in `nh`.
@@ -52,7 +59,7 @@ struct LindShifting {
 // order (tests/test_operators.cpp), at 0.4x the time.
 template <int D>
 void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, const LindShifting& model,
-                     double dx, const std::vector<std::vector<double>*>& scalars = {},
+                     double dx, double U, double dt, const std::vector<std::vector<double>*>& scalars = {},
                      const std::vector<char>* surface = nullptr) {
   const LogEventScope log_shifting(LogEvent::Shifting);
   const NeighbourList<D>& nl = nh.list();
@@ -71,7 +78,7 @@ void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, 
       grad_f[k][i] += difference_gradient_term(Vj, f[i], f[j], g);
     }
   });
-  const double Dcoef = model.A * K.h() * K.h();
+  const double Dcoef = model.coefficient(K.h(), U, dt);
   for (std::size_t i = 0; i < n; ++i) {
     dr[i] *= -Dcoef;
     L[i] = correction_from_moments(L[i]);
