@@ -2,6 +2,7 @@
 
 #include <petscsys.h>
 
+#include <algorithm>
 #include <chrono>
 #include <deque>
 #include <limits>
@@ -257,8 +258,10 @@ template <int D> void Run<D>::execute() {
     const Totals<D> now = totals(P);
     summary["partition"] = {{"curve", "morton"}, {"interval", opt.partition_interval}, {"count", partitions},
                             {"imbalance", imbalance}};
+    // Relative to the larger of the initial and final sums of |m v|: a scene that starts at rest
+    // (the cavity) has no initial scale to measure against.
     summary["conservation"] = {{"momentum_drift", (now.momentum - initial.momentum).norm() /
-                                                      std::max(initial.momentum_scale, 1e-300)}};
+                                                      std::max({initial.momentum_scale, now.momentum_scale, 1e-300})}};
     for (auto it = solver_info.begin(); it != solver_info.end(); ++it) {
       if (it.key() == "models" || it.key() == "ksp") continue;
       if (it.key() == "conservation") summary["conservation"].update(it.value());

@@ -300,7 +300,16 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
   models["operators"] = operator_set_names[static_cast<int>(operators_)];
   models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
   if (shifting_) models["shifting"] = shifting_model_.describe();
-  return {{"models", models}, {"cfl", cfl_}};
+  // Mean fluid density over rho0, minus 1: the volume drift of a closed scene (the cavity).
+  const Particles<D>& P = scene_->particles;
+  double sums[2] = {0.0, 0.0};
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (P.kind[i] == kFluid) sums[0] += P.rho[i], sums[1] += 1.0;
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  const double mean_rho = sums[1] > 0 ? sums[0] / sums[1] : eos_.rho0;
+  return {{"models", models},
+          {"cfl", cfl_},
+          {"conservation", {{"mean_fluid_density_rel", mean_rho / eos_.rho0 - 1.0}}}};
 }
 
 template class WcsphSolver<1>;
