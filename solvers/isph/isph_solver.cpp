@@ -198,7 +198,7 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   }
   for (std::size_t i = 0; i < n; ++i)
     if (fluid(i)) u_star[i] += (0.5 * dt) * phys.gravity;
-  log_forces.end();
+  log_closing_forces.end();
   nh.halo().update(u_star);
   const std::vector<double> p_start(P.p.begin(), P.p.begin() + n);
   const StepReport report = project(u_star, have_pressure ? 0.5 * dt : dt, corrections);

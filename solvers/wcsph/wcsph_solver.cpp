@@ -168,8 +168,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   if (consistent && phys.viscous()) laplacian = laplacian_corrections(P, nl, K);
   // Sums finished after the pair loop: the moment matrix of the kernel-gradient correction, the
   // velocity gradient of the corrected continuity equation and the pressure-difference sum.
-  const bool moments = corrected_gradient;
-  std::vector<Tensor<D>> M(moments ? n : 0, Tensor<D>::Zero()), grad_u(corrected_continuity ? n : 0, Tensor<D>::Zero());
+  std::vector<Tensor<D>> M(corrected_gradient ? n : 0, Tensor<D>::Zero()), grad_u(corrected_continuity ? n : 0, Tensor<D>::Zero());
   std::vector<Vector<D>> grad_p(corrected_gradient ? n : 0, Vector<D>::Zero());
 
   acc_.assign(n, Vector<D>::Zero());
@@ -179,8 +178,8 @@ template <int D> void WcsphSolver<D>::compute_rates() {
     const Vector<D> uij = P.v[i] - P.v[j];
     const double Vj = P.m[j] / P.rho[j];
     const double Pi = av_.active() ? av_.Pi(h, eos_, P.rho[i], P.rho[j], uij, g) : 0.0;
-    if (moments) M[i] += correction_moment_term(Vj, g);
     if (corrected_gradient) {
+      M[i] += correction_moment_term(Vj, g);
       grad_p[i] += difference_gradient_term(Vj, P.p[i], P.p[j], g);
       if (Pi != 0.0) acc_[i] -= (P.m[j] * Pi) * g.gradW;
     } else {
@@ -212,10 +211,10 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   // The corrected forms: d rho_i/dt = -rho_i tr(L_i grad u_i) and a_i = -L_i grad p_i / rho_i, both
   // exact for linear fields on any particle distribution (the plain forms are O(1) wrong in the
   // disorder; Negi & Ramachandran 2022 found them the obstacle to second order).
-  for (std::size_t i = 0; i < n && moments; ++i) {
+  for (std::size_t i = 0; i < n && corrected_gradient; ++i) {
     if (P.kind[i] != kFluid) continue;
     const Tensor<D> L = correction_from_moments(M[i]);
-    if (corrected_gradient) acc_[i] -= (L * grad_p[i]) / P.rho[i];
+    acc_[i] -= (L * grad_p[i]) / P.rho[i];
     if (corrected_continuity) drho_[i] -= P.rho[i] * (L * grad_u[i]).trace();
   }
   for (std::size_t i = 0; i < n; ++i)
