@@ -25,6 +25,9 @@
 
 namespace sph {
 
+// Every case and solver, with its options and whether this run chose it (see check_unused_options).
+std::vector<OptionOwner> option_owners(const RunOptions& chosen);
+
 namespace {
 
 // Linear-solver iteration statistics over a run.
@@ -140,7 +143,7 @@ template <int D> struct Run {
     output_dir = opt.output_dir[0] ? std::string(opt.output_dir)
                                    : "out/" + names.case_name + "-" + names.solver_name + "-" +
                                          std::to_string(scene_case->resolution());
-    check_unused_options([] { print_all_options(D); });
+    check_unused_options(option_owners(names));
   }
 
   void execute();
@@ -292,6 +295,7 @@ template <int D> void Run<D>::execute() {
       t += dt;
       ++step;
       stats.add(report);
+      if (step == resumed.step + 1) check_late_options(option_owners(names));
       LogEventScope log_diagnostics(LogEvent::Diagnostics);
       check_health(P, domain, ke_bound);
       check_neighbours(P, nh.list(), nh.support_radius());
@@ -318,6 +322,8 @@ template <int D> void Run<D>::execute() {
         while (next_checkpoint <= t * (1.0 + 1e-12)) next_checkpoint += checkpoint_interval;
       }
     }
+  } catch (const OptionError&) {
+    throw;  // a mistake in the command line, not a failed run
   } catch (const Error& e) {
     std::ostringstream msg;
     msg << "step " << step + 1 << " (t = " << t << "): " << e.what();
@@ -346,23 +352,36 @@ template <int D> void run_in_dim(const RunOptions& names) {
 
 }  // namespace
 
-void print_all_options(int dim) {
+std::vector<OptionOwner> option_owners(const RunOptions& chosen) {
+  std::vector<OptionOwner> owners;
+  for (const auto& entry : case_registry()) {
+    OptionOwner o{"-case " + entry.name, {}, {}, entry.name == chosen.case_name};
+    if (entry.make2) o.read = [&entry] { entry.make2()->set_from_options(); };
+    else if (entry.make1) o.read = [&entry] { entry.make1()->set_from_options(); };
+    else if (entry.make3) o.read = [&entry] { entry.make3()->set_from_options(); };
+    owners.push_back(o);
+  }
+  for (const auto& name : solver_names()) {
+    auto reads_late = [name](const std::string& option) { return create_solver<2>(name)->reads_late(option); };
+    owners.push_back({"-solver " + name, [name] { create_solver<2>(name)->set_from_options(); }, reads_late,
+                      name == chosen.solver_name});
+  }
+  owners.push_back({"", [] {  // run control: read by every run
+                      DriverOptions opt;
+                      SPH_PETSC(read_driver_options(&opt));
+                    }, {}, true});
+  return owners;
+}
+
+void print_all_options(int) {
   // Reading an options block with -help set prints it; the values are not used, so a value check
   // failing for one component (an -nx another case would refuse) must not hide the others.
-  auto read = [](const auto& set_from_options) {
+  for (const OptionOwner& o : option_owners(RunOptions{})) {
     try {
-      set_from_options();
+      o.read();
     } catch (const Error&) {
     }
-  };
-  for (const auto& entry : case_registry()) {
-    if (entry.make2) read([&] { entry.make2()->set_from_options(); });
-    else if (entry.make1) read([&] { entry.make1()->set_from_options(); });
-    else if (entry.make3) read([&] { entry.make3()->set_from_options(); });
   }
-  for (const auto& name : solver_names()) read([&] { create_solver<2>(name)->set_from_options(); });
-  DriverOptions opt;
-  SPH_PETSC(read_driver_options(&opt));
 }
 
 void run_simulation(const RunOptions& opts, int dim) {

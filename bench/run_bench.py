@@ -10,6 +10,7 @@ iterations from summary.json and the child's peak resident memory (getrusage of 
   bench/run_bench.py --label before --large           # adds the 1e6-particle workloads (slow)
   bench/run_bench.py --label before --only isph2d     # workloads whose name contains a pattern
   bench/run_bench.py --suite amg --label amg          # BoomerAMG option sets on the ISPH PPE
+  bench/run_bench.py --suite ksp --label ksp          # KSP x PC pairs on the ISPH PPE
   bench/run_bench.py --compare before after           # ratios after/before, per workload and phase
 
 Results go to out/bench/<label>/: workloads.csv (one row per workload), phases.csv (one row per
@@ -284,7 +285,8 @@ def write_csv(path, rows):
     if not rows:
         return
     with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        fields = list(dict.fromkeys(k for r in rows for k in r))  # failed runs' rows carry other columns
+        w = csv.DictWriter(f, fieldnames=fields)
         w.writeheader()
         w.writerows(rows)
 
@@ -319,20 +321,44 @@ def compare(out_root, a, b):
                   f"{wa[w]['ksp_its_mean']:>11} {wb[w]['ksp_its_mean']:>12}")
 
 
-def run_amg(args, folder, env):
+# The Krylov method and preconditioner pairs compared on the ISPH pressure solve (--suite ksp).
+KSP_CASES = [c for c in AMG_CASES if c[0] in ("tgv128", "tgv256", "cavity50")]
+KSP_SETS = [
+    ("default", []),  # GMRES (right-preconditioned) + BoomerAMG
+    ("gamg", ["-pc_type", "gamg"]),
+    ("ilu-gmres", ["-ksp_type", "gmres", "-pc_type", "ilu"]),
+    ("bjacobi-ilu", ["-pc_type", "bjacobi", "-sub_pc_type", "ilu"]),
+    ("jacobi-cg", ["-ksp_type", "cg", "-pc_type", "jacobi"]),
+    ("jacobi-gmres", ["-ksp_type", "gmres", "-pc_type", "jacobi"]),
+]
+
+
+def failure_line(err):
+    """The program's one-line error from a failed run's RuntimeError."""
+    lines = [l for l in str(err).splitlines() if l.startswith("sph: error:")]
+    return lines[-1][len("sph: error: "):] if lines else str(err).splitlines()[0]
+
+
+def run_sets(args, folder, env, cases, sets, name, title):
+    """Each case under each option set; writes <name>.csv and <name>.md."""
     rows = []
-    for case, steps, cargs in AMG_CASES:
+    for case, steps, cargs in cases:
         if args.only and not any(p in case for p in args.only):
             continue
         if case == "tgv512" and not (args.only and case in args.only):
             continue
-        for set_name, opts in AMG_SETS:
+        for set_name, opts in sets:
             if args.sets and set_name not in args.sets and set_name != "default":
                 continue
             best = None
             for k in range(args.repeat):
                 sub = os.path.join(folder, f"{case}-{set_name}-{k}")
-                r = run_workload(args.sph, cargs, steps, sub, env, opts)
+                try:
+                    r = run_workload(args.sph, cargs, steps, sub, env, opts)
+                except RuntimeError as e:  # e.g. a solve that does not converge: recorded, the suite goes on
+                    print(f"  {case} {set_name}: failed: {failure_line(e)}", flush=True)
+                    rows.append({"case": case, "options": set_name, "failure": failure_line(e)})
+                    break
                 ps_steps = r["steps"]
                 m = {"ksp_its_mean": r["ksp_its_mean"], "ksp_its_max": r["ksp_its_max"],
                      "pcsetup_s": event_time(r, "PCSetUp") / ps_steps, "kspsolve_s": event_time(r, "KSPSolve") / ps_steps,
@@ -341,25 +367,30 @@ def run_amg(args, folder, env):
                 best = m if best is None else {key: min(best[key], m[key]) if key.endswith("_s") else m[key] for key in m}
                 print(f"  {case} {set_name} #{k + 1}: its {m['ksp_its_mean']:.1f}  PCSetUp {m['pcsetup_s']:.4f}  "
                       f"KSPSolve {m['kspsolve_s']:.4f}  step {m['step_s']:.4f} s", flush=True)
+            if best is None:
+                continue
             rows.append({"case": case, "n_particles": r["n"], "steps": ps_steps, "options": set_name,
                          "ksp_its_mean": best["ksp_its_mean"], "ksp_its_max": best["ksp_its_max"],
                          "pcsetup_s_per_step": best["pcsetup_s"], "kspsolve_s_per_step": best["kspsolve_s"],
                          "ppe_solve_s_per_step": best["ppe_solve_s"], "step_s_per_step": best["step_s"]})
-    write_csv(os.path.join(folder, "amg.csv"), rows)
-    md = [f"# BoomerAMG option sets (min of {args.repeat} runs per time; seconds per step)", "",
+    write_csv(os.path.join(folder, f"{name}.csv"), rows)
+    md = [f"# {title} (min of {args.repeat} runs per time; seconds per step)", "",
           "| case | N | options | KSP its mean (max) | PCSetUp | KSPSolve | PPE solve | PPE solve vs default | step |",
           "|---|---:|---|---:|---:|---:|---:|---:|---:|"]
-    default_ppe = {r["case"]: r["ppe_solve_s_per_step"] for r in rows if r["options"] == "default"}
+    default_ppe = {r["case"]: r["ppe_solve_s_per_step"] for r in rows if r["options"] == "default" and "failure" not in r}
     for r in rows:
+        if "failure" in r:
+            md.append(f"| {r['case']} | | {r['options']} | failed: {r['failure']} | | | | | |")
+            continue
         rel = r["ppe_solve_s_per_step"] / default_ppe[r["case"]] if r["case"] in default_ppe else float("nan")
         md.append(f"| {r['case']} | {r['n_particles']} | {r['options']} | {r['ksp_its_mean']:.1f} ({r['ksp_its_max']}) | "
                   f"{r['pcsetup_s_per_step']:.4f} | {r['kspsolve_s_per_step']:.4f} | {r['ppe_solve_s_per_step']:.4f} | "
                   f"{rel:.2f} | {r['step_s_per_step']:.4f} |")
     md += ["", "PPE solve = PCSetUp + KSPSolve + the copies around them; step also holds the phases the options do "
            "not touch, so it carries more of the machine's noise.", ""]
-    md += ["Option sets (default: Falgout coarsening, classical interpolation, strong threshold 0.25):", ""]
-    md += [f"- `{n}`: `{' '.join(o) or '(PETSc/hypre defaults)'}`" for n, o in AMG_SETS]
-    with open(os.path.join(folder, "amg.md"), "w") as f:
+    md += ["Option sets:", ""]
+    md += [f"- `{n}`: `{' '.join(o) or '(the program defaults)'}`" for n, o in sets]
+    with open(os.path.join(folder, f"{name}.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     print("\n".join(md))
 
@@ -369,7 +400,7 @@ def main():
     ap.add_argument("--label", help="results folder name under the output root (default: the git commit)")
     ap.add_argument("--sph", default=os.path.join(ROOT, "build", "sph"), help="the program (default build/sph)")
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "bench"), help="output root (default out/bench)")
-    ap.add_argument("--suite", choices=["default", "amg"], default="default")
+    ap.add_argument("--suite", choices=["default", "amg", "ksp"], default="default")
     ap.add_argument("--large", action="store_true", help="add the 1e6-particle workloads (minutes each on 2 cores)")
     ap.add_argument("--only", nargs="+", metavar="PATTERN", help="workloads (or AMG cases) whose name contains one")
     ap.add_argument("--repeat", type=int, help="runs per workload; the fastest time-loop is kept "
@@ -394,7 +425,7 @@ def main():
     args.sph = os.path.abspath(args.sph)
     if not os.access(args.sph, os.X_OK):
         sys.exit(f"no program at {args.sph}: build it first, or pass --sph")
-    args.repeat = args.repeat or (3 if args.suite == "amg" else 1)
+    args.repeat = args.repeat or (3 if args.suite in ("amg", "ksp") else 1)
     git = git_state()
     label = args.label or (git["commit"] or "current") + ("-dirty" if git["dirty_files"] else "")
     folder = os.path.join(args.out, label)
@@ -423,7 +454,10 @@ def main():
         json.dump({"runs": runs + [meta]}, f, indent=2)
 
     if args.suite == "amg":
-        run_amg(args, folder, env)
+        run_sets(args, folder, env, AMG_CASES, AMG_SETS, "amg", "BoomerAMG option sets")
+        return
+    if args.suite == "ksp":
+        run_sets(args, folder, env, KSP_CASES, KSP_SETS, "ksp", "Krylov method and preconditioner")
         return
 
     baseline = run_workload(args.sph, BASELINE[1], 1, os.path.join(folder, BASELINE[0]), env)

@@ -44,6 +44,9 @@ template <int D> class Solver {
   virtual std::string name() const = 0;
   // Reads the solver's options (PETSc options block; -help lists them) and checks them.
   virtual void set_from_options() = 0;
+  // Options PETSc reads for this solver only during its steps (a linear solve's viewers, sub-solver
+  // options), named without the dash: checked after the first step rather than at start-up.
+  virtual bool reads_late(const std::string&) const { return false; }
   virtual void setup(Scene<D>& scene) = 0;
   // Largest time step the scheme's stability limits allow for the current state.
   virtual double stable_dt() const = 0;

@@ -117,15 +117,33 @@ TEST(Ppe, KspChoiceComesFromOptions) {
   PeriodicLattice L(16);
   PressurePoisson<2> ppe;
   ppe.set_from_options();
+  std::vector<double> source(L.P.n_owned), p(L.P.n_owned, 0.0);
+  for (std::size_t i = 0; i < L.P.n_owned; ++i) source[i] = -8 * M_PI * M_PI * p_exact(L.P.x[i]);
+  for (int solve = 0; solve < 2; ++solve) {  // each assembly makes the KSP anew from the options
+    ppe.assemble(L.P, L.nh, L.kernel);
+    const auto d = ppe.describe();
+    EXPECT_EQ(d["type"], "gmres");
+    EXPECT_EQ(d["pc_type"], "jacobi");
+    EXPECT_GT(ppe.solve(source, L.P.m, p).linear_reason, 0);
+  }
   PetscOptionsClearValue(nullptr, "-ksp_type");
   PetscOptionsClearValue(nullptr, "-pc_type");
+}
+
+// PETSc's AIJ: SeqAIJ on one rank, so that the factorisations (ILU, ICC, LU) apply.
+TEST(Ppe, MatrixIsSeqAijOnOneRankAndIluSolvesIt) {
+  PetscOptionsSetValue(nullptr, "-pc_type", "ilu");
+  PeriodicLattice L(16);
+  PressurePoisson<2> ppe;
+  ppe.set_from_options();
   ppe.assemble(L.P, L.nh, L.kernel);
-  const auto d = ppe.describe();
-  EXPECT_EQ(d["type"], "gmres");
-  EXPECT_EQ(d["pc_type"], "jacobi");
+  MatType type;
+  MatGetType(ppe.matrix(), &type);
+  EXPECT_STREQ(type, MATSEQAIJ);
   std::vector<double> source(L.P.n_owned), p(L.P.n_owned, 0.0);
   for (std::size_t i = 0; i < L.P.n_owned; ++i) source[i] = -8 * M_PI * M_PI * p_exact(L.P.x[i]);
   EXPECT_GT(ppe.solve(source, L.P.m, p).linear_reason, 0);
+  PetscOptionsClearValue(nullptr, "-pc_type");
 }
 
 TEST(Ppe, DefaultIsCgWithBoomerAmg) {

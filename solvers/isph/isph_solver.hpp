@@ -46,6 +46,7 @@ template <int D> class IsphSolver : public Solver<D> {
   double stable_dt() const override;
   StepReport step(double dt) override;
   nlohmann::json describe() const override;
+  bool reads_late(const std::string& option) const override { return PressurePoisson<D>::reads_late(option); }
   nlohmann::json checkpoint_scalars() const override { return {{"pressure_solves", solves_}}; }
   // The last step's mean pressure pm moves with its particle (migration, checkpoints).
   std::vector<CheckpointField> checkpoint_fields() override {

@@ -1,7 +1,7 @@
 #pragma once
-// The rows of the pressure Poisson matrix, assembled straight into the compressed sparse rows that
-// PETSc's MPIAIJ matrix uses as its own storage (MatCreateMPIAIJWithSplitArrays: no copy, no
-// MatSetValues). Each row depends only on its own particle's neighbours, so rows are counted, filled
+// The rows of the pressure Poisson matrix, assembled straight into compressed sparse rows split as
+// PETSc's MPIAIJ matrix keeps them (ppe_matrix.hpp copies them into the matrix). Each row depends
+// only on its own particle's neighbours, so rows are counted, filled
 // and sorted by the OpenMP threads of the pair loops, and every row is bitwise the same on any thread
 // count. The equations are described in pressure_poisson.hpp.
 #include <petscsys.h>
@@ -18,8 +18,7 @@ namespace sph {
 struct PpeRows {
   // This rank's rows split as MPIAIJ keeps them: the "diagonal" block of the columns this rank owns
   // (local column indices) and the "off-diagonal" rest (global indices). Row i is [di[i], di[i + 1]).
-  // Columns are ascending within a row. A matrix made from these arrays uses them in place: it must
-  // be destroyed before the next build.
+  // Columns are ascending within a row.
   std::vector<PetscInt> di, dj, oi, oj;
   std::vector<PetscScalar> da, oa;
   std::vector<double> rhs;  // right-hand side of wall rows (the body-force head), 0 elsewhere

@@ -4,6 +4,7 @@
 #include <limits>
 #include <sstream>
 
+#include "solvers/isph/ppe_matrix.hpp"
 #include "src/core/error.hpp"
 
 namespace sph {
@@ -11,45 +12,99 @@ namespace sph {
 template <int D> PressurePoisson<D>::~PressurePoisson() {
   destroy_system();
   if (ksp_) KSPDestroy(&ksp_);
+  if (mat_viewer_) PetscViewerDestroy(&mat_viewer_);
 }
 
 template <int D> void PressurePoisson<D>::destroy_system() {
-  if (ksp_) KSPReset(ksp_);
   if (nullspace_) MatNullSpaceDestroy(&nullspace_);
   if (A_) MatDestroy(&A_);
   if (b_) VecDestroy(&b_);
   if (x_) VecDestroy(&x_);
 }
 
-template <int D> void PressurePoisson<D>::set_from_options() {
-  if (ksp_) return;
+// The defaults, then every -ksp_* / -pc_* option from the database (viewers included: KSPReset
+// dropped those, which is why the KSP is made anew instead of reset).
+template <int D> void PressurePoisson<D>::create_ksp() {
+  if (ksp_) SPH_PETSC(KSPDestroy(&ksp_));
   SPH_PETSC(KSPCreate(PETSC_COMM_WORLD, &ksp_));
-  SPH_PETSC(KSPSetType(ksp_, KSPCG));
+  SPH_PETSC(KSPSetType(ksp_, nonsymmetric_ ? KSPGMRES : KSPCG));
   PC pc;
   SPH_PETSC(KSPGetPC(ksp_, &pc));
-  SPH_PETSC(PCSetType(pc, PCHYPRE));
-  SPH_PETSC(PCHYPRESetType(pc, "boomeramg"));
+  SPH_PETSC(PCSetType(pc, PCHYPRE));  // BoomerAMG unless -pc_hypre_type says otherwise (PCHYPRESetType would fix it)
   SPH_PETSC(KSPSetTolerances(ksp_, 1e-8, 1e-50, PETSC_DEFAULT, 1000));
   // The previous step's pressure is a good first guess.
   SPH_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
   SPH_PETSC(KSPSetFromOptions(ksp_));
+  right_preconditioning();
+  symmetric_coarse_solve();
+}
+
+// Right preconditioning for the non-symmetric matrix: the tolerance then applies to the true residual.
+// With left preconditioning it applies to the preconditioned one, which the near-null constant mode of
+// a regularised periodic system (see assemble) inflates by 1/eps: the solution was then only good to
+// 1e-4 (GMRES; BiCGStab at -ksp_rtol 1e-10 was 7e-6 off), and 1 and 2 ranks differed by that much.
+// Only for the KSP types that offer both sides, and unless -ksp_pc_side says otherwise.
+template <int D> void PressurePoisson<D>::right_preconditioning() {
+  PetscBool user_side = PETSC_FALSE, both_sides = PETSC_FALSE;
+  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-ksp_pc_side", &user_side));
+  SPH_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(ksp_), &both_sides, KSPGMRES, KSPLGMRES,
+                                      KSPDGMRES, KSPPGMRES, KSPBCGS, KSPIBCGS, KSPFBCGS, KSPFBCGSR, KSPBCGSL,
+                                      KSPPIPEBCGS, ""));
+  if (nonsymmetric_ && both_sides && !user_side) SPH_PETSC(KSPSetPCSide(ksp_, PC_RIGHT));
+}
+
+// CG needs a symmetric positive definite preconditioner. BoomerAMG's default coarse solve, Gaussian
+// elimination, is not one on the singular coarse matrix of a periodic domain: Taylor-Green nx 128,
+// -operators classic, -ksp_rtol 1e-12 stopped with DIVERGED_INDEFINITE_PC at step 7. So under a
+// CG-type KSP the coarse level is relaxed with the symmetric-SOR/Jacobi of the other levels, unless
+// the user chose a coarse or an all-level relaxation: that run then reached step 77 (stopping at a
+// residual of 9e-11, near the round-off floor), at no cost in iterations or time at rtol 1e-8.
+template <int D> void PressurePoisson<D>::symmetric_coarse_solve() {
+  PetscBool cg = PETSC_FALSE, hypre = PETSC_FALSE, user = PETSC_FALSE, user_all = PETSC_FALSE;
+  SPH_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(ksp_), &cg, KSPCG, KSPPIPECG, KSPGROPPCG,
+                                      KSPPIPECGRR, KSPCR, KSPPIPECR, KSPMINRES, KSPSYMMLQ, ""));
+  PC pc;
+  SPH_PETSC(KSPGetPC(ksp_, &pc));
+  SPH_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCHYPRE, &hypre));
+  const char* htype = nullptr;
+  if (hypre) SPH_PETSC(PCHYPREGetType(pc, &htype));
+  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, coarse_relax_option, &user));
+  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-pc_hypre_boomeramg_relax_type_all", &user_all));
+  if (!cg || !htype || std::string(htype) != "boomeramg" || user || user_all) return;
+  // PCHYPRE takes this setting from the options database only; it is put there for this one call.
+  SPH_PETSC(PetscOptionsSetValue(nullptr, coarse_relax_option, "symmetric-SOR/Jacobi"));
+  SPH_PETSC(PCSetFromOptions(pc));
+  SPH_PETSC(PetscOptionsClearValue(nullptr, coarse_relax_option));
+}
+
+template <int D> void PressurePoisson<D>::set_from_options() {
+  if (ksp_) return;
+  // -mat_view: PETSc shows every matrix assembled while it is set, the preconditioners' own too
+  // (hypre's copy, multigrid's coarse levels, a diagonal shift's re-assembly). The PPE takes it out of
+  // the database and shows its own matrix once per solve instead.
+  PetscBool set = PETSC_FALSE;
+  SPH_PETSC(PetscOptionsGetViewer(PETSC_COMM_WORLD, nullptr, nullptr, "-mat_view", &mat_viewer_, &mat_format_, &set));
+  if (set) SPH_PETSC(PetscOptionsClearValue(nullptr, "-mat_view"));
+  create_ksp();
 }
 
 template <int D> void PressurePoisson<D>::use_nonsymmetric(bool nonsymmetric) {
+  if (nonsymmetric == nonsymmetric_ && ksp_) return;
   nonsymmetric_ = nonsymmetric;
-  if (!nonsymmetric) return;
-  PetscBool user_type = PETSC_FALSE, user_side = PETSC_FALSE;
-  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-ksp_type", &user_type));
-  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-ksp_pc_side", &user_side));
-  if (!user_type) {
-    SPH_PETSC(KSPSetType(ksp_, KSPGMRES));
-    // Right preconditioning: the tolerance then applies to the true residual. With left
-    // preconditioning it applies to the preconditioned one, which the near-null constant mode of a
-    // regularised periodic system (see assemble) inflates by 1/eps: the solution was then only good
-    // to 1e-4, and 1 and 2 ranks differed by that much.
-    if (!user_side) SPH_PETSC(KSPSetPCSide(ksp_, PC_RIGHT));
-    SPH_PETSC(KSPSetFromOptions(ksp_));
-  }
+  create_ksp();  // the defaults differ
+}
+
+template <int D> bool PressurePoisson<D>::reads_late(const std::string& option) {
+  // Read during a solve or an assembly: the solve's viewers, the matrix's -mat_* options (-mat_type,
+  // a factorisation package's), and the options of the solvers a preconditioner makes in its set-up
+  // (bjacobi/asm blocks, multigrid levels).
+  static const char* const exact[] = {"ksp_converged_reason", "pc_view"};
+  static const char* const prefixes[] = {"mat_", "sub_", "mg_levels_", "mg_coarse_", "redundant_"};
+  for (const char* e : exact)
+    if (option == e) return true;
+  for (const char* p : prefixes)
+    if (option.rfind(p, 0) == 0) return true;
+  return false;
 }
 
 template <int D>
@@ -91,13 +146,12 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
       if (P.kind[i] == kFluid && P.id[i] == global_lowest) pinned_ = static_cast<long>(i);
   }
 
-  // The matrix is made on the rows' arrays, without a copy; its predecessor used the same arrays, so it
-  // goes first (with the KSP's reference to it and the preconditioner's copy of it).
+  // The matrix may be a view of the rows' arrays: it goes first, with the KSP (and its
+  // preconditioner's references to it).
   destroy_system();
+  SPH_PETSC(KSPDestroy(&ksp_));
   rows_.build(P, nh.list(), K, body_force, dirichlet_, pinned_, consistent);
-  SPH_PETSC(MatCreateMPIAIJWithSplitArrays(PETSC_COMM_WORLD, n, n, PETSC_DETERMINE, PETSC_DETERMINE,
-                                           rows_.di.data(), rows_.dj.data(), rows_.da.data(), rows_.oi.data(),
-                                           rows_.oj.data(), rows_.oa.data(), &A_));  // and assembles it
+  A_ = make_ppe_matrix(rows_, static_cast<PetscInt>(n), !nonsymmetric_);
 
   if (!nonsymmetric_ && !any_dirichlet) {  // symmetric and singular: the constants span both null spaces
     SPH_PETSC(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_TRUE, 0, nullptr, &nullspace_));
@@ -113,6 +167,12 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
     SPH_PETSC(VecGetSize(x_, &rows));
     SPH_PETSC(MatShift(A_, regularisation * trace / rows));
   }
+  // A new KSP for each new matrix, made from the options database: every option, viewers included,
+  // then acts on every solve. Keeping one KSP saved no measurable set-up time (the preconditioner is
+  // rebuilt for each new matrix either way), and some preconditioners cannot be set up again on
+  // another matrix (hypre's Euclid hung after a re-partition on 2 ranks; GAMG refused a coarse level
+  // of another size after KSPReset).
+  create_ksp();
   SPH_PETSC(KSPSetOperators(ksp_, A_, A_));
 }
 
@@ -166,6 +226,15 @@ StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const st
   // right-hand side that no pressure can produce.
   if (nullspace_) SPH_PETSC(MatNullSpaceRemove(nullspace_, b_));
   SPH_PETSC(KSPSolve(ksp_, b_, x_));
+  // PETSc prints -ksp_view and the like itself; -pc_view is left to whoever drives the PC.
+  PC pc;
+  SPH_PETSC(KSPGetPC(ksp_, &pc));
+  SPH_PETSC(PCViewFromOptions(pc, reinterpret_cast<PetscObject>(ksp_), "-pc_view"));
+  if (mat_viewer_) {
+    SPH_PETSC(PetscViewerPushFormat(mat_viewer_, mat_format_));
+    SPH_PETSC(MatView(A_, mat_viewer_));
+    SPH_PETSC(PetscViewerPopFormat(mat_viewer_));
+  }
   if (nullspace_) SPH_PETSC(MatNullSpaceRemove(nullspace_, x_));
   if (regularised_) {  // the constant part c (see assemble) carries no physics
     PetscScalar sum;

@@ -44,8 +44,13 @@ template <int D> class PressurePoisson {
   PressurePoisson(const PressurePoisson&) = delete;
   PressurePoisson& operator=(const PressurePoisson&) = delete;
 
-  // Creates the KSP with the defaults above, then applies the user's -ksp_*/-pc_* options.
+  // Creates the KSP with the defaults above, then applies the user's -ksp_*/-pc_* options. Each
+  // assemble makes the KSP anew the same way, so every option, viewers included, acts on every solve.
   void set_from_options();
+
+  // Options PETSc reads only during a solve or an assembly (not at set-up): the driver checks them
+  // after the first step instead of at start-up. Names without the leading dash.
+  static bool reads_late(const std::string& option);
 
   // Tells the solver whether the matrix will be non-symmetric (walls, free surface, the consistent
   // Laplacian): the default KSP becomes GMRES unless the user chose one, and a singular system pins
@@ -74,12 +79,18 @@ template <int D> class PressurePoisson {
   void remove_net_source(const std::vector<double>& source, const std::vector<double>& mass, PetscScalar* b,
                          PetscInt n) const;
   void destroy_system();
+  void create_ksp();
+  void right_preconditioning();
+  void symmetric_coarse_solve();
+  static constexpr const char* coarse_relax_option = "-pc_hypre_boomeramg_relax_type_coarse";
 
   KSP ksp_ = nullptr;
   ::Mat A_ = nullptr;
   ::Vec b_ = nullptr, x_ = nullptr;
   MatNullSpace nullspace_ = nullptr;
   bool nonsymmetric_ = false;    // wall rows or the consistent Laplacian
+  PetscViewer mat_viewer_ = nullptr;  // -mat_view (see set_from_options)
+  PetscViewerFormat mat_format_ = PETSC_VIEWER_DEFAULT;
   long pinned_ = -1;             // local row pinned to p = 0 (closed domains), -1: none
   bool closed_ = false;          // walls, no Dirichlet rows: one fluid pressure is pinned on some rank
   bool regularised_ = false;     // periodic and non-symmetric: the diagonal is shifted (see assemble)

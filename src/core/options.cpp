@@ -21,25 +21,43 @@ void require(bool condition, const std::string& option, const std::string& what,
 
 namespace {
 
-// PETSc reads these only at the end of a solve or of the run, so they are unused at start-up.
-bool read_late(const std::string& name) {
-  static const char* prefixes[] = {"log",         "info",       "malloc",      "options_",  "help",
-                                   "version",     "memory_view", "objects_dump", "on_error", "fp_trap",
-                                   "no_signal_handler", "ksp_view", "mat_view", "vec_view", "pc_view",
-                                   "ksp_converged_rate", "check_pointer_intensity", "use_gpu_aware_mpi",
-                                   "mpi_linear_solver_server", "citations", "error_output", "saws"};
-  for (const char* p : prefixes)
-    if (name.rfind(p, 0) == 0) return true;
-  return false;
+// PETSc itself reads these after start-up (at finalisation, or as it goes), or reads them during
+// initialisation without marking them used. Exact names: a typo of one is still caught.
+const std::vector<std::string>& petsc_late_options() {
+  static const std::vector<std::string> names = {
+      "log_view", "log_view_memory", "log_view_gpu_time", "log_all", "log_trace", "log_exclude", "log_sync",
+      "log_summary", "log_mpe", "log_perfstubs", "memory_view", "malloc_view", "malloc_view_threshold",
+      "malloc_dump", "malloc_debug", "malloc_test", "malloc_requested_size", "objects_dump", "options_left",
+      "options_view", "options_monitor", "options_monitor_cancel", "info", "info_exclude", "history",
+      "citations", "fp_trap", "on_error_abort", "on_error_attach_debugger", "no_signal_handler",
+      "check_pointer_intensity", "use_gpu_aware_mpi", "error_output_stdout", "error_output_none", "saws_options"};
+  return names;
+}
+
+// Names to suggest that no options block prints at start-up: PETSc's initialisation options, and those
+// a solve reads.
+const std::vector<std::string>& unprinted_options() {
+  static const std::vector<std::string> names = {"options_file", "options_file_yaml", "options_string_yaml", "help",
+                                                 "version", "start_in_debugger", "stop_for_debugger", "mat_type",
+                                                 "mat_view", "pc_view", "ksp_converged_reason"};
+  return names;
+}
+
+bool in(const std::vector<std::string>& list, const std::string& name) {
+  return std::find(list.begin(), list.end(), name) != list.end();
 }
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  std::vector<std::size_t> before(b.size() + 1), prev(b.size() + 1), cur(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
   for (std::size_t i = 1; i <= a.size(); ++i) {
     cur[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j)
+    for (std::size_t j = 1; j <= b.size(); ++j) {
       cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
+      // Two neighbouring letters swapped count as one edit ("options_fiel" is one from "options_file").
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) cur[j] = std::min(cur[j], before[j - 2] + 1);
+    }
+    before = prev;
     std::swap(prev, cur);
   }
   return prev[b.size()];
@@ -118,27 +136,88 @@ std::vector<std::string> documented_options(const std::function<void()>& read_al
   return names;
 }
 
-void check_unused_options(const std::function<void()>& list_all_options) {
-  const Unused u = unused_options();
-  for (const std::string& name : u.names) {
-    if (read_late(name)) continue;
-    std::string best;
-    std::size_t best_d = 3;  // suggest only close matches
-    for (const std::string& known : documented_options(list_all_options)) {
-      const std::size_t d = edit_distance(name, known);
-      if (d < best_d) best_d = d, best = known;
+namespace {
+
+// The closest candidate within two edits, also after a sub-solver prefix ("sub_pc_typ" -> "sub_pc_type").
+std::string closest(const std::string& name, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t best_d = 3;  // suggest only close matches
+  for (std::size_t cut = 0; cut < name.size(); cut = name.find('_', cut) + 1) {
+    const std::string head = name.substr(0, cut), tail = name.substr(cut);
+    if (cut > 0 && tail.size() < 5) break;
+    for (const std::string& known : candidates) {
+      const std::size_t d = edit_distance(tail, known);
+      if (d < best_d && head + known != name) best_d = d, best = head + known;
     }
-    std::string msg = "unknown option -" + name + " (not used by the chosen case or solver)";
-    if (!best.empty()) msg += "; did you mean -" + best + "?";
-    msg += " Run with -help to list the options";
-    throw Error(msg);
+    if (!best.empty() || name.find('_', cut) == std::string::npos) break;
+  }
+  return best;
+}
+
+std::string suggestion(const std::string& name, const std::vector<OptionOwner>& owners) {
+  std::vector<std::string> candidates = petsc_late_options();
+  candidates.insert(candidates.end(), unprinted_options().begin(), unprinted_options().end());
+  for (const OptionOwner& o : owners) {
+    const std::vector<std::string> names = documented_options(o.read);
+    candidates.insert(candidates.end(), names.begin(), names.end());
+  }
+  const std::string best = closest(name, candidates);
+  return (best.empty() ? std::string(".") : "; did you mean -" + best + "?") + " Run with -help to list the options";
+}
+
+std::string join_labels(const std::vector<const OptionOwner*>& owners, const char* separator) {
+  std::string s;
+  for (const OptionOwner* o : owners)
+    if (!o->label.empty()) s += (s.empty() ? "" : separator) + o->label;
+  return s;
+}
+
+// The owners not chosen for this run that read `name`, at start-up or later.
+std::vector<const OptionOwner*> inactive_readers(const std::string& name, const std::vector<OptionOwner>& owners) {
+  std::vector<const OptionOwner*> readers;
+  for (const OptionOwner& o : owners) {
+    if (o.active) continue;
+    if ((o.reads_late && o.reads_late(name)) || in(documented_options(o.read), name)) readers.push_back(&o);
+  }
+  return readers;
+}
+
+bool read_late_by_active(const std::string& name, const std::vector<OptionOwner>& owners) {
+  for (const OptionOwner& o : owners)
+    if (o.active && o.reads_late && o.reads_late(name)) return true;
+  return false;
+}
+
+}  // namespace
+
+void check_unused_options(const std::vector<OptionOwner>& owners) {
+  for (const std::string& name : unused_options().names) {
+    if (in(petsc_late_options(), name) || read_late_by_active(name, owners)) continue;
+    std::vector<const OptionOwner*> chosen;
+    for (const OptionOwner& o : owners)
+      if (o.active) chosen.push_back(&o);
+    const std::vector<const OptionOwner*> readers = inactive_readers(name, owners);
+    if (!readers.empty())
+      throw OptionError("option -" + name + " is read by " + join_labels(readers, ", ") + ", not by this run's " +
+                        join_labels(chosen, " and ") + "; remove it or choose " +
+                        (readers.size() == 1 ? readers[0]->label : "one of those"));
+    throw OptionError("unknown option -" + name + " (not used by the chosen case or solver)" + suggestion(name, owners));
+  }
+}
+
+void check_late_options(const std::vector<OptionOwner>& owners) {
+  for (const std::string& name : unused_options().names) {
+    if (in(petsc_late_options(), name) || !read_late_by_active(name, owners)) continue;
+    throw OptionError("option -" + name + " was not used by the first step: nothing in this configuration reads it" +
+                      suggestion(name, owners));
   }
 }
 
 void finish_options_check() {
-  const Unused u = unused_options();
-  for (const std::string& name : u.names)
+  for (const std::string& name : unused_options().names) {
+    if (in(petsc_late_options(), name)) continue;
     PetscFPrintf(PETSC_COMM_WORLD, stderr, "sph: warning: option -%s was never used\n", name.c_str());
+  }
 }
 
 }  // namespace sph

@@ -14,12 +14,29 @@ namespace sph {
 // Throws sph::Error("-name must be ... (got value)") unless the condition holds.
 void require(bool condition, const std::string& option, const std::string& what, double value);
 
-// Options nobody has read so far are typos or options that do not apply to the chosen case/solver:
-// this throws naming the first one, with the closest documented option if one is close. Options
-// that PETSc reads only late in a run (viewers, logging) are exempt; `finish_options_check` warns
-// about those that are still unused at the end of the run. `list_all_options` reads every options
-// block of the program (what -help prints); it is called only to make the suggestion.
-void check_unused_options(const std::function<void()>& list_all_options);
+// An option nobody reads: the run stops before it starts (or after its first step, for options read
+// only then), since carrying on would silently ignore what the user asked for.
+class OptionError : public Error {
+ public:
+  using Error::Error;
+};
+
+// A component a run may read options for: a case or a solver as the user picks it ("-solver isph").
+struct OptionOwner {
+  std::string label;
+  std::function<void()> read;  // reads its options blocks (with -help set they print: the documentation)
+  std::function<bool(const std::string&)> reads_late;  // options PETSc reads for it only during steps (may be empty)
+  bool active = false;         // chosen for this run
+};
+
+// At start-up, every option in the database must have been read by now, except the ones an active
+// owner or PETSc itself reads later (a solve's viewers, -log_view). Throws OptionError naming the
+// first other one: with the owner that reads it when it belongs to a case or solver not chosen, else
+// with the closest option there is.
+void check_unused_options(const std::vector<OptionOwner>& owners);
+// After the first step: the options the active owners read late must have been read by then.
+void check_late_options(const std::vector<OptionOwner>& owners);
+// End of run: warns about options still unused (those only PETSc's finalisation reads are exempt).
 void finish_options_check();
 
 // The option names a call of `read_all` documents: its -help text, captured instead of printed.

@@ -22,6 +22,20 @@ expect_error "did you mean -shifting" $small -shiftng 0
 expect_error "unknown option -ksp_typo" $small -ksp_typo cg
 expect_error "did you mean -ksp_type" $small -ksp_tpye cg
 expect_error "did you mean -c0" -case taylor_green -solver wcsph -nx 8 -c00 3
+# Every option is checked, PETSc's own included (those read at start-up, during a solve, at the end).
+expect_error "unknown option -options_fiel .*did you mean -options_file\?" $small -options_fiel x.opts
+expect_error "unknown option -log_veiw .*did you mean -log_view\?" $small -log_veiw
+expect_error "unknown option -ksp_converged_reson .*did you mean -ksp_converged_reason\?" $small -ksp_converged_reson
+# Options read only by the first solve are checked after it.
+expect_error "option -sub_pc_typ was not used by the first step.*did you mean -sub_pc_type\?" $small -pc_type bjacobi -sub_pc_typ ilu
+expect_error "option -mat_tpye was not used by the first step.*did you mean -mat_type\?" $small -mat_tpye aij
+expect_error "option -sub_pc_type was not used by the first step" $small -sub_pc_type ilu
+# A valid option given to the wrong solver or case names the one that reads it.
+expect_error "option -ksp_type is read by -solver isph, not by this run's -case taylor_green and -solver wcsph" $small -solver wcsph -ksp_type gmres
+expect_error "option -ksp_converged_reason is read by -solver isph" $small -solver wcsph -ksp_converged_reason
+expect_error "option -c0 is read by -solver wcsph, not by this run's -case taylor_green and -solver isph" $small -c0 10
+expect_error "option -wall_layers is read by -case lid_driven_cavity.*-case poiseuille" $small -wall_layers 4
+expect_error "-mat_type seqsbaij stores half of a symmetric matrix" $small -mat_type sbaij
 expect_error "-nx must be" $small -nx -3
 expect_error "-re must be positive" $small -re 0
 expect_error "unknown case|Unknown|case" -case no_such_case
@@ -30,6 +44,13 @@ expect_error "kernel" $small -kernel no_such_kernel
 expect_error "options|file|PETSc" -options_file "$tmp/missing.opts"
 expect_error "use -solver compressible" -case sod -solver wcsph -nx 48 -progress 0
 expect_error "use -solver compressible" -case toy_star -solver isph -nx 50 -progress 0
+
+# PETSc options read late (a solve's viewers, -log_view at the end) are accepted, and act.
+"$sph" $small -t_end 1 -max_steps 2 -output_dir "$tmp/late" -ksp_converged_reason -pc_view -log_view :"$tmp/log.txt" \
+  >"$tmp/stdout" 2>"$tmp/stderr" || { echo "FAIL: late-read PETSc options refused:"; cat "$tmp/stderr"; fail=1; }
+[ "$(grep -c "Linear solve converged" "$tmp/stdout")" -eq 2 ] || { echo "FAIL: -ksp_converged_reason not once per solve"; fail=1; }
+grep -q "SPH time loop" "$tmp/log.txt" || { echo "FAIL: -log_view wrote no log"; fail=1; }
+[ -s "$tmp/stderr" ] && { echo "FAIL: warnings from a run with late-read options:"; cat "$tmp/stderr"; fail=1; }
 
 # -help: exit 0, documents case, solver, driver and PETSc KSP options with defaults.
 "$sph" -help >"$tmp/help" 2>&1 || { echo "FAIL: -help exited non-zero"; fail=1; }
