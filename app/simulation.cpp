@@ -278,15 +278,15 @@ template <int D> void Run<D>::execute() {
                           {"mpi_ranks", ranks}, {"threads_per_rank", opt.threads}, {"version", program_version()},
                           {"command_line", summary["provenance"]["command_line"]}};
   };
-  long last_checkpoint_step = -1;
+  long last_checkpoint_step = -1, failing_step = step + 1;
   int interrupted = 0;  // the signal that stopped the run
-  auto write_state = [&](double t_now, long step_now) {
+  auto write_state = [&](double t_now, long step_now, const std::string& why = "checkpointed") {
     last_checkpoint_step = step_now;
     repartition();
     const LogEventScope log_checkpoint(LogEvent::Checkpoint);
     nlohmann::json run{{"identity", identity}, {"ksp_statistics", stats.to_json()},
                        {"steady_state_window", steady.to_json()}, {"history", history}};
-    run["history"].push_back(this_segment("checkpointed"));
+    run["history"].push_back(this_segment(why));
     write_checkpoint(checkpoint_path, P, solver->checkpoint_fields(),
                      {t_now, step_now, solver->checkpoint_scalars(), run});
   };
@@ -361,10 +361,12 @@ template <int D> void Run<D>::execute() {
       const double remaining = opt.t_end - t;
       dt = remaining / std::ceil(remaining / dt * (1.0 - 1e-12));
       LogEventScope log_step(LogEvent::Step);
+      failing_step = step + 1;
       const StepReport report = solver->step(dt);
       log_step.end();
       t += dt;
       ++step;
+      failing_step = step;  // what fails from here on (checks, output) belongs to the step just made
       stats.add(report);
       LogEventScope log_diagnostics(LogEvent::Diagnostics);
       check_health(P, domain, ke_bound);
@@ -396,11 +398,11 @@ template <int D> void Run<D>::execute() {
     if (interrupted) {
       // Everything needed to look at the state reached and to resume it.
       if (last_frame_t < t) writer.write(P, t), last_frame_t = t;
-      if (last_checkpoint_step != step) write_state(t, step);
+      if (last_checkpoint_step != step) write_state(t, step, "interrupted (" + signal_name(interrupted) + ")");
     }
   } catch (const Error& e) {
     std::ostringstream msg;
-    msg << "step " << step + 1 << " (t = " << t << "): " << e.what();
+    msg << "step " << failing_step << " (t = " << t << "): " << e.what();
     // The first failure is the one to report: later ones (a full disk fails every write) are noted.
     std::string also;
     try {

@@ -118,16 +118,19 @@ std::uint64_t get_u64(const unsigned char* in) {
   return v;
 }
 
-// Fault injection for the crash tests: SPH_FAULT_CHECKPOINT="<stage>:<n>" kills the process (as a
-// power cut would) at that stage of its n-th checkpoint write. Stages: data (vectors written, no
-// trailer yet), trailer (complete temporary file, not yet renamed), renamed.
-void fault_point(const char* stage, int write_number) {
+// Fault injection for the crash tests: SPH_FAULT_CHECKPOINT="<stage>:<n>" acts at that stage of the
+// process's n-th checkpoint write. Stages that kill the process (as a power cut would): data (vectors
+// written, no trailer yet), trailer (complete temporary file, not yet renamed), renamed. Stage full:
+// the trailer's write fails with ENOSPC, as on a full disk.
+bool fault_at(const char* stage, int write_number) {
   const char* spec = std::getenv("SPH_FAULT_CHECKPOINT");
-  if (!spec) return;
+  if (!spec) return false;
   const std::string s = spec;
   const auto colon = s.find(':');
-  if (colon == std::string::npos || s.substr(0, colon) != stage) return;
-  if (std::atoi(s.c_str() + colon + 1) == write_number) std::raise(SIGKILL);
+  return colon != std::string::npos && s.substr(0, colon) == stage && std::atoi(s.c_str() + colon + 1) == write_number;
+}
+void fault_point(const char* stage, int write_number) {
+  if (fault_at(stage, write_number)) std::raise(SIGKILL);
 }
 
 // Appends header + trailer to the data in `tmp`, syncs it and renames it over `path`. Rank 0 only;
@@ -153,11 +156,12 @@ std::string seal(const std::string& tmp, const std::string& path, nlohmann::json
   std::fseek(f, 0, SEEK_END);
   bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fwrite(tail, 1, kTrailer, f) == kTrailer &&
             std::fflush(f) == 0 && fsync(fileno(f)) == 0;
-  const int write_errno = errno;
+  int write_errno = errno;
+  if (fault_at("full", write_number)) ok = false, write_errno = ENOSPC;
   ok = (std::fclose(f) == 0) && ok;
-  if (!ok) return std::string("writing it failed (") + std::strerror(write_errno) + ")";
+  if (!ok) return std::strerror(write_errno);
   fault_point("trailer", write_number);
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) return std::string("renaming it failed (") + std::strerror(errno) + ")";
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) return std::string("renaming the temporary file failed (") + std::strerror(errno) + ")";
   fault_point("renamed", write_number);
   return "";
 }
