@@ -346,7 +346,12 @@ template <int D> void Run<D>::execute() {
       else summary["solver_parameters"][it.key()] = it.value();
     }
     summary["errors"] = nlohmann::json::object();
-    for (const auto& e : scene_case->errors(P, t)) summary["errors"][e.first] = e.second;
+    for (const auto& [name, value] : scene_case->errors(P, t)) {
+      summary["errors"][name] = value;  // NaN becomes null: a metric that could not be measured
+      if (std::isfinite(value)) continue;
+      const std::string why = scene_case->unmeasured_reason(name);
+      summary["errors_unmeasured"][name] = why.empty() ? "not a finite number at the end of the run" : why;
+    }
     write_json_file(output_dir + "/summary.json", summary);
   };
 
