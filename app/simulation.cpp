@@ -422,6 +422,8 @@ template <int D> void Run<D>::execute() {
   progress.done(step, t);
   if (interrupted) {
     summary["signal"] = signal_name(interrupted);
+    if (opt.steady_tol > 0) summary["steady_state_reached"] = steady.reached();
+    scene_case->write_outputs(P, t, output_dir);
     finish("interrupted", "");
     std::ostringstream msg;
     msg << "interrupted by " << signal_name(interrupted) << " after step " << step << " (t = " << t
