@@ -16,11 +16,15 @@
 #include "src/io/checkpoint.hpp"
 #include "src/io/csv_writer.hpp"
 #include "src/io/json_file.hpp"
+#include "src/io/output_dir.hpp"
 #include "src/io/particle_writer.hpp"
 #include "src/neighbours/partition.hpp"
 #include "src/run/diagnostics.hpp"
+#include "src/run/interrupt.hpp"
 #include "src/run/log_events.hpp"
 #include "src/run/progress.hpp"
+#include "src/run/provenance.hpp"
+#include "src/run/run_identity.hpp"
 #include "src/run/threads.hpp"
 
 namespace sph {
@@ -40,6 +44,11 @@ struct StepStats {
     max_iterations = std::max(max_iterations, r.linear_iterations);
   }
   double mean_iterations() const { return solves ? double(total_iterations) / solves : 0.0; }
+  // Carried by checkpoints, so that a restarted run's figures cover all its steps.
+  nlohmann::json to_json() const { return {solves, total_iterations, max_iterations}; }
+  void from_json(const nlohmann::json& j) {
+    if (j.is_array() && j.size() == 3) solves = j[0], total_iterations = j[1], max_iterations = j[2];
+  }
 };
 
 // Steady state: the relative kinetic-energy change rate over the last time unit below a tolerance.
@@ -54,6 +63,12 @@ class SteadyState {
     if (t - t0 >= window_ * (1 - 1e-9) && ke > 0) reached_ = std::abs(ke - ke0) / (ke * (t - t0)) < tol_;
   }
   bool reached() const { return reached_; }
+  // The window's history travels with checkpoints: a restart stops where the whole run would.
+  nlohmann::json to_json() const { return history_; }
+  void from_json(const nlohmann::json& j) {
+    if (!j.is_array()) return;
+    for (const auto& e : j) history_.emplace_back(e[0].get<double>(), e[1].get<double>());
+  }
 
  private:
   double tol_, window_ = 1.0;
@@ -75,6 +90,8 @@ struct DriverOptions {
   PetscInt threads = 0;                // OpenMP threads per rank (0: see configure_threads)
   char restart[PETSC_MAX_PATH_LEN] = "";
   PetscBool progress = PETSC_TRUE;
+  PetscBool overwrite = PETSC_FALSE;   // replace a run already in output_dir
+  PetscBool dt_force = PETSC_FALSE;    // run a -dt above the stability limit anyway
   char output_dir[PETSC_MAX_PATH_LEN] = "";
 };
 
@@ -85,11 +102,15 @@ PetscErrorCode read_driver_options(DriverOptions* o) {
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Run control, kernel and output", "sph");
   PetscCall(PetscOptionsReal("-t_end", "End time", "", o->t_end, &o->t_end, nullptr));
   PetscCall(PetscOptionsReal("-dt", "Fixed time step (0: from the solver's stability limits)", "", o->dt, &o->dt, nullptr));
+  PetscCall(PetscOptionsBool("-dt_force", "Run a -dt above the stability limit instead of refusing it (recorded in summary.json)",
+                             "", o->dt_force, &o->dt_force, nullptr));
   PetscCall(PetscOptionsInt("-max_steps", "Stop after this many steps (-1: no limit)", "", o->max_steps, &o->max_steps, nullptr));
   PetscCall(PetscOptionsReal("-output_interval", "Time between VTK frames (-1: t_end/20, 0: first and last only)", "",
                              o->output_interval, &o->output_interval, nullptr));
   PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/<case>-<solver>-<nx>)", "", o->output_dir,
                                o->output_dir, sizeof(o->output_dir), nullptr));
+  PetscCall(PetscOptionsBool("-overwrite", "Replace the run already in -output_dir (its frames, tables, summary, checkpoint)",
+                             "", o->overwrite, &o->overwrite, nullptr));
   PetscCall(PetscOptionsEList("-kernel", "Smoothing kernel", "", kernels.data(), static_cast<PetscInt>(kernels.size()),
                               kernels[o->kernel], &o->kernel, nullptr));
   PetscCall(PetscOptionsReal("-h_over_dx", "Smoothing length over particle spacing (-1: support radius 3 dx)", "",
@@ -133,6 +154,13 @@ template <int D> struct Run {
     SPH_PETSC(read_driver_options(&opt));
     require(opt.t_end > 0, "-t_end", "positive", opt.t_end);
     require(opt.dt >= 0, "-dt", "non-negative", opt.dt);
+    require(opt.max_steps >= -1, "-max_steps", "-1 (no limit) or non-negative", opt.max_steps);
+    require(opt.output_interval == -1 || opt.output_interval >= 0, "-output_interval",
+            "-1 (t_end/20), 0 (first and last frame) or positive", opt.output_interval);
+    require(opt.checkpoint_interval == -1 || opt.checkpoint_interval >= 0, "-checkpoint_interval",
+            "-1 (with every frame), 0 (never) or positive", opt.checkpoint_interval);
+    require(opt.steady_tol == -1 || opt.steady_tol >= 0, "-steady_tol", "-1 (the case's default), 0 (off) or positive",
+            opt.steady_tol);
     require(opt.h_over_dx == -1 || opt.h_over_dx > 0, "-h_over_dx", "positive", opt.h_over_dx);
     require(opt.skin >= 0 && opt.skin <= 1, "-neighbour_skin", "in [0, 1]", opt.skin);
     require(opt.partition_interval >= 0, "-partition_interval", "non-negative", opt.partition_interval);
@@ -151,6 +179,15 @@ template <int D> struct Run {
 
 template <int D> void Run<D>::execute() {
   const auto wall_start = std::chrono::steady_clock::now();
+  // A restart must continue the run that wrote the checkpoint: refused before any work if the
+  // checkpoint is damaged or was written with other options.
+  const bool restarting = opt.restart[0] != '\0';
+  const nlohmann::json identity = run_identity(names.case_name, names.solver_name, D, scene_case->parameters());
+  nlohmann::json resumed_run = nlohmann::json::object();
+  if (restarting) {
+    resumed_run = read_checkpoint_header(opt.restart).value("run", nlohmann::json::object());
+    check_same_run(resumed_run.value("identity", nlohmann::json()), identity, opt.restart);
+  }
   Particles<D> P;
   Domain<D> domain;
   scene_case->create(P, domain);
@@ -180,22 +217,27 @@ template <int D> void Run<D>::execute() {
 
   // A restart overwrites the freshly set-up state with the checkpoint's, then brings it into the
   // canonical state, as the writing run did before writing it.
-  const bool restarting = opt.restart[0] != '\0';
   CheckpointState<D> resumed;
   if (restarting) {
     resumed = read_checkpoint(opt.restart, P, solver->checkpoint_fields());
     solver->restore_scalars(resumed.scalars);
     repartition();
   }
+  check_initial_state(P, resumed.t);
   const std::string checkpoint_path = output_dir + "/checkpoint.bin";
-  auto write_state = [&](double t_now, long step_now) {
-    repartition();
-    const LogEventScope log_checkpoint(LogEvent::Checkpoint);
-    write_checkpoint(checkpoint_path, P, solver->checkpoint_fields(), {t_now, step_now, solver->checkpoint_scalars()});
-  };
+  if (opt.dt > 0 && !opt.dt_force && opt.dt > solver->stable_dt()) {
+    std::ostringstream msg;
+    msg << "-dt " << opt.dt << " exceeds the scheme's stability limit " << solver->stable_dt()
+        << " at t = " << resumed.t << "; lower -dt (-dt 0 follows the limit) or pass -dt_force 1 to run it anyway";
+    throw Error(msg.str());
+  }
+  // Only now, with the input accepted, may an earlier run in output_dir go (-overwrite).
+  const bool in_place = restarting && is_in_directory(opt.restart, output_dir);
+  prepare_output_dir(output_dir, opt.overwrite, in_place);
 
   ParticleWriter<D> writer(output_dir);
   if (restarting) writer.resume(resumed.t);
+  if (in_place) remove_frames_from(output_dir, "particles", writer.frames_written());
   const std::vector<std::string> error_names = [&] {
     std::vector<std::string> v;
     for (const auto& e : scene_case->errors(P, 0.0)) v.push_back(e.first);
@@ -222,12 +264,35 @@ template <int D> void Run<D>::execute() {
   MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
   summary["mpi_ranks"] = ranks;
   summary["threads_per_rank"] = opt.threads;
+  summary["provenance"] = provenance(static_cast<int>(opt.threads));
 
   const Totals<D> initial = totals(P);
   SteadyState steady(opt.steady_tol);
   double t = resumed.t;
   long step = resumed.step;
   StepStats stats;
+  stats.from_json(resumed_run.value("ksp_statistics", nlohmann::json()));
+  steady.from_json(resumed_run.value("steady_state_window", nlohmann::json()));
+  // The runs that led to the checkpoint this one resumes, then this one.
+  nlohmann::json history = resumed_run.value("history", nlohmann::json::array());
+  auto this_segment = [&](const std::string& status) {
+    return nlohmann::json{{"status", status}, {"steps", {resumed.step, step}}, {"t", {resumed.t, t}},
+                          {"wall_time_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count()},
+                          {"mpi_ranks", ranks}, {"threads_per_rank", opt.threads}, {"version", program_version()},
+                          {"command_line", summary["provenance"]["command_line"]}};
+  };
+  long last_checkpoint_step = -1, failing_step = step + 1;
+  int interrupted = 0;  // the signal that stopped the run
+  auto write_state = [&](double t_now, long step_now, const std::string& why = "checkpointed") {
+    last_checkpoint_step = step_now;
+    repartition();
+    const LogEventScope log_checkpoint(LogEvent::Checkpoint);
+    nlohmann::json run{{"identity", identity}, {"ksp_statistics", stats.to_json()},
+                       {"steady_state_window", steady.to_json()}, {"history", history}};
+    run["history"].push_back(this_segment(why));
+    write_checkpoint(checkpoint_path, P, solver->checkpoint_fields(),
+                     {t_now, step_now, solver->checkpoint_scalars(), run});
+  };
   Progress progress(opt.progress, opt.t_end);
   const double frame_interval = opt.output_interval > 0 ? opt.output_interval : opt.t_end;
   double next_output = frame_interval * (std::floor(t / frame_interval * (1 + 1e-12)) + 1);
@@ -237,7 +302,18 @@ template <int D> void Run<D>::execute() {
   if (!restarting) writer.write(P, t);
   double last_frame_t = t;
   const double ke_bound = 1e3 * 0.5 * fluid_mass(P) * scene.physics.U * scene.physics.U;
+  // A -dt above the stability limit is refused at the start unless -dt_force; a forced one, or the
+  // limit falling below -dt later, is a warning, printed once and kept in summary.json.
   bool warned_dt = false;
+  auto warn_dt = [&](double stable) {
+    if (warned_dt) return;
+    std::ostringstream w;
+    w << "-dt " << opt.dt << " exceeds the scheme's stability limit " << stable << " at t = " << t
+      << "; the run may blow up";
+    PetscFPrintf(PETSC_COMM_WORLD, stderr, "sph: warning: %s\n", w.str().c_str());
+    summary["warnings"].push_back(w.str());
+    warned_dt = true;
+  };
   NeighbourCountCheck<D> check_neighbours(scene.physics.free_surface);
   check_neighbours(P, nh.list(), nh.support_radius());  // the reference counts
   const auto loop_start = std::chrono::steady_clock::now();
@@ -245,6 +321,8 @@ template <int D> void Run<D>::execute() {
     const double loop_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
     summary["status"] = status;
     if (!failure.empty()) summary["failure"] = failure;
+    summary["history"] = history;
+    summary["history"].push_back(this_segment(status));
     summary["steps"] = step;
     summary["t_final"] = t;
     summary["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -271,7 +349,12 @@ template <int D> void Run<D>::execute() {
       else summary["solver_parameters"][it.key()] = it.value();
     }
     summary["errors"] = nlohmann::json::object();
-    for (const auto& e : scene_case->errors(P, t)) summary["errors"][e.first] = e.second;
+    for (const auto& [name, value] : scene_case->errors(P, t)) {
+      summary["errors"][name] = value;  // NaN becomes null: a metric that could not be measured
+      if (std::isfinite(value)) continue;
+      const std::string why = scene_case->unmeasured_reason(name);
+      summary["errors_unmeasured"][name] = why.empty() ? "not a finite number at the end of the run" : why;
+    }
     write_json_file(output_dir + "/summary.json", summary);
   };
 
@@ -280,20 +363,18 @@ template <int D> void Run<D>::execute() {
     while (t < opt.t_end * (1.0 - 1e-12) && (opt.max_steps < 0 || step < opt.max_steps) && !steady.reached()) {
       const double stable = solver->stable_dt();
       double dt = opt.dt > 0 ? opt.dt : stable;
-      if (opt.dt > stable && !warned_dt) {
-        PetscFPrintf(PETSC_COMM_WORLD, stderr,
-                     "sph: warning: -dt %g exceeds the scheme's stability limit %g; the run may blow up\n", opt.dt, stable);
-        warned_dt = true;
-      }
+      if (opt.dt > stable) warn_dt(stable);
       // Equal steps that land on t_end: a last sliver of a step would be a different discretisation
       // (ISPH's pressure scales with 1/dt).
       const double remaining = opt.t_end - t;
       dt = remaining / std::ceil(remaining / dt * (1.0 - 1e-12));
       LogEventScope log_step(LogEvent::Step);
+      failing_step = step + 1;
       const StepReport report = solver->step(dt);
       log_step.end();
       t += dt;
       ++step;
+      failing_step = step;  // what fails from here on (checks, output) belongs to the step just made
       stats.add(report);
       if (step == resumed.step + 1) check_late_options(option_owners(names));
       LogEventScope log_diagnostics(LogEvent::Diagnostics);
@@ -321,18 +402,40 @@ template <int D> void Run<D>::execute() {
         write_state(t, step);
         while (next_checkpoint <= t * (1.0 + 1e-12)) next_checkpoint += checkpoint_interval;
       }
+      if ((interrupted = interrupt_requested())) break;  // all ranks see the same answer
+    }
+    if (interrupted) {
+      // Everything needed to look at the state reached and to resume it.
+      if (last_frame_t < t) writer.write(P, t), last_frame_t = t;
+      if (last_checkpoint_step != step) write_state(t, step, "interrupted (" + signal_name(interrupted) + ")");
     }
   } catch (const OptionError&) {
     throw;  // a mistake in the command line, not a failed run
   } catch (const Error& e) {
     std::ostringstream msg;
-    msg << "step " << step + 1 << " (t = " << t << "): " << e.what();
-    finish("failed", msg.str());
-    scene_case->write_outputs(P, t, output_dir);
-    writer.write(P, t);  // the state that failed, for inspection (the .pvd lists it last)
-    throw Error(msg.str() + " [earlier frames and the last checkpoint are kept in " + output_dir + "]");
+    msg << "step " << failing_step << " (t = " << t << "): " << e.what();
+    // The first failure is the one to report: later ones (a full disk fails every write) are noted.
+    std::string also;
+    try {
+      finish("failed", msg.str());
+      scene_case->write_outputs(P, t, output_dir);
+      writer.write(P, t);  // the state that failed, for inspection (the .pvd lists it last)
+    } catch (const Error& later) {
+      also = "; writing the failed run's outputs failed too: " + std::string(later.what());
+    }
+    throw Error(msg.str() + also + " [earlier frames and the last checkpoint are kept in " + output_dir + "]");
   }
   progress.done(step, t);
+  if (interrupted) {
+    summary["signal"] = signal_name(interrupted);
+    if (opt.steady_tol > 0) summary["steady_state_reached"] = steady.reached();
+    scene_case->write_outputs(P, t, output_dir);
+    finish("interrupted", "");
+    std::ostringstream msg;
+    msg << "interrupted by " << signal_name(interrupted) << " after step " << step << " (t = " << t
+        << "); frame, checkpoint and summary.json written; resume with -restart " << checkpoint_path;
+    throw Interrupted{interrupted, msg.str()};
+  }
   const LogEventScope log_output(LogEvent::Output);
   if (opt.steady_tol > 0) summary["steady_state_reached"] = steady.reached();
   scene_case->write_outputs(P, t, output_dir);

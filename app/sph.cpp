@@ -13,6 +13,7 @@
 #include "cases/registry.hpp"
 #include "solvers/registry.hpp"
 #include "src/core/error.hpp"
+#include "src/run/interrupt.hpp"
 
 namespace {
 
@@ -59,6 +60,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   sph::install_error_handler();
+  sph::install_interrupt_handlers();
   int status = 0;
   try {
     sph::RunOptions names;
@@ -69,6 +71,9 @@ int main(int argc, char** argv) {
     SPH_PETSC(PetscOptionsHasHelp(nullptr, &help));
     if (help) sph::print_all_options(static_cast<int>(dim));
     else sph::run_simulation(names, static_cast<int>(dim));
+  } catch (const sph::Interrupted& i) {
+    PetscFPrintf(PETSC_COMM_WORLD, stderr, "sph: %s\n", i.message.c_str());
+    status = 128 + i.signal;
   } catch (const sph::Error& e) {
     PetscFPrintf(PETSC_COMM_WORLD, stderr, "sph: error: %s\n", e.what());
     status = 1;

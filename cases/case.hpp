@@ -30,6 +30,9 @@ template <int D> class Case {
 
   // Error norms against the reference at time t, reduced over all ranks; empty without a reference.
   virtual std::map<std::string, double> errors(const Particles<D>& P, double t) const { return {}; }
+  // Why the error norm `name` of the last errors() call is NaN (it could not be measured), for
+  // summary.json; empty when the case gives no reason.
+  virtual std::string unmeasured_reason(const std::string& name) const { return ""; }
 
   // Thickness of the wall-particle layers (0 without walls): the kernel support must fit in it.
   virtual double wall_thickness() const { return 0.0; }

@@ -5,7 +5,11 @@
 #include <fstream>
 #include <string>
 
+#include <iterator>
+
 #include <nlohmann/json.hpp>
+
+#include "src/io/checkpoint.hpp"
 
 namespace sph::testing {
 
@@ -27,6 +31,18 @@ inline RunResult run_sph(const std::string& tag, const std::string& args) {
   std::ifstream in(dir + "/summary.json");
   if (in) in >> r.summary;
   return r;
+}
+
+// A checkpoint's state: its field data, time, step and solver scalars, without the record of the runs
+// that wrote it (history, wall times), which differs between a whole run and a resumed one.
+// Empty when the file is missing or damaged.
+inline std::string checkpoint_state(const std::string& path) {
+  const std::size_t data = sph::checkpoint_data_bytes(path);
+  if (data == 0) return "";
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto header = nlohmann::json::parse(bytes.substr(data, bytes.size() - data - 24));
+  return bytes.substr(0, data) + header["t"].dump() + header["step"].dump() + header["scalars"].dump();
 }
 
 }  // namespace sph::testing

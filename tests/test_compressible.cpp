@@ -335,11 +335,8 @@ TEST(Compressible, RestartMatchesUninterruptedRunExactly) {
   ASSERT_EQ(b.exit_code, 0);
   const auto c = run_sph("compressible_restart_c", common + " -restart " + b.output_dir + "/checkpoint.bin");
   ASSERT_EQ(c.exit_code, 0);
-  auto slurp = [](const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  };
-  const std::string ca = slurp(a.output_dir + "/checkpoint.bin"), cc = slurp(c.output_dir + "/checkpoint.bin");
+  const std::string ca = sph::testing::checkpoint_state(a.output_dir + "/checkpoint.bin"),
+                    cc = sph::testing::checkpoint_state(c.output_dir + "/checkpoint.bin");
   ASSERT_FALSE(ca.empty());
   EXPECT_TRUE(ca == cc) << "final checkpoints differ";
   EXPECT_EQ(c.summary["errors"], a.summary["errors"]);

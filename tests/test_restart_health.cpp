@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <iterator>
 #include <limits>
 
 #include "run_sph.hpp"
@@ -13,11 +12,6 @@
 namespace {
 
 using sph::testing::run_sph;
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 // Run A goes straight to t = 0.2; run B stops at step 20 (t = 0.1, where a checkpoint is due);
 // run C resumes B's checkpoint to t = 0.2. C's final checkpoint and time series must equal A's.
@@ -32,10 +26,16 @@ void expect_restart_is_exact(const std::string& solver, double dt) {
   const auto c = run_sph("restart_c_" + solver, common + " -restart " + b.output_dir + "/checkpoint.bin");
   ASSERT_EQ(c.exit_code, 0);
   EXPECT_EQ(c.summary["steps"], a.summary["steps"]);
-  const std::string ca = slurp(a.output_dir + "/checkpoint.bin"), cc = slurp(c.output_dir + "/checkpoint.bin");
+  const std::string ca = sph::testing::checkpoint_state(a.output_dir + "/checkpoint.bin"),
+                    cc = sph::testing::checkpoint_state(c.output_dir + "/checkpoint.bin");
   ASSERT_FALSE(ca.empty());
   EXPECT_TRUE(ca == cc) << "final checkpoints differ";
   EXPECT_EQ(c.summary["errors"], a.summary["errors"]);
+  // Statistics over all steps, and the history of the two runs that made C.
+  EXPECT_EQ(c.summary.value("ksp", nlohmann::json()).dump(), a.summary.value("ksp", nlohmann::json()).dump());
+  ASSERT_EQ(c.summary["history"].size(), 2u);
+  EXPECT_EQ(c.summary["history"][0]["steps"], nlohmann::json({0, 20}));
+  EXPECT_EQ(c.summary["history"][1]["steps"], nlohmann::json({20, 40}));
 }
 
 TEST(Restart, IsphMatchesUninterruptedRunExactly) { expect_restart_is_exact("isph", 0.005); }
@@ -80,8 +80,9 @@ TEST(Health, EnergyGrowthStopsTheRun) {
 }
 
 TEST(Health, BlowUpEndsWithFailedSummaryAndFinalFrame) {
-  // A time step ten times the acoustic limit: WCSPH must blow up, and the run must say so.
-  const auto r = run_sph("blowup", "-case taylor_green -solver wcsph -nx 16 -t_end 1 -dt 0.02 -output_interval 0.5");
+  // A time step ten times the acoustic limit (forced past the start-up refusal): WCSPH must blow up,
+  // and the run must say so.
+  const auto r = run_sph("blowup", "-case taylor_green -solver wcsph -nx 16 -t_end 1 -dt 0.02 -dt_force 1 -output_interval 0.5");
   EXPECT_NE(r.exit_code, 0);
   ASSERT_FALSE(r.summary.is_null());
   EXPECT_EQ(r.summary["status"], "failed");

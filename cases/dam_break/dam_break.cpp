@@ -1,7 +1,9 @@
 #include "cases/dam_break/dam_break.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 #include "cases/common/lattice.hpp"
 #include "cases/common/wall_options.hpp"
@@ -95,7 +97,18 @@ std::map<std::string, double> DamBreak::errors(const Particles<2>& P, double t) 
       break;
     }
   }
-  return {{"front_position", Z}, {"front_position_rel", count ? sum / count : 0.0}};
+  // No experimental point reached yet: no error to report (NaN, null in summary.json), not 0.
+  first_measured_T_ = *std::min_element(Te.begin(), Te.end());
+  return {{"front_position", Z}, {"front_position_rel", count ? sum / count : std::nan("")}};
+}
+
+std::string DamBreak::unmeasured_reason(const std::string& name) const {
+  if (name != "front_position_rel") return "";
+  std::ostringstream why;
+  why << "the run ended at T = " << (history_.empty() ? 0.0 : history_.back().first)
+      << ", before the front reached the first measured point of Martin & Moyce (T = " << first_measured_T_
+      << "); raise -t_end";
+  return why.str();
 }
 
 void DamBreak::write_outputs(const Particles<2>& P, double t, const std::string& dir) const {

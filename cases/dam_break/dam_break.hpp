@@ -21,6 +21,7 @@ class DamBreak : public Case<2> {
   double default_t_end() const override;  // T = 3
   double wall_thickness() const override { return wall_layers_ * spacing(); }
   std::map<std::string, double> errors(const Particles<2>& P, double t) const override;
+  std::string unmeasured_reason(const std::string& name) const override;
   void write_outputs(const Particles<2>& P, double t, const std::string& dir) const override;
   nlohmann::json parameters() const override;
 
@@ -31,6 +32,7 @@ class DamBreak : public Case<2> {
   PetscInt nx_ = 20, wall_layers_ = 4;
   PetscReal a_ = 1.0, g_ = 1.0, re_ = 1000.0, rho0_ = 1.0;
   mutable std::vector<std::pair<double, double>> history_;  // (T, Z) as the run advances
+  mutable double first_measured_T_ = 0.0;                    // earliest experimental point used
 };
 
 }  // namespace sph

@@ -1,6 +1,7 @@
 #include "solvers/wcsph/wcsph_solver.hpp"
 
 #include <cmath>
+#include <sstream>
 
 #include "src/boundary/adami_wall.hpp"
 #include "src/core/options.hpp"
@@ -87,6 +88,17 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
   Particles<D>& P = scene.particles;
   eos_.rho0 = scene.physics.rho0;
   eos_.c0 = c0_ > 0 ? c0_ : c0_factor_ * scene.physics.U;
+  // The Tait EOS cannot give a density for p <= -B: such a start would be NaN from t = 0.
+  double p_min = 0.0;
+  for (std::size_t i = 0; i < P.n_owned; ++i) p_min = std::min(p_min, P.p[i]);
+  MPI_Allreduce(MPI_IN_PLACE, &p_min, 1, MPI_DOUBLE, MPI_MIN, PETSC_COMM_WORLD);
+  if (p_min <= -eos_.B()) {
+    std::ostringstream msg;
+    msg << "the sound speed c0 = " << eos_.c0 << " is too low for this scene: its initial pressure " << p_min
+        << " is below -rho0 c0^2/gamma, where the Tait EOS has no density (the initial state would be NaN); raise "
+        << (c0_ > 0 ? "-c0" : "-c0_factor") << " so that c0 > " << std::sqrt(-p_min * eos_.gamma / eos_.rho0);
+    throw Error(msg.str());
+  }
   for (std::size_t i = 0; i < P.n_owned; ++i) {
     // The case's initial pressure sets the density (inverse EOS); particle volumes stay as laid out.
     const double rho = eos_.density(P.p[i]);

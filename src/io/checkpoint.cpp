@@ -4,9 +4,18 @@
 #include <petscvec.h>
 #include <petscviewer.h>
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <csignal>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 
+#include "src/core/collective.hpp"
 #include "src/core/error.hpp"
 #include "src/io/json_file.hpp"
 
@@ -67,48 +76,188 @@ PetscViewer open_viewer(const std::string& path, PetscFileMode mode) {
   return viewer;
 }
 
+PetscMPIInt world_rank() {
+  PetscMPIInt rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  return rank;
+}
+
+constexpr char kMagic[8] = {'S', 'P', 'H', 'C', 'K', 'P', 'T', '1'};
+constexpr std::size_t kTrailer = 24;  // u64 header length, u64 header checksum, magic
+constexpr std::uint64_t kFnvStart = 1469598103934665603ull;
+
+std::uint64_t fnv1a(std::uint64_t h, const unsigned char* p, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) h = (h ^ p[k]) * 1099511628211ull;
+  return h;
+}
+std::uint64_t fnv1a(const std::string& s) {
+  return fnv1a(kFnvStart, reinterpret_cast<const unsigned char*>(s.data()), s.size());
+}
+
+// 64-bit FNV-1a over the first `bytes` bytes of an open file; false if they cannot all be read.
+bool checksum(std::FILE* f, std::uint64_t bytes, std::uint64_t* hash) {
+  std::uint64_t h = kFnvStart;
+  std::vector<unsigned char> buf(1 << 20);
+  std::rewind(f);
+  while (bytes > 0) {
+    const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(bytes, buf.size()));
+    if (std::fread(buf.data(), 1, want, f) != want) return false;
+    h = fnv1a(h, buf.data(), want);
+    bytes -= want;
+  }
+  *hash = h;
+  return true;
+}
+
+void put_u64(unsigned char* out, std::uint64_t v) {
+  for (int k = 0; k < 8; ++k) out[k] = static_cast<unsigned char>(v >> (8 * k));  // little-endian
+}
+std::uint64_t get_u64(const unsigned char* in) {
+  std::uint64_t v = 0;
+  for (int k = 0; k < 8; ++k) v |= static_cast<std::uint64_t>(in[k]) << (8 * k);
+  return v;
+}
+
+// Fault injection for the crash tests: SPH_FAULT_CHECKPOINT="<stage>:<n>" acts at that stage of the
+// process's n-th checkpoint write. Stages that kill the process (as a power cut would): data (vectors
+// written, no trailer yet), trailer (complete temporary file, not yet renamed), renamed. Stage full:
+// the trailer's write fails with ENOSPC, as on a full disk.
+bool fault_at(const char* stage, int write_number) {
+  const char* spec = std::getenv("SPH_FAULT_CHECKPOINT");
+  if (!spec) return false;
+  const std::string s = spec;
+  const auto colon = s.find(':');
+  return colon != std::string::npos && s.substr(0, colon) == stage && std::atoi(s.c_str() + colon + 1) == write_number;
+}
+void fault_point(const char* stage, int write_number) {
+  if (fault_at(stage, write_number)) std::raise(SIGKILL);
+}
+
+// Appends header + trailer to the data in `tmp`, syncs it and renames it over `path`. Rank 0 only;
+// returns an error message, empty on success.
+std::string seal(const std::string& tmp, const std::string& path, nlohmann::json header, int write_number) {
+  std::FILE* f = std::fopen(tmp.c_str(), "r+b");
+  if (!f) return "cannot reopen " + tmp + " (" + std::strerror(errno) + ")";
+  std::fseek(f, 0, SEEK_END);
+  const std::uint64_t data_bytes = static_cast<std::uint64_t>(std::ftell(f));
+  std::uint64_t hash = 0;
+  if (!checksum(f, data_bytes, &hash)) {
+    std::fclose(f);
+    return "cannot read back " + tmp;
+  }
+  fault_point("data", write_number);
+  header["data_bytes"] = data_bytes;
+  header["data_checksum"] = hash;
+  const std::string text = header.dump();
+  unsigned char tail[kTrailer];
+  put_u64(tail, text.size());
+  put_u64(tail + 8, fnv1a(text));
+  std::memcpy(tail + 16, kMagic, 8);
+  std::fseek(f, 0, SEEK_END);
+  bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fwrite(tail, 1, kTrailer, f) == kTrailer &&
+            std::fflush(f) == 0 && fsync(fileno(f)) == 0;
+  int write_errno = errno;
+  if (fault_at("full", write_number)) ok = false, write_errno = ENOSPC;
+  ok = (std::fclose(f) == 0) && ok;
+  if (!ok) return std::strerror(write_errno);
+  fault_point("trailer", write_number);
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) return std::string("renaming the temporary file failed (") + std::strerror(errno) + ")";
+  fault_point("renamed", write_number);
+  return "";
+}
+
+// Reads and checks the header of `path`. Rank 0 only; returns an error message, empty on success.
+std::string unseal(const std::string& path, std::string* header_text) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return "cannot read checkpoint " + path + "; check the -restart path";
+  const std::string broken = "checkpoint " + path + " is damaged or incomplete";
+  std::fseek(f, 0, SEEK_END);
+  const long size = std::ftell(f);
+  unsigned char tail[kTrailer];
+  std::string err;
+  if (size < static_cast<long>(kTrailer) || std::fseek(f, size - static_cast<long>(kTrailer), SEEK_SET) != 0 ||
+      std::fread(tail, 1, kTrailer, f) != kTrailer || std::memcmp(tail + 16, kMagic, 8) != 0) {
+    std::fclose(f);
+    return broken + " (no header at its end: truncated, or written by an older version); start a new run or "
+                    "restart from another checkpoint";
+  }
+  const std::uint64_t len = get_u64(tail);
+  if (len > static_cast<std::uint64_t>(size) - kTrailer) {
+    std::fclose(f);
+    return broken + " (header length out of range)";
+  }
+  const std::uint64_t data_bytes = static_cast<std::uint64_t>(size) - kTrailer - len;
+  header_text->assign(len, '\0');
+  std::fseek(f, static_cast<long>(data_bytes), SEEK_SET);
+  if (std::fread(header_text->data(), 1, len, f) != len) err = broken + " (header unreadable)";
+  else if (fnv1a(*header_text) != get_u64(tail + 8))
+    err = "checkpoint " + path + " fails its header checksum (the header was changed after it was written); "
+          "restart from another checkpoint or start a new run";
+  nlohmann::json header;
+  if (err.empty()) {
+    header = nlohmann::json::parse(*header_text, nullptr, false);
+    if (header.is_discarded() || !header.is_object() || !header.contains("data_checksum"))
+      err = broken + " (header is not valid)";
+  }
+  std::uint64_t hash = 0;
+  if (err.empty() && (header.value("data_bytes", std::uint64_t(0)) != data_bytes || !checksum(f, data_bytes, &hash) ||
+                      header["data_checksum"].get<std::uint64_t>() != hash))
+    err = "checkpoint " + path + " fails its checksum (the data was changed or damaged after it was written); "
+          "restart from another checkpoint or start a new run";
+  std::fclose(f);
+  return err;
+}
+
 }  // namespace
 
 template <int D>
 void write_checkpoint(const std::string& path, Particles<D>& P, const std::vector<CheckpointField>& extra,
                       const CheckpointState<D>& state) {
+  static int writes = 0;
+  ++writes;
   std::vector<double> kind(P.kind.begin(), P.kind.begin() + P.n_owned);
   std::vector<CheckpointField> fields = particle_fields(P, kind);
   fields.insert(fields.end(), extra.begin(), extra.end());
   const std::string tmp = path + ".tmp";
-  PetscViewer viewer = open_viewer(tmp, FILE_MODE_WRITE);
-  nlohmann::json header{{"t", state.t}, {"step", state.step}, {"n_global", P.n_global}, {"dim", D},
-                        {"scalars", state.scalars}, {"fields", nlohmann::json::array()}};
-  for (const CheckpointField& f : fields) {
-    ::Vec vec;
-    SPH_PETSC(VecCreateMPI(PETSC_COMM_WORLD, id_share(P) * f.components, PETSC_DETERMINE, &vec));
-    SPH_PETSC(VecSetBlockSize(vec, f.components));
-    transfer(vec, P, f.data, f.components, true);
-    SPH_PETSC(VecView(vec, viewer));
-    SPH_PETSC(VecDestroy(&vec));
-    header["fields"].push_back({{"name", f.name}, {"components", f.components}});
+  const bool root = world_rank() == 0;
+  nlohmann::json header{{"format", "sph checkpoint 1"}, {"t", state.t}, {"step", state.step}, {"n_global", P.n_global},
+                        {"dim", D}, {"scalars", state.scalars}, {"run", state.run}, {"fields", nlohmann::json::array()}};
+  std::string error;
+  try {
+    PetscViewer viewer = open_viewer(tmp, FILE_MODE_WRITE);
+    for (const CheckpointField& f : fields) {
+      ::Vec vec;
+      SPH_PETSC(VecCreateMPI(PETSC_COMM_WORLD, id_share(P) * f.components, PETSC_DETERMINE, &vec));
+      SPH_PETSC(VecSetBlockSize(vec, f.components));
+      transfer(vec, P, f.data, f.components, true);
+      SPH_PETSC(VecView(vec, viewer));
+      SPH_PETSC(VecDestroy(&vec));
+      header["fields"].push_back({{"name", f.name}, {"components", f.components}});
+    }
+    SPH_PETSC(PetscViewerDestroy(&viewer));
+  } catch (const Error& e) {
+    error = e.what();
   }
-  SPH_PETSC(PetscViewerDestroy(&viewer));
-  PetscMPIInt rank;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  if (rank == 0) {
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) throw Error("cannot write checkpoint " + path);
+  if (root && error.empty()) error = seal(tmp, path, header, writes);
+  broadcast_from_root(error);
+  if (!error.empty()) {
+    if (root) std::remove(tmp.c_str());
+    throw Error("writing checkpoint " + path + " failed: " + error +
+                "; free disk space or choose another -output_dir (the previous checkpoint is kept)");
   }
-  write_json_file(path + ".json", header);
+}
+
+nlohmann::json read_checkpoint_header(const std::string& path) {
+  std::string text, error;
+  if (world_rank() == 0) error = unseal(path, &text);
+  throw_if_root_failed(error);
+  broadcast_from_root(text);
+  return nlohmann::json::parse(text);
 }
 
 template <int D>
 CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P, const std::vector<CheckpointField>& extra) {
-  nlohmann::json header;
-  {
-    std::ifstream in(path + ".json");
-    if (!in) throw Error("cannot read checkpoint header " + path + ".json; check the -restart path");
-    try {
-      in >> header;
-    } catch (const std::exception&) {
-      throw Error("checkpoint header " + path + ".json is not valid JSON");
-    }
-  }
+  const nlohmann::json header = read_checkpoint_header(path);
   if (header.value("dim", 0) != D || header.value("n_global", -1L) != static_cast<long>(P.n_global))
     throw Error("checkpoint " + path + " holds " + std::to_string(header.value("n_global", -1L)) + " particles in " +
                 std::to_string(header.value("dim", 0)) + "D, this run has " + std::to_string(P.n_global) + " in " +
@@ -139,7 +288,14 @@ CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P, con
   state.t = header["t"];
   state.step = header["step"];
   state.scalars = header["scalars"];
+  state.run = header.value("run", nlohmann::json::object());
   return state;
+}
+
+std::size_t checkpoint_data_bytes(const std::string& path) {
+  std::string text;
+  if (!unseal(path, &text).empty()) return 0;
+  return nlohmann::json::parse(text).value("data_bytes", std::size_t(0));
 }
 
 template void write_checkpoint<1>(const std::string&, Particles<1>&, const std::vector<CheckpointField>&,

@@ -1,8 +1,14 @@
 #pragma once
-// Checkpoints for restart: every particle field in permanent-id order, written with PETSc's binary
-// viewer (so a checkpoint written on N ranks can be read on M), plus a JSON header with the time,
-// step, field names and whatever scalars the solver needs. Written to a temporary name and renamed,
-// so the previous checkpoint survives a crash during writing.
+// Checkpoints for restart, one self-checking file:
+//
+//   [every particle field in permanent-id order, PETSc binary vectors][header JSON][u64 length]["SPHCKPT1"]
+//
+// The vectors come from PETSc's binary viewer, so a checkpoint written on N ranks reads on M. The
+// header (time, step, field names, the solver's scalars, the driver's record of the run) carries the
+// size and a 64-bit FNV-1a checksum of the data before it: a changed byte, a truncated file or a
+// header from another write is refused on read. Data and header live in one file, written to
+// <path>.tmp, synced and renamed, so a crash at any point leaves the previous checkpoint or the new
+// one, never a mix, and no temporary file survives a failed write.
 #include <string>
 #include <vector>
 
@@ -22,17 +28,27 @@ struct CheckpointField {
 template <int D> struct CheckpointState {
   double t = 0.0;
   long step = 0;
-  nlohmann::json scalars = nlohmann::json::object();  // solver and driver scalars
+  nlohmann::json scalars = nlohmann::json::object();  // the solver's scalars
+  nlohmann::json run = nlohmann::json::object();      // the driver's: identity, statistics, history
 };
 
-// Writes <path> (binary) and <path>.json.
+// Writes <path> (collective). Throws sph::Error naming the checkpoint when any part fails, after
+// removing <path>.tmp; the previous <path> is then untouched.
 template <int D>
 void write_checkpoint(const std::string& path, Particles<D>& P, const std::vector<CheckpointField>& extra,
                       const CheckpointState<D>& state);
 
+// The header of a checkpoint after checking its trailer and the data's checksum (collective: rank 0
+// reads, every rank gets the header). Throws sph::Error naming the file and what is wrong with it.
+nlohmann::json read_checkpoint_header(const std::string& path);
+
 // Reads a checkpoint into particles already created with the same global count (any split over ranks).
-// Throws sph::Error when the file does not match the run (count, fields).
+// Throws sph::Error when the file is damaged or does not match the run (count, fields).
 template <int D>
 CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P, const std::vector<CheckpointField>& extra);
+
+// Bytes of the field data at the start of a checkpoint file (what two runs' checkpoints share when
+// they reached the same state), or 0 when the file has no valid trailer. Not collective.
+std::size_t checkpoint_data_bytes(const std::string& path);
 
 }  // namespace sph

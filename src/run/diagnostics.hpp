@@ -63,6 +63,18 @@ template <int D> void check_health(const Particles<D>& P, const Domain<D>& domai
                 "blew up; reduce -cfl or -dt");
 }
 
+// The state a run starts from (after the solver's set-up, or read from a checkpoint) must be finite:
+// a NaN there is the input's fault, not the time step's.
+template <int D> void check_initial_state(const Particles<D>& P, double t) {
+  int bad = 0;
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (!P.x[i].allFinite() || !P.v[i].allFinite() || !std::isfinite(P.p[i]) || !std::isfinite(P.rho[i])) bad = 1;
+  MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  if (bad)
+    throw Error("the initial state (t = " + std::to_string(t) + ") already holds NaN/Inf positions, velocities, densities "
+                "or pressures, before any step: the case's start does not fit the solver's options; check them");
+}
+
 // Neighbour-count collapse. The fluid particles' mean count of neighbours inside the kernel support
 // falling below half its value at the start means the particles scattered (a blow-up under way, or a
 // free surface torn apart); in scenes without a free surface, a fluid particle left with fewer than a

@@ -1,0 +1,44 @@
+#include "src/run/interrupt.hpp"
+
+#include <petscsys.h>
+
+#include <csignal>
+#include <unistd.h>
+
+namespace sph {
+
+namespace {
+volatile std::sig_atomic_t g_signal = 0;
+
+extern "C" void record_signal(int sig) {
+  if (g_signal != 0) {
+    std::signal(sig, SIG_DFL);  // the second one: leave now, the default way
+    std::raise(sig);
+    return;
+  }
+  g_signal = sig;
+}
+}  // namespace
+
+void install_interrupt_handlers() {
+  struct sigaction action {};
+  action.sa_handler = record_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;  // system calls in progress (file writes, MPI) go on
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+std::string signal_name(int signal) {
+  if (signal == SIGINT) return "SIGINT";
+  if (signal == SIGTERM) return "SIGTERM";
+  return "signal " + std::to_string(signal);
+}
+
+int interrupt_requested() {
+  int mine = static_cast<int>(g_signal), any = 0;
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  return any;
+}
+
+}  // namespace sph

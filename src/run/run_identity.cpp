@@ -1,0 +1,120 @@
+#include "src/run/run_identity.hpp"
+
+#include <petscsys.h>
+
+#include <cctype>
+#include <cstdlib>
+#include <set>
+#include <sstream>
+
+#include "src/core/error.hpp"
+
+namespace sph {
+
+namespace {
+
+// Options that steer a run without changing what it computes: a restart may change them (e.g. a
+// later -t_end to continue a run).
+bool steers_only(const std::string& name) {
+  static const std::set<std::string> exact = {
+      "t_end",  "max_steps", "output_dir", "output_interval", "checkpoint_interval", "progress", "threads",
+      "partition_interval", "restart", "overwrite", "steady_tol", "dt_force", "case", "solver", "dim", "help",
+      "version", "options_file", "options_file_yaml", "skip_petscrc"};
+  static const char* prefixes[] = {"log", "info", "malloc", "options_", "ksp_monitor", "ksp_view", "ksp_converged_reason",
+                                   "ksp_converged_rate", "mat_view", "vec_view", "pc_view", "memory_view", "objects_dump",
+                                   "on_error", "fp_trap", "no_signal_handler", "use_gpu_aware_mpi", "citations",
+                                   "error_output", "saws", "check_pointer_intensity", "mpi_linear_solver_server", "viewer"};
+  if (exact.count(name)) return true;
+  for (const char* p : prefixes)
+    if (name.rfind(p, 0) == 0) return true;
+  return false;
+}
+
+bool is_option_name(const std::string& token) {
+  return token.size() > 1 && token[0] == '-' && !std::isdigit(static_cast<unsigned char>(token[1])) && token[1] != '.';
+}
+
+// An option's value in a form where 0.01 == 1e-2 and a bare flag == true == 1.
+std::string normalised(const nlohmann::json& v) {
+  if (v.is_null()) return "1";
+  std::string s = v.get<std::string>();
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (s == "true" || s == "yes") return "1";
+  if (s == "false" || s == "no") return "0";
+  char* end = nullptr;
+  const double x = std::strtod(s.c_str(), &end);
+  if (!s.empty() && end && *end == '\0') {
+    std::ostringstream out;
+    out.precision(17);
+    out << x;
+    return out.str();
+  }
+  return s;
+}
+
+std::string shown(const nlohmann::json& obj, const std::string& key) {
+  if (!obj.contains(key)) return "-" + key + " unset (its default)";
+  const nlohmann::json& v = obj[key];
+  return "-" + key + " " + (v.is_null() ? std::string("(flag)") : v.is_string() ? v.get<std::string>() : v.dump());
+}
+
+[[noreturn]] void refuse(const std::string& path, const std::string& what_then, const std::string& what_now,
+                         const std::string& option) {
+  throw Error("checkpoint " + path + " was written with " + what_then + ", this run has " + what_now +
+              "; restart with the same -" + option + " or start a new run without -restart");
+}
+
+}  // namespace
+
+nlohmann::json options_database() {
+  char* all = nullptr;
+  SPH_PETSC(PetscOptionsGetAll(nullptr, &all));
+  std::istringstream in(all ? all : "");
+  PetscFree(all);
+  nlohmann::json db = nlohmann::json::object();
+  std::string token, name;
+  while (in >> token) {
+    if (is_option_name(token)) {
+      name = token.substr(1);
+      db[name] = nullptr;
+    } else if (!name.empty()) {
+      db[name] = db[name].is_null() ? token : db[name].get<std::string>() + " " + token;
+    }
+  }
+  return db;
+}
+
+nlohmann::json run_identity(const std::string& case_name, const std::string& solver_name, int dim,
+                            const nlohmann::json& case_parameters) {
+  nlohmann::json options = nlohmann::json::object();
+  const nlohmann::json db = options_database();
+  for (const auto& [name, value] : db.items())
+    if (!steers_only(name)) options[name] = value;
+  return {{"case", case_name}, {"solver", solver_name}, {"dim", dim}, {"parameters", case_parameters},
+          {"options", options}};
+}
+
+void check_same_run(const nlohmann::json& saved, const nlohmann::json& now, const std::string& path) {
+  if (!saved.is_object() || !saved.contains("options"))
+    throw Error("checkpoint " + path + " does not record the options it was written with; start a new run");
+  for (const char* key : {"case", "solver", "dim"})
+    if (saved[key] != now[key])
+      refuse(path, std::string("-") + key + " " + (saved[key].is_string() ? saved[key].get<std::string>() : saved[key].dump()),
+             std::string("-") + key + " " + (now[key].is_string() ? now[key].get<std::string>() : now[key].dump()), key);
+  const nlohmann::json &a = saved["options"], &b = now["options"];
+  const nlohmann::json &pa = saved["parameters"], &pb = now["parameters"];
+  std::set<std::string> names;
+  for (const auto& [name, value] : a.items()) names.insert(name);
+  for (const auto& [name, value] : b.items()) names.insert(name);
+  for (const std::string& name : names) {
+    if (a.contains(name) && b.contains(name) && normalised(a[name]) == normalised(b[name])) continue;
+    // Given on one side only: the same if the case's effective value agrees (-re 100 is the default).
+    if (pa.contains(name) && pb.contains(name) && pa[name] == pb[name]) continue;
+    refuse(path, shown(a, name), shown(b, name), name);
+  }
+  for (const auto& [name, value] : pa.items())
+    if (!pb.contains(name) || pb[name] != value)
+      refuse(path, name + " = " + value.dump(), name + " = " + (pb.contains(name) ? pb[name].dump() : "unset"), name);
+}
+
+}  // namespace sph

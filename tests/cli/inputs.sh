@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Input refused at the start, naming the option and the fix, before anything is written; a forced
+# -dt runs with its warning kept in summary.json; a checkpoint write that fails (full disk, injected)
+# is named, leaves a summary and no temporary file.   usage: inputs.sh <sph executable> <source dir>
+set -u
+sph="$1"; src="$2"; tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+fail=0
+source "$(dirname "$0")/lib/expect.sh"
+small="-case taylor_green -nx 8 -t_end 0.02 -progress 0"
+expect_error "-output_interval must be -1 .* or positive \(got -2\)" $small -output_interval -2 -output_dir "$tmp/a"
+expect_error "-checkpoint_interval must be -1 .* \(got -5\)" $small -checkpoint_interval -5 -output_dir "$tmp/a"
+expect_error "-steady_tol must be -1 .* \(got -3\)" $small -steady_tol -3 -output_dir "$tmp/a"
+expect_error "-max_steps must be -1 .* \(got -4\)" $small -max_steps -4 -output_dir "$tmp/a"
+expect_error "raise -c0 so that c0 > " -case taylor_green -solver wcsph -c0 0.01 -nx 8 -t_end 0.02 -progress 0 -output_dir "$tmp/a"
+expect_error "-dt 0.1 exceeds the scheme's stability limit .*-dt_force 1" $small -dt 0.1 -output_dir "$tmp/a"
+[ -e "$tmp/a" ] && { echo "FAIL: a refused run created its output directory"; fail=1; }
+expect_ok $small -t_end 0.1 -dt 0.05 -dt_force 1 -output_dir "$tmp/forced"
+expect_json "$tmp/forced/summary.json" "s['status'] == 'completed' and 'stability limit' in s['warnings'][0]" "forced -dt: warning in summary.json"
+
+# The second checkpoint write fails as on a full disk.
+SPH_FAULT_CHECKPOINT=full:2 "$sph" $small -t_end 0.05 -checkpoint_interval 0.01 -output_dir "$tmp/full" 2>"$tmp/err"
+rc=$?
+if [ $rc -ne 0 ] && [ "$(grep -c . "$tmp/err")" -eq 1 ] && grep -q "writing checkpoint .*checkpoint.bin failed: No space left" "$tmp/err"
+then echo "ok: full disk -> $(cat "$tmp/err")"; else echo "FAIL: full disk -> rc=$rc:"; cat "$tmp/err"; fail=1; fi
+expect_json "$tmp/full/summary.json" "s['status'] == 'failed' and 'writing checkpoint' in s['failure']" "full disk: failed summary names the checkpoint"
+[ ! -e "$tmp/full/checkpoint.bin.tmp" ] && [ -s "$tmp/full/checkpoint.bin" ] || { echo "FAIL: full disk: .tmp left or the first checkpoint lost"; fail=1; }
+exit $fail
