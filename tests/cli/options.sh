@@ -4,19 +4,9 @@
 set -u
 sph="$1"; src="$2"; tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail=0
-# expect_error <pattern> <args...>: exit code non-zero, exactly one line on stderr matching pattern
-expect_error() {
-  local pattern="$1"; shift
-  "$sph" "$@" -output_dir "$tmp/out" >"$tmp/stdout" 2>"$tmp/stderr"
-  local rc=$?
-  local lines; lines=$(grep -c . "$tmp/stderr")
-  if [ $rc -eq 0 ] || [ "$lines" -ne 1 ] || ! grep -qE -- "$pattern" "$tmp/stderr"; then
-    echo "FAIL: sph $* -> rc=$rc, stderr:"; cat "$tmp/stderr"; fail=1
-  else
-    echo "ok: sph $* -> $(cat "$tmp/stderr")"
-  fi
-}
-small="-case taylor_green -nx 8 -t_end 0.01 -progress 0"
+source "$(dirname "$0")/lib/expect.sh"
+# Runs refused only after their first step have written a frame: each replaces the last one.
+small="-case taylor_green -nx 8 -t_end 0.01 -progress 0 -output_dir $tmp/out -overwrite"
 expect_error "unknown option -foo" $small -foo 1
 expect_error "did you mean -shifting" $small -shiftng 0
 expect_error "unknown option -ksp_typo" $small -ksp_typo cg
