@@ -35,16 +35,40 @@ PetscErrorCode read_names(sph::RunOptions* o, PetscInt* dim, PetscBool* dim_set)
   PetscFunctionReturn(0);
 }
 
+// The first line of an options file that PETSc would refuse with a traceback: one whose first token is
+// neither an option (-name) nor an alias line; 0 when every line is fine.
+int first_bad_line(std::FILE* f, std::string* token) {
+  char buf[4096];
+  for (int line = 1; std::fgets(buf, sizeof buf, f); ++line) {
+    std::string text(buf);
+    text = text.substr(0, text.find('#'));  // '#' starts a comment
+    const std::size_t begin = text.find_first_not_of(" \t\r\n");
+    if (begin == std::string::npos) continue;
+    *token = text.substr(begin, text.find_first_of(" \t\r\n", begin) - begin);
+    if ((*token)[0] != '-' && *token != "alias") return line;
+  }
+  return 0;
+}
+
 // PETSc reads -options_file during initialisation, before a quiet error handler can be installed:
-// check the files first so a wrong path gets one line instead of a PETSc traceback.
-bool options_files_readable(int argc, char** argv) {
+// check the files first so a wrong path or a malformed line gets one line instead of a PETSc traceback.
+bool options_files_valid(int argc, char** argv) {
   for (int k = 1; k + 1 < argc; ++k) {
     const std::string opt = argv[k];
     if (opt != "-options_file" && opt != "-options_file_yaml") continue;
-    if (std::FILE* f = std::fopen(argv[k + 1], "r")) {
-      std::fclose(f);
-    } else {
+    std::FILE* f = std::fopen(argv[k + 1], "r");
+    if (!f) {
       std::fprintf(stderr, "sph: error: cannot read options file '%s' (%s); check the path\n", argv[k + 1], opt.c_str());
+      return false;
+    }
+    std::string token;
+    const int line = opt == "-options_file" ? first_bad_line(f, &token) : 0;  // YAML is PETSc's to parse
+    std::fclose(f);
+    if (line > 0) {
+      std::fprintf(stderr,
+                   "sph: error: options file '%s' line %d: '%s' is not an option; each line holds -name [value], "
+                   "and '#' starts a comment\n",
+                   argv[k + 1], line, token.c_str());
       return false;
     }
   }
@@ -54,7 +78,7 @@ bool options_files_readable(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (!options_files_readable(argc, argv)) return 1;
+  if (!options_files_valid(argc, argv)) return 1;
   if (PetscInitialize(&argc, &argv, nullptr, nullptr)) {
     std::fprintf(stderr, "sph: error: could not initialise PETSc/MPI (check -options_file paths)\n");
     return 1;

@@ -6,6 +6,7 @@
 
 #include "solvers/isph/ppe_matrix.hpp"
 #include "src/core/error.hpp"
+#include "src/core/options.hpp"
 
 namespace sph {
 
@@ -77,8 +78,28 @@ template <int D> void PressurePoisson<D>::symmetric_coarse_solve() {
   SPH_PETSC(PetscOptionsClearValue(nullptr, coarse_relax_option));
 }
 
+namespace {
+// PETSc reads a tolerance of -1 or -2 as PETSC_DECIDE / PETSC_DEFAULT, so a negative one is not refused
+// there: it failed at the first solve, blamed on the solve. Checked at start-up instead.
+void check_ksp_tolerances() {
+  auto get = [](const char* name, bool positive_integer, auto ok, const char* what) {
+    PetscReal v = 0.0;
+    PetscInt k = 0;
+    PetscBool set = PETSC_FALSE;
+    if (positive_integer) SPH_PETSC(PetscOptionsGetInt(nullptr, nullptr, name, &k, &set)), v = static_cast<double>(k);
+    else SPH_PETSC(PetscOptionsGetReal(nullptr, nullptr, name, &v, &set));
+    if (set) require(ok(v), name, what, v);
+  };
+  get("-ksp_rtol", false, [](double v) { return v > 0 && v < 1; }, "in (0, 1)");
+  get("-ksp_atol", false, [](double v) { return v >= 0; }, "non-negative");
+  get("-ksp_divtol", false, [](double v) { return v > 1; }, "above 1");
+  get("-ksp_max_it", true, [](double v) { return v >= 1; }, "at least 1");
+}
+}  // namespace
+
 template <int D> void PressurePoisson<D>::set_from_options() {
   if (ksp_) return;
+  check_ksp_tolerances();
   // -mat_view: PETSc shows every matrix assembled while it is set, the preconditioners' own too
   // (hypre's copy, multigrid's coarse levels, a diagonal shift's re-assembly). The PPE takes it out of
   // the database and shows its own matrix once per solve instead.

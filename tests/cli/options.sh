@@ -32,6 +32,12 @@ expect_error "unknown case|Unknown|case" -case no_such_case
 expect_error "-cfl must be" $small -cfl 5
 expect_error "kernel" $small -kernel no_such_kernel
 expect_error "options|file|PETSc" -options_file "$tmp/missing.opts"
+printf -- '# a scene\n-nx 8  # particles per side\nnx 16\n' > "$tmp/garbage.opts"
+expect_error "options file '.*garbage.opts' line 3: 'nx' is not an option" -options_file "$tmp/garbage.opts"
+expect_error "option -nx has the value 'abc', which is not an integer" -case taylor_green -nx abc
+expect_error "option -re has the value 'x1', which is not a number" -case taylor_green -re x1
+expect_error "-ksp_rtol must be in \(0, 1\) \(got -1\)" $small -ksp_rtol -1
+expect_error "-ksp_max_it must be at least 1" $small -ksp_max_it 0
 expect_error "use -solver compressible" -case sod -solver wcsph -nx 48 -progress 0
 expect_error "use -solver compressible" -case toy_star -solver isph -nx 50 -progress 0
 
