@@ -225,12 +225,14 @@ template <int D> void Run<D>::execute() {
   }
   check_initial_state(P, resumed.t);
   const std::string checkpoint_path = output_dir + "/checkpoint.bin";
-  if (opt.dt > 0 && !opt.dt_force && opt.dt > solver->stable_dt()) {
+  auto dt_above_limit = [&](double stable, double t_now) {
     std::ostringstream msg;
-    msg << "-dt " << opt.dt << " exceeds the scheme's stability limit " << solver->stable_dt()
-        << " at t = " << resumed.t << "; lower -dt (-dt 0 follows the limit) or pass -dt_force 1 to run it anyway";
-    throw Error(msg.str());
-  }
+    msg << "-dt " << opt.dt << " exceeds the scheme's stability limit " << stable << " at t = " << t_now;
+    return msg.str();
+  };
+  if (opt.dt > 0 && !opt.dt_force && opt.dt > solver->stable_dt())
+    throw Error(dt_above_limit(solver->stable_dt(), resumed.t) +
+                "; lower -dt (-dt 0 follows the limit) or pass -dt_force 1 to run it anyway");
   // Only now, with the input accepted, may an earlier run in output_dir go (-overwrite).
   const bool in_place = restarting && is_in_directory(opt.restart, output_dir);
   prepare_output_dir(output_dir, opt.overwrite, in_place);
@@ -307,11 +309,9 @@ template <int D> void Run<D>::execute() {
   bool warned_dt = false;
   auto warn_dt = [&](double stable) {
     if (warned_dt) return;
-    std::ostringstream w;
-    w << "-dt " << opt.dt << " exceeds the scheme's stability limit " << stable << " at t = " << t
-      << "; the run may blow up";
-    PetscFPrintf(PETSC_COMM_WORLD, stderr, "sph: warning: %s\n", w.str().c_str());
-    summary["warnings"].push_back(w.str());
+    const std::string w = dt_above_limit(stable, t) + "; the run may blow up";
+    PetscFPrintf(PETSC_COMM_WORLD, stderr, "sph: warning: %s\n", w.c_str());
+    summary["warnings"].push_back(w);
     warned_dt = true;
   };
   NeighbourCountCheck<D> check_neighbours(scene.physics.free_surface);
