@@ -13,7 +13,7 @@ using sph::testing::run_sph;
 // Collapse to T = t sqrt(2g/a) = 2.5 at 16 particles across the column. The two Martin & Moyce
 // series (a = 1.125 in and 2.25 in) differ by 2-3%, and simulations without the experiment's gate
 // and wall friction run ahead of it: Koshizuka & Oka's MPS and most SPH results lead by 5-10% at
-// T = 2-3 (we measure 10.2% for ISPH and 9.2% for WCSPH at nx = 20 to T = 3). The 15% bound is
+// T = 2-3 (we measure 10.7% for ISPH and 9.2% for WCSPH at nx = 20 to T = 3). The 15% bound is
 // that lead plus the scatter; a run without a working free surface or wall pressure (a column
 // that does not collapse, or falls through the floor) misses it by far.
 TEST(DamBreak, IsphFrontFollowsMartinMoyce) {
