@@ -15,15 +15,16 @@ using sph::testing::run_sph;
 
 // Run A goes straight to t = 0.2; run B stops at step 20 (t = 0.1, where a checkpoint is due);
 // run C resumes B's checkpoint to t = 0.2. C's final checkpoint and time series must equal A's.
-void expect_restart_is_exact(const std::string& solver, double dt) {
-  const std::string common = "-case taylor_green -solver " + solver + " -nx 16 -t_end " + std::to_string(40 * dt) +
+void expect_restart_is_exact(const std::string& solver, double dt, const std::string& scene = "taylor_green -nx 16") {
+  const std::string common = "-case " + scene + " -solver " + solver + " -t_end " + std::to_string(40 * dt) +
                              " -dt " + std::to_string(dt) + " -output_interval " + std::to_string(10 * dt) +
                              " -checkpoint_interval " + std::to_string(20 * dt);
-  const auto a = run_sph("restart_a_" + solver, common);
-  const auto b = run_sph("restart_b_" + solver, common + " -max_steps 20");
+  const std::string tag = solver + "_" + scene.substr(0, scene.find(' '));
+  const auto a = run_sph("restart_a_" + tag, common);
+  const auto b = run_sph("restart_b_" + tag, common + " -max_steps 20");
   ASSERT_EQ(a.exit_code, 0);
   ASSERT_EQ(b.exit_code, 0);
-  const auto c = run_sph("restart_c_" + solver, common + " -restart " + b.output_dir + "/checkpoint.bin");
+  const auto c = run_sph("restart_c_" + tag, common + " -restart " + b.output_dir + "/checkpoint.bin");
   ASSERT_EQ(c.exit_code, 0);
   EXPECT_EQ(c.summary["steps"], a.summary["steps"]);
   const std::string ca = sph::testing::checkpoint_state(a.output_dir + "/checkpoint.bin"),
@@ -40,6 +41,8 @@ void expect_restart_is_exact(const std::string& solver, double dt) {
 
 TEST(Restart, IsphMatchesUninterruptedRunExactly) { expect_restart_is_exact("isph", 0.005); }
 TEST(Restart, WcsphMatchesUninterruptedRunExactly) { expect_restart_is_exact("wcsph", 0.001); }
+// The free-surface flags carry over a restart (the hysteresis of -free_surface_exit_threshold).
+TEST(Restart, IsphFreeSurfaceMatchesUninterruptedRunExactly) { expect_restart_is_exact("isph", 0.01, "dam_break -nx 12"); }
 
 TEST(Restart, MismatchedCheckpointIsRefused) {
   const auto b = run_sph("restart_src", "-case taylor_green -nx 16 -t_end 0.02");

@@ -14,7 +14,7 @@ namespace {
 const char* const gradient_names[] = {"corrected", "difference", "symmetric"};
 
 PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscReal* shift_A, PetscInt* gradient,
-                            PetscReal* fs_threshold, PetscInt* operators) {
+                            PetscReal* fs_threshold, PetscReal* fs_exit_threshold, PetscInt* operators) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "ISPH projection solver (-solver isph)", "Solver");
   PetscCall(PetscOptionsReal("-cfl", "Advective Courant number: dt <= cfl h / U", "", *cfl, cfl, nullptr));
@@ -31,6 +31,10 @@ PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscReal* shif
   PetscCall(PetscOptionsReal("-free_surface_threshold",
                              "Free-surface particles: div r below this (0: 1.5 in 2D, 2.4 in 3D; Lind et al. 2012)", "",
                              *fs_threshold, fs_threshold, nullptr));
+  PetscCall(PetscOptionsReal("-free_surface_exit_threshold",
+                             "A surface particle stays on the surface until div r exceeds this (0: the threshold plus "
+                             "0.4 of its distance to the dimension, 1.7 in 2D)",
+                             "", *fs_exit_threshold, fs_exit_threshold, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -39,9 +43,12 @@ PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscReal* shif
 template <int D> void IsphSolver<D>::set_from_options() {
   PetscReal cfl = cfl_, A = shifting_model_.A;
   PetscInt gradient = static_cast<PetscInt>(gradient_), operators = static_cast<PetscInt>(operators_);
-  SPH_PETSC(read_options(&cfl, &shifting_, &A, &gradient, &free_surface_threshold_, &operators));
+  SPH_PETSC(read_options(&cfl, &shifting_, &A, &gradient, &free_surface_threshold_, &free_surface_exit_threshold_,
+                         &operators));
   require(free_surface_threshold_ >= 0 && free_surface_threshold_ < D, "-free_surface_threshold",
           "in [0, dimension)", free_surface_threshold_);
+  require(free_surface_exit_threshold_ >= 0 && free_surface_exit_threshold_ < D, "-free_surface_exit_threshold",
+          "in [0, dimension)", free_surface_exit_threshold_);
   require(cfl > 0 && cfl <= 1.0, "-cfl", "in (0, 1]", cfl);
   require(A >= 0, "-shift_coefficient", "non-negative", A);
   cfl_ = cfl, shifting_model_.A = A, gradient_ = static_cast<PressureGradient>(gradient);
@@ -58,6 +65,10 @@ template <int D> void IsphSolver<D>::setup(Scene<D>& scene) {
   walls_ = has_walls(P);
   ppe_.use_nonsymmetric(walls_ || scene.physics.free_surface || operators_ == OperatorSet::Consistent);
   if (free_surface_threshold_ <= 0) free_surface_threshold_ = default_free_surface_threshold<D>();
+  if (free_surface_exit_threshold_ <= 0)
+    free_surface_exit_threshold_ = default_free_surface_exit_threshold<D>(free_surface_threshold_);
+  require(free_surface_exit_threshold_ >= free_surface_threshold_, "-free_surface_exit_threshold",
+          "at least -free_surface_threshold", free_surface_exit_threshold_);
   scene.neighbourhood.update(P, true);
 }
 
@@ -132,10 +143,23 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
   LogEventScope log_assembly(LogEvent::PpeAssembly);
   std::vector<double> source =
       consistent ? divergence_corrected(P, nh.list(), K, u_star) : divergence(P, nh.list(), K, u_star);
-  for (double& s : source) s /= tau;
   // Free surface (Lind et al. 2012): surface particles get p = 0.
   std::vector<char> surface;
-  if (phys.free_surface) surface = free_surface_particles(P, nh.list(), K, free_surface_threshold_);
+  if (phys.free_surface) {
+    surface = free_surface(true);
+    // Next to the surface the kernel support is cut, and the corrected divergence extrapolates u*
+    // into the empty half: it amplifies the noise of the unconstrained surface particles, and the
+    // dam break blew up with it (nx 40, t = 1.44). The plain divergence is used there.
+    if (consistent) {
+      std::vector<double> flags = surface_state_;
+      nh.halo().update(flags);
+      const std::vector<char> near = near_free_surface(P, nh.list(), K, flags);
+      const std::vector<double> plain = divergence(P, nh.list(), K, u_star);
+      for (std::size_t i = 0; i < P.n_owned; ++i)
+        if (near[i]) source[i] = plain[i];
+    }
+  }
+  for (double& s : source) s /= tau;
   ppe_.assemble(P, nh, K, phys.gravity, phys.free_surface ? &surface : nullptr, consistent ? &corrections : nullptr);
   log_assembly.end();
   LogEventScope log_solve(LogEvent::PpeSolve);
@@ -214,12 +238,21 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   return report;
 }
 
+template <int D> std::vector<char> IsphSolver<D>::free_surface(bool remember) {
+  const Particles<D>& P = scene_->particles;
+  surface_state_.resize(P.n_owned, 0.0);
+  std::vector<char> surface = free_surface_particles(P, scene_->neighbourhood.list(), scene_->kernel, free_surface_threshold_,
+                                                     free_surface_exit_threshold_, &surface_state_);
+  if (remember) surface_state_.assign(surface.begin(), surface.end());
+  return surface;
+}
+
 template <int D> void IsphSolver<D>::shift(double dt) {
   Particles<D>& P = scene_->particles;
   Neighbourhood<D>& nh = scene_->neighbourhood;
   nh.update(P);  // shifting works on the new positions
   std::vector<char> surface;
-  if (scene_->physics.free_surface) surface = free_surface_particles(P, nh.list(), scene_->kernel, free_surface_threshold_);
+  if (scene_->physics.free_surface) surface = free_surface(false);
   // The pressures move with the particles too: the next opening kick and extrapolation use them.
   nh.halo().update(mean_pressure_);
   shift_particles(P, nh, scene_->kernel, shifting_model_, scene_->dx, scene_->physics.U, dt, {&P.p, &mean_pressure_}, surface.empty() ? nullptr : &surface);
@@ -236,7 +269,10 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
     models["walls"] = {{"model", "AdamiWall"},
                        {"ppe", phys.free_surface ? "extrapolation rows" : "extrapolation rows, one fluid pressure pinned"}};
   if (phys.free_surface)
-    models["free_surface"] = {{"model", "LindFreeSurface"}, {"threshold_div_r", free_surface_threshold_}};
+    models["free_surface"] = {{"model", "LindFreeSurface"},
+                              {"threshold_div_r", free_surface_threshold_},
+                              {"exit_threshold_div_r", free_surface_exit_threshold_},
+                              {"ppe_source_near_surface", consistent ? "divergence" : "same"}};
   models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
   if (phys.viscous())
     models["viscosity"] = {{"model", consistent ? "ConsistentLaplacian" : "MorrisViscosity"}, {"nu", phys.nu}};

@@ -27,6 +27,10 @@
 // the plain divergence: a symmetric PPE (CG), kept for comparison only (Taylor-Green nx 64, CFL 0.2:
 // 1.5e-2 against 1.0e-3; see README).
 //
+// Free surface (Lind et al. 2012): surface particles (div r below a threshold, with hysteresis) get
+// p = 0; next to them the PPE source is the plain divergence, since the corrected one extrapolates
+// into the cut half of the support (see src/sph/free_surface.hpp and the README's dam break).
+//
 // Density stays at rho0 (the divergence-free variant); the time step obeys the advective CFL and the
 // viscous limit only: no sound speed, which is ISPH's advantage over WCSPH.
 #include "solvers/isph/pressure_poisson.hpp"
@@ -48,10 +52,11 @@ template <int D> class IsphSolver : public Solver<D> {
   nlohmann::json describe() const override;
   bool reads_late(const std::string& option) const override { return PressurePoisson<D>::reads_late(option); }
   nlohmann::json checkpoint_scalars() const override { return {{"pressure_solves", solves_}}; }
-  // The last step's mean pressure pm moves with its particle (migration, checkpoints).
+  // The last step's mean pressure pm and free-surface flag move with their particle (migration, checkpoints).
   std::vector<CheckpointField> checkpoint_fields() override {
     mean_pressure_.resize(scene_->particles.n_owned);
-    return {{"mean_step_pressure", mean_pressure_.data(), 1}};
+    surface_state_.resize(scene_->particles.n_owned, 0.0);
+    return {{"mean_step_pressure", mean_pressure_.data(), 1}, {"free_surface_state", surface_state_.data(), 1}};
   }
   void restore_scalars(const nlohmann::json& j) override { solves_ = j.value("pressure_solves", 0L); }
 
@@ -66,6 +71,9 @@ template <int D> class IsphSolver : public Solver<D> {
   // Makes P.v = u_star - tau grad p / rho divergence-free at the current positions; returns the solve.
   StepReport project(const std::vector<Vector<D>>& u_star, double tau,
                      const std::vector<LaplacianCorrection<D>>& corrections);
+  // Free-surface flags at the current positions, with hysteresis against surface_state_; `remember`
+  // makes them the new state (once per step, at the projection).
+  std::vector<char> free_surface(bool remember);
   void shift(double dt);
   double max_speed() const;
 
@@ -80,7 +88,9 @@ template <int D> class IsphSolver : public Solver<D> {
   long solves_ = 0;
   std::vector<double> mean_pressure_;  // pm^{n-1/2} per particle
   bool walls_ = false;
-  PetscReal free_surface_threshold_ = 0.0;  // 0: the dimension's default
+  PetscReal free_surface_threshold_ = 0.0;       // 0: the dimension's default
+  PetscReal free_surface_exit_threshold_ = 0.0;  // 0: default_free_surface_exit_threshold
+  std::vector<double> surface_state_;            // 1: on the free surface at the last projection
 };
 
 }  // namespace sph
