@@ -33,6 +33,8 @@ template <int D> class WcsphSolver : public Solver<D> {
   // Accelerations and density rates at the current positions, velocities and densities.
   void compute_rates();
   void update_pressure();
+  // Removes the fluid's net volume rate from the density rates (closed or periodic scenes).
+  void remove_net_volume_rate();
 
   Scene<D>* scene_ = nullptr;
   wcsph::TaitEos eos_;
@@ -51,6 +53,8 @@ template <int D> class WcsphSolver : public Solver<D> {
   std::vector<double> drho_;
   double max_acc_ = 0.0;
   bool walls_ = false;
+  int closed_volume_option_ = -1;  // -closed_volume: -1 unset (on without a free surface), 0 off, 1 on
+  bool closed_volume_ = false;
 };
 
 }  // namespace sph
