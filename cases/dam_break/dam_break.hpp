@@ -3,7 +3,8 @@
 // rest against the left wall of a tank 4a long collapses under gravity. Free surface, walls on the
 // left, right and bottom. Reference: the experimental surge-front positions Z = x/a against
 // T = t sqrt(2g/a) (cases/dam_break/data/); error front_position_rel = mean |Z - Z_exp| / Z_exp over
-// the experimental points reached so far, before the front meets the far wall (Z < 4).
+// the experimental points reached so far, before the front meets the far wall (Z < 4). Also recorded:
+// the pressure at the foot of the left wall, the probe where ISPH and WCSPH differ most.
 #include <vector>
 
 #include "cases/case.hpp"
@@ -27,11 +28,15 @@ class DamBreak : public Case<2> {
 
  private:
   double front(const Particles<2>& P) const;  // surge-front position x
+  double foot_pressure(const Particles<2>& P) const;
   double time_scale() const;                  // sqrt(a / (2 g)): T = t / time_scale
 
   PetscInt nx_ = 20, wall_layers_ = 4;
   PetscReal a_ = 1.0, g_ = 1.0, re_ = 1000.0, rho0_ = 1.0;
-  mutable std::vector<std::pair<double, double>> history_;  // (T, Z) as the run advances
+  struct Record {
+    double T, Z, P;  // time, front position, foot pressure / (rho0 g a)
+  };
+  mutable std::vector<Record> history_;  // as the run advances
   mutable double first_measured_T_ = 0.0;                    // earliest experimental point used
 };
 
