@@ -169,7 +169,7 @@ template <int D> struct Run {
     if (opt.output_interval < 0) opt.output_interval = opt.t_end / 20;
     if (opt.steady_tol < 0) opt.steady_tol = scene_case->steady_tolerance();
     output_dir = opt.output_dir[0] ? std::string(opt.output_dir)
-                                   : "out/" + names.case_name + "-" + names.solver_name + "-" +
+                                   : "out/" + scene_case->output_name() + "-" + names.solver_name + "-" +
                                          std::to_string(scene_case->resolution());
     check_unused_options(option_owners(names));
   }
@@ -200,9 +200,7 @@ template <int D> void Run<D>::execute() {
   const double h_over_dx = opt.h_over_dx > 0 ? opt.h_over_dx : 3.0 / Kernel<D>::support_factor(ktype);
   const Kernel<D> kernel(ktype, h_over_dx * dx);
   if (scene_case->wall_thickness() > 0 && scene_case->wall_thickness() < kernel.support_radius() * (1 - 1e-12))
-    throw Error("wall layers (" + std::to_string(scene_case->wall_thickness() / dx) +
-                " dx) are thinner than the kernel support (" + std::to_string(kernel.support_radius() / dx) +
-                " dx); raise -wall_layers or lower -h_over_dx");
+    throw Error(scene_case->thin_walls(scene_case->wall_thickness() / dx, kernel.support_radius() / dx));
   Neighbourhood<D> nh(domain, kernel.support_radius(), opt.skin * kernel.support_radius());
   Scene<D> scene{P, nh, kernel, scene_case->physics(), dx};
   solver->setup(scene);
