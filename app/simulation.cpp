@@ -26,6 +26,7 @@
 #include "src/run/provenance.hpp"
 #include "src/run/run_identity.hpp"
 #include "src/run/threads.hpp"
+#include "src/sph/vorticity.hpp"
 
 namespace sph {
 
@@ -93,6 +94,7 @@ struct DriverOptions {
   PetscBool overwrite = PETSC_FALSE;   // replace a run already in output_dir
   PetscBool dt_force = PETSC_FALSE;    // run a -dt above the stability limit anyway
   char output_dir[PETSC_MAX_PATH_LEN] = "";
+  char output_fields[128] = "";        // extra point arrays in the frames: "vorticity"
 };
 
 PetscErrorCode read_driver_options(DriverOptions* o) {
@@ -109,6 +111,10 @@ PetscErrorCode read_driver_options(DriverOptions* o) {
                              o->output_interval, &o->output_interval, nullptr));
   PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/<case>-<solver>-<nx>)", "", o->output_dir,
                                o->output_dir, sizeof(o->output_dir), nullptr));
+  PetscCall(PetscOptionsString("-output_fields",
+                               "Extra point arrays in the VTK frames: vorticity (the solver's own fields, e.g. ISPH's "
+                               "free_surface, are always written)",
+                               "", o->output_fields, o->output_fields, sizeof(o->output_fields), nullptr));
   PetscCall(PetscOptionsBool("-overwrite", "Replace the run already in -output_dir (its frames, tables, summary, checkpoint)",
                              "", o->overwrite, &o->overwrite, nullptr));
   PetscCall(PetscOptionsEList("-kernel", "Smoothing kernel", "", kernels.data(), static_cast<PetscInt>(kernels.size()),
@@ -146,6 +152,7 @@ template <int D> struct Run {
   DriverOptions opt;
   RunOptions names;
   std::string output_dir;
+  bool vorticity_output = false;
 
   void configure() {
     scene_case->set_from_options();
@@ -166,10 +173,16 @@ template <int D> struct Run {
     require(opt.partition_interval >= 0, "-partition_interval", "non-negative", opt.partition_interval);
     require(opt.threads >= 0, "-threads", "non-negative", opt.threads);
     opt.threads = configure_threads(static_cast<int>(opt.threads));
+    std::stringstream fields(opt.output_fields);
+    for (std::string f; std::getline(fields, f, ',');) {
+      if (f != "vorticity") throw Error("-output_fields takes vorticity (got '" + f + "')");
+      if (D == 1) throw Error("-output_fields vorticity needs a 2D or 3D scene");
+      vorticity_output = true;
+    }
     if (opt.output_interval < 0) opt.output_interval = opt.t_end / 20;
     if (opt.steady_tol < 0) opt.steady_tol = scene_case->steady_tolerance();
     output_dir = opt.output_dir[0] ? std::string(opt.output_dir)
-                                   : "out/" + names.case_name + "-" + names.solver_name + "-" +
+                                   : "out/" + scene_case->output_name() + "-" + names.solver_name + "-" +
                                          std::to_string(scene_case->resolution());
     check_unused_options(option_owners(names));
   }
@@ -200,9 +213,7 @@ template <int D> void Run<D>::execute() {
   const double h_over_dx = opt.h_over_dx > 0 ? opt.h_over_dx : 3.0 / Kernel<D>::support_factor(ktype);
   const Kernel<D> kernel(ktype, h_over_dx * dx);
   if (scene_case->wall_thickness() > 0 && scene_case->wall_thickness() < kernel.support_radius() * (1 - 1e-12))
-    throw Error("wall layers (" + std::to_string(scene_case->wall_thickness() / dx) +
-                " dx) are thinner than the kernel support (" + std::to_string(kernel.support_radius() / dx) +
-                " dx); raise -wall_layers or lower -h_over_dx");
+    throw Error(scene_case->thin_walls(scene_case->wall_thickness() / dx, kernel.support_radius() / dx));
   Neighbourhood<D> nh(domain, kernel.support_radius(), opt.skin * kernel.support_radius());
   Scene<D> scene{P, nh, kernel, scene_case->physics(), dx};
   solver->setup(scene);
@@ -239,6 +250,17 @@ template <int D> void Run<D>::execute() {
 
   ParticleWriter<D> writer(output_dir);
   if (restarting) writer.resume(resumed.t);
+  // The solver's own fields and the optional ones, for every frame.
+  std::vector<std::vector<double>> vorticity;
+  auto frame_fields = [&](bool derived = true) {
+    std::vector<ScalarField> fields = solver->output_fields();
+    if (!vorticity_output || !derived) return fields;
+    nh.update(P);  // ghost velocities as the step left the owned ones
+    vorticity = fluid_vorticity(P, nh.list(), kernel);
+    const char* names[3] = {"vorticity_x", "vorticity_y", "vorticity_z"};
+    for (std::size_t c = 0; c < vorticity.size(); ++c) fields.push_back({D == 2 ? "vorticity" : names[c], &vorticity[c]});
+    return fields;
+  };
   if (in_place) remove_frames_from(output_dir, "particles", writer.frames_written());
   const std::vector<std::string> error_names = [&] {
     std::vector<std::string> v;
@@ -301,7 +323,7 @@ template <int D> void Run<D>::execute() {
   const double checkpoint_interval = opt.checkpoint_interval < 0 ? frame_interval : opt.checkpoint_interval;
   double next_checkpoint = checkpoint_interval > 0 ? checkpoint_interval * (std::floor(t / checkpoint_interval * (1 + 1e-12)) + 1)
                                                    : std::numeric_limits<double>::infinity();
-  if (!restarting) writer.write(P, t);
+  if (!restarting) writer.write(P, t, frame_fields());
   double last_frame_t = t;
   const double ke_bound = 1e3 * 0.5 * fluid_mass(P) * scene.physics.U * scene.physics.U;
   // A -dt above the stability limit is refused at the start unless -dt_force; a forced one, or the
@@ -394,7 +416,7 @@ template <int D> void Run<D>::execute() {
       progress.update(step, t, dt, report.linear_iterations);
       if (t >= next_output * (1.0 - 1e-12) || t >= opt.t_end * (1.0 - 1e-12)) {
         const LogEventScope log_output(LogEvent::Output);
-        writer.write(P, t);
+        writer.write(P, t, frame_fields());
         last_frame_t = t;
         while (next_output <= t * (1.0 + 1e-12)) next_output += frame_interval;
       }
@@ -406,7 +428,7 @@ template <int D> void Run<D>::execute() {
     }
     if (interrupted) {
       // Everything needed to look at the state reached and to resume it.
-      if (last_frame_t < t) writer.write(P, t), last_frame_t = t;
+      if (last_frame_t < t) writer.write(P, t, frame_fields()), last_frame_t = t;
       if (last_checkpoint_step != step) write_state(t, step, "interrupted (" + signal_name(interrupted) + ")");
     }
   } catch (const OptionError&) {
@@ -419,7 +441,7 @@ template <int D> void Run<D>::execute() {
     try {
       finish("failed", msg.str());
       scene_case->write_outputs(P, t, output_dir);
-      writer.write(P, t);  // the state that failed, for inspection (the .pvd lists it last)
+      writer.write(P, t, frame_fields(false));  // the state that failed (no derived fields: it may hold NaN), for inspection (the .pvd lists it last)
     } catch (const Error& later) {
       also = "; writing the failed run's outputs failed too: " + std::string(later.what());
     }
@@ -439,7 +461,7 @@ template <int D> void Run<D>::execute() {
   const LogEventScope log_output(LogEvent::Output);
   if (opt.steady_tol > 0) summary["steady_state_reached"] = steady.reached();
   scene_case->write_outputs(P, t, output_dir);
-  if (last_frame_t < t) writer.write(P, t);  // e.g. stopped at steady state between frames
+  if (last_frame_t < t) writer.write(P, t, frame_fields());  // e.g. stopped at steady state between frames
   finish("completed", "");
   finish_options_check();
 }

@@ -91,8 +91,9 @@ int main(int argc, char** argv) {
     PetscInt dim = 0;
     PetscBool dim_set = PETSC_FALSE, help = PETSC_FALSE;
     SPH_PETSC(read_names(&names, &dim, &dim_set));
-    if (!dim_set) dim = sph::find_case(names.case_name).default_dim;
     SPH_PETSC(PetscOptionsHasHelp(nullptr, &help));
+    // -help lists the options without reading the case's input.
+    if (!dim_set) dim = help ? sph::find_case(names.case_name).default_dim : sph::case_dimension(names.case_name);
     if (help) sph::print_all_options(static_cast<int>(dim));
     else sph::run_simulation(names, static_cast<int>(dim));
   } catch (const sph::Interrupted& i) {

@@ -17,6 +17,8 @@ template <int D> class Case {
  public:
   virtual ~Case() = default;
   virtual std::string name() const = 0;
+  // The default output folder's stem, out/<output_name>-<solver>-<resolution> (a scene file's adds its name).
+  virtual std::string output_name() const { return name(); }
 
   // Reads the case's options (PETSc options block) and checks their values (throws sph::Error).
   virtual void set_from_options() = 0;
@@ -36,6 +38,11 @@ template <int D> class Case {
 
   // Thickness of the wall-particle layers (0 without walls): the kernel support must fit in it.
   virtual double wall_thickness() const { return 0.0; }
+  // The one-line refusal when wall_thickness() is below the kernel support (both in units of dx).
+  virtual std::string thin_walls(double thickness_dx, double support_dx) const {
+    return "wall layers (" + std::to_string(thickness_dx) + " dx) are thinner than the kernel support (" +
+           std::to_string(support_dx) + " dx); raise -wall_layers or lower -h_over_dx";
+  }
   // Relative kinetic-energy change per unit time below which the flow counts as steady and the run
   // stops (0: run to t_end). The -steady_tol option overrides it.
   virtual double steady_tolerance() const { return 0.0; }

@@ -3,6 +3,7 @@
 #include "cases/dam_break/dam_break.hpp"
 #include "cases/lid_driven_cavity/lid_driven_cavity.hpp"
 #include "cases/poiseuille/poiseuille.hpp"
+#include "cases/scene/scene.hpp"
 #include "cases/sedov/sedov.hpp"
 #include "cases/sod/sod.hpp"
 #include "cases/square_patch/square_patch.hpp"
@@ -31,6 +32,9 @@ const std::vector<CaseEntry>& case_registry() {
        [] { return std::make_unique<ToyStar>(); }, nullptr, nullptr},
       {"sedov", "2D Sedov-Taylor blast wave (gamma = 1.4), periodic box; self-similar solution (Sedov 1959)", 2,
        nullptr, [] { return std::make_unique<SedovBlast>(); }, nullptr},
+      {"scene", "particles read from a VTK .vtp file (-scene_file; scripts/make-scene writes examples), 2D or 3D", 2,
+       nullptr, [] { return std::make_unique<SceneCase<2>>(); }, [] { return std::make_unique<SceneCase<3>>(); },
+       scene_file_dimension},
   };
   return entries;
 }
@@ -42,6 +46,11 @@ const CaseEntry& find_case(const std::string& name) {
     list += (list.empty() ? "" : ", ") + e.name;
   }
   throw Error("unknown case '" + name + "'; choose -case from: " + list);
+}
+
+int case_dimension(const std::string& name) {
+  const CaseEntry& e = find_case(name);
+  return e.input_dim ? e.input_dim() : e.default_dim;
 }
 
 template <int D> std::unique_ptr<Case<D>> create_case(const std::string& name) {

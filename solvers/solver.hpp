@@ -8,6 +8,7 @@
 #include "src/core/error.hpp"
 #include "src/core/physics.hpp"
 #include "src/io/checkpoint.hpp"
+#include "src/io/particle_writer.hpp"
 #include "src/kernels/kernel.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 
@@ -59,6 +60,10 @@ template <int D> class Solver {
   virtual std::vector<CheckpointField> checkpoint_fields() { return {}; }
   virtual nlohmann::json checkpoint_scalars() const { return nlohmann::json::object(); }
   virtual void restore_scalars(const nlohmann::json&) {}
+
+  // The scheme's own per-particle fields, written into every VTK frame next to the standard arrays
+  // (owned entries, in the particles' current order).
+  virtual std::vector<ScalarField> output_fields() { return {}; }
 };
 
 }  // namespace sph

@@ -32,6 +32,7 @@
 #include "src/particles/particles.hpp"
 #include "src/sph/operators.hpp"
 #include "src/sph/shifting.hpp"
+#include "src/sph/vorticity.hpp"
 
 namespace {
 
@@ -355,6 +356,30 @@ TEST(OperatorDisordered, CorrectedGradientsExactForLinearFields) {
                 label(kc).c_str(), eg, eG);
     EXPECT_LT(eg, 1e-10) << label(kc);
     EXPECT_LT(eG, 1e-10) << label(kc);
+  }
+}
+
+// The output vorticity (-output_fields vorticity) is exact for a linear velocity field on any particle
+// distribution, patch edges included, and ignores wall particles, whose velocities are the walls'
+// (here deliberately wild) and not the fluid's.
+TEST(OperatorDisordered, VorticityExactForLinearFieldsAndBlindToWalls) {
+  T2 A;  // u(x) = A x + b: curl u = A(1, 0) - A(0, 1)
+  A << 0.5, -2.0, 1.25, 0.75;
+  for (const KernelCase& kc : kCases) {
+    Patch S(16, kc);
+    for (std::size_t i = 0; i < S.P.size(); ++i) {
+      const bool wall = i % 7 == 3;
+      S.P.kind[i] = wall ? kWall : kFluid;
+      S.P.v[i] = wall ? V2(100.0, -50.0) : V2(A * S.P.x[i] + V2(0.3, -0.1));
+    }
+    const auto w = fluid_vorticity(S.P, S.nl(), S.K);
+    ASSERT_EQ(w.size(), 1u);
+    double err = 0.0;
+    for (std::size_t i = 0; i < S.P.n_owned; ++i) {
+      if (S.P.kind[i] == kWall) EXPECT_EQ(w[0][i], 0.0);
+      else err = std::max(err, std::abs(w[0][i] - (A(1, 0) - A(0, 1))));
+    }
+    EXPECT_LT(err, 1e-10 * A.norm()) << label(kc);
   }
 }
 

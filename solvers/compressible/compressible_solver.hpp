@@ -35,6 +35,11 @@ template <int D> class CompressibleSolver : public Solver<D> {
   std::vector<CheckpointField> checkpoint_fields() override;
   nlohmann::json checkpoint_scalars() const override;
   void restore_scalars(const nlohmann::json& j) override;
+  // Smoothing length and specific internal energy (both move with their particle, as checkpoint fields).
+  std::vector<ScalarField> output_fields() override {
+    for (auto* f : {&u_, &h_}) f->resize(scene_->particles.n_owned);
+    return {{"smoothing_length", &h_}, {"internal_energy", &u_}};
+  }
 
   // Per-particle state (owned entries), public for tests and diagnostics.
   const std::vector<double>& smoothing_lengths() const { return h_; }

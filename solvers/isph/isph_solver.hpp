@@ -59,6 +59,12 @@ template <int D> class IsphSolver : public Solver<D> {
     return {{"mean_step_pressure", mean_pressure_.data(), 1}, {"free_surface_state", surface_state_.data(), 1}};
   }
   void restore_scalars(const nlohmann::json& j) override { solves_ = j.value("pressure_solves", 0L); }
+  // The free-surface flag of the last projection (1: p = 0 imposed there), in free-surface scenes.
+  std::vector<ScalarField> output_fields() override {
+    if (!scene_->physics.free_surface) return {};
+    surface_state_.resize(scene_->particles.n_owned, 0.0);
+    return {{"free_surface", &surface_state_}};
+  }
 
   const PressurePoisson<D>& pressure_poisson() const { return ppe_; }
 

@@ -1,0 +1,269 @@
+#include "cases/scene/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "cases/common/lattice.hpp"
+#include "cases/scene/scene_geometry.hpp"
+#include "src/core/options.hpp"
+
+namespace sph {
+
+namespace {
+
+std::string number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+template <int D> std::string point(const Vector<D>& x) {
+  std::string s = "(";
+  for (int a = 0; a < D; ++a) s += (a ? ", " : "") + number(x[a]);
+  return s + ")";
+}
+
+// Axis flags from "x,y", "z", "none".
+template <int D> std::array<bool, D> parse_axes(const std::string& text) {
+  std::array<bool, D> flags{};
+  if (text == "none") return flags;
+  std::stringstream in(text);
+  std::string axis;
+  while (std::getline(in, axis, ',')) {
+    const std::size_t a = std::string("xyz").find(axis);
+    if (axis.size() != 1 || a == std::string::npos || static_cast<int>(a) >= D)
+      throw Error("-scene_periodic must list axes of this " + std::to_string(D) + "D scene, e.g. " +
+                  (D == 2 ? "x or x,y" : "x or x,y,z") + ", or none (got '" + text + "')");
+    flags[a] = true;
+  }
+  return flags;
+}
+
+PetscErrorCode read_options(SceneOptions* o) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Scene from a file (-case scene)", "Case");
+  PetscCall(PetscOptionsString("-scene_file", "VTK XML PolyData (.vtp) scene: point arrays kind (0 fluid, 1 fixed wall, 2 "
+                               "moving wall), velocity, pressure; parameters as field data",
+                               "", o->path, o->path, sizeof(o->path), nullptr));
+  PetscCall(PetscOptionsReal("-scene_dx", "Particle spacing (overrides the file's field data dx)", "", o->dx, &o->dx,
+                             &o->dx_set));
+  PetscCall(PetscOptionsRealArray("-scene_box", "Box xmin,xmax,ymin,ymax[,zmin,zmax] (overrides field data box; default: "
+                                  "the particles' bounding box grown by dx/2)",
+                                  "", o->box, &o->box_n, &o->box_set));
+  PetscCall(PetscOptionsString("-scene_periodic", "Periodic axes, e.g. x or x,y, or none (overrides field data periodic)",
+                               "", o->periodic, o->periodic, sizeof(o->periodic), &o->periodic_set));
+  PetscCall(PetscOptionsRealArray("-gravity", "Body force per unit mass gx,gy[,gz] (overrides field data gravity; default 0)",
+                                  "", o->gravity, &o->gravity_n, &o->gravity_set));
+  PetscCall(PetscOptionsReal("-nu", "Kinematic viscosity (overrides field data nu; default 0)", "", o->nu, &o->nu, &o->nu_set));
+  PetscCall(PetscOptionsReal("-rho0", "Density (overrides field data rho0; default 1)", "", o->rho0, &o->rho0, &o->rho0_set));
+  PetscCall(PetscOptionsReal("-U", "Reference speed (overrides field data U; default: the largest particle speed or the "
+                             "free-fall speed over the fluid's height)",
+                             "", o->U, &o->U, &o->U_set));
+  PetscCall(PetscOptionsBool("-free_surface", "Free surface (overrides field data free_surface; default: on when some fluid "
+                             "particle lies on an open face of the scene)",
+                             "", o->free_surface, &o->free_surface, &o->free_surface_set));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+template <int D> void SceneCase<D>::set_from_options() {
+  opt_.box_n = 6, opt_.gravity_n = 3;
+  SPH_PETSC(read_options(&opt_));
+  if (!opt_.path[0]) throw Error("-case scene needs -scene_file FILE (a VTK .vtp scene; scripts/make-scene writes examples)");
+  file_ = read_scene_file(opt_.path);
+  if (file_.dim != D)
+    throw Error(file_.error("holds " + std::to_string(file_.dim) + "D points (" +
+                            (file_.dim == 2 ? "all z equal" : "z varies") + "), not " + std::to_string(D) +
+                            "D; drop -dim, the scene's dimension comes from its points"));
+  resolve_parameters();
+  check_particles_in_box();
+
+  // Free surface and wall thickness from the particles' arrangement (every rank, the whole scene).
+  std::vector<Vector<D>> x(file_.x.size());
+  std::vector<int> kind(file_.x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    for (int a = 0; a < D; ++a) x[i][a] = file_.x[i][a];
+    kind[i] = file_.kind[i] == kSceneFluid ? kFluid : kWall;
+  }
+  const PointGrid<D> grid(x, box_, dx_);
+  const std::vector<int> count = neighbour_counts(grid, x, dx_);
+  free_surface_detected_ = has_open_fluid_face<D>(count, kind);
+  const WallThickness w = measure_wall_thickness(grid, x, kind, count, dx_);
+  walls_ = w.thickness;
+  thinnest_at_ = x[w.particle];
+  if (!free_surface_given_) physics_.free_surface = free_surface_detected_;
+}
+
+template <int D> void SceneCase<D>::resolve_parameters() {
+  auto field = [&](const char* name, std::size_t want, const std::string& shape) -> const std::vector<double>* {
+    const auto it = file_.field.find(name);
+    if (it == file_.field.end()) return nullptr;
+    if (it->second.size() != want)
+      throw Error(file_.error(std::string("field data '") + name + "' has " + std::to_string(it->second.size()) +
+                              " values; give " + shape));
+    return &it->second;
+  };
+  auto scalar = [&](const char* name, PetscBool set, double opt, double fallback) {
+    if (set) return opt;
+    const std::vector<double>* f = field(name, 1, "one");
+    return f ? (*f)[0] : fallback;
+  };
+  const std::string vec = D == 2 ? "2 (x, y)" : "3 (x, y, z)";
+
+  dx_ = scalar("dx", opt_.dx_set, opt_.dx, 0.0);
+  if (!opt_.dx_set && !file_.field.count("dx"))
+    throw Error(file_.error("gives no particle spacing; add field data 'dx' or pass -scene_dx"));
+  require(dx_ > 0, opt_.dx_set ? "-scene_dx" : "the scene's field data dx", "positive", dx_);
+
+  // Box: option, field data, or the particles' bounding box grown by half a spacing.
+  const std::vector<double>* box = nullptr;
+  std::vector<double> box_values;
+  if (opt_.box_set) {
+    if (opt_.box_n != 2 * D)
+      throw Error("-scene_box needs " + std::to_string(2 * D) + " values for this " + std::to_string(D) +
+                  "D scene (xmin,xmax,ymin,ymax" + (D == 3 ? ",zmin,zmax" : "") + "), got " + std::to_string(opt_.box_n));
+    box_values.assign(opt_.box, opt_.box + 2 * D);
+    box = &box_values;
+  } else {
+    box = field("box", 2 * D, std::to_string(2 * D) + " (xmin, xmax, ...)");
+  }
+  if (opt_.periodic_set) {
+    box_.periodic = parse_axes<D>(opt_.periodic);
+  } else if (const std::vector<double>* p = field("periodic", D, "one 0/1 flag per axis")) {
+    for (int a = 0; a < D; ++a) box_.periodic[a] = (*p)[a] != 0.0;
+  }
+  if (box) {
+    for (int a = 0; a < D; ++a) {
+      box_.lo[a] = (*box)[2 * a], box_.hi[a] = (*box)[2 * a + 1];
+      if (!(box_.hi[a] > box_.lo[a]))
+        throw Error((opt_.box_set ? std::string("-scene_box") : file_.error("field data 'box'")) + " has max <= min along " +
+                    "xyz"[a] + "; give xmin,xmax,ymin,ymax" + (D == 3 ? ",zmin,zmax" : ""));
+    }
+  } else {
+    for (int a = 0; a < D; ++a) {
+      if (box_.periodic[a])
+        throw Error(file_.error(std::string("is periodic along ") + "xyz"[a] +
+                                " but gives no box to set the period; add field data 'box' or pass -scene_box"));
+      box_.lo[a] = box_.hi[a] = file_.x[0][a];
+      for (const auto& x : file_.x) box_.lo[a] = std::min(box_.lo[a], x[a]), box_.hi[a] = std::max(box_.hi[a], x[a]);
+      box_.lo[a] -= 0.5 * dx_, box_.hi[a] += 0.5 * dx_;
+    }
+  }
+
+  physics_.rho0 = scalar("rho0", opt_.rho0_set, opt_.rho0, 1.0);
+  require(physics_.rho0 > 0, opt_.rho0_set ? "-rho0" : "the scene's field data rho0", "positive", physics_.rho0);
+  physics_.nu = scalar("nu", opt_.nu_set, opt_.nu, 0.0);
+  require(physics_.nu >= 0, opt_.nu_set ? "-nu" : "the scene's field data nu", "non-negative", physics_.nu);
+  t_end_ = scalar("t_end", PETSC_FALSE, 0.0, 1.0);
+  if (opt_.gravity_set) {
+    if (opt_.gravity_n != D)
+      throw Error("-gravity needs " + std::to_string(D) + " values for this " + std::to_string(D) + "D scene, got " +
+                  std::to_string(opt_.gravity_n));
+    for (int a = 0; a < D; ++a) physics_.gravity[a] = opt_.gravity[a];
+  } else if (const std::vector<double>* g = field("gravity", D, vec)) {
+    for (int a = 0; a < D; ++a) physics_.gravity[a] = (*g)[a];
+  }
+  if (opt_.free_surface_set) physics_.free_surface = opt_.free_surface;
+  else if (const std::vector<double>* f = field("free_surface", 1, "one (0 or 1)")) physics_.free_surface = (*f)[0] != 0.0;
+  free_surface_given_ = opt_.free_surface_set || file_.field.count("free_surface");
+
+  // Reference speed: given, else the fastest particle or the fall over the fluid's height.
+  double U = 0.0, lo = 1e300, hi = -1e300;
+  const double g = physics_.gravity.norm();
+  for (std::size_t i = 0; i < file_.x.size(); ++i) {
+    if (file_.kind[i] == kSceneFixedWall) continue;
+    Vector<D> v, x;
+    for (int a = 0; a < D; ++a) v[a] = file_.v[i][a], x[a] = file_.x[i][a];
+    U = std::max(U, v.norm());
+    if (file_.kind[i] == kSceneFluid && g > 0) lo = std::min(lo, x.dot(physics_.gravity) / g), hi = std::max(hi, x.dot(physics_.gravity) / g);
+  }
+  if (g > 0) U = std::max(U, std::sqrt(2.0 * g * (hi - lo + dx_)));
+  physics_.U = opt_.U_set ? opt_.U : scalar("U", PETSC_FALSE, 0.0, U);
+  if (!(physics_.U > 0))
+    throw Error(opt_.U_set || file_.field.count("U") ? "the reference speed U must be positive (got " + number(physics_.U) + ")"
+                                                 : file_.error("sets no reference speed and nothing moves (no velocity, no "
+                                                               "gravity); add field data 'U' or pass -U"));
+}
+
+template <int D> void SceneCase<D>::check_particles_in_box() const {
+  for (std::size_t i = 0; i < file_.x.size(); ++i)
+    for (int a = 0; a < D; ++a) {
+      const double x = file_.x[i][a];
+      // Periodic axes hold [lo, hi): hi is the image of lo.
+      if (x < box_.lo[a] || x > box_.hi[a] || (box_.periodic[a] && x >= box_.hi[a])) {
+        Vector<D> p;
+        for (int b = 0; b < D; ++b) p[b] = file_.x[i][b];
+        throw Error(file_.error("particle " + std::to_string(i) + " at " + point<D>(p) + " lies outside the box [" +
+                                number(box_.lo[a]) + ", " + number(box_.hi[a]) + (box_.periodic[a] ? ")" : "]") +
+                                " along " + "xyz"[a] + "; enlarge the box (field data 'box' or -scene_box) or move the particle"));
+      }
+    }
+}
+
+template <int D> void SceneCase<D>::create(Particles<D>& P, Domain<D>& domain) const {
+  domain = box_;
+  const double mass = physics_.rho0 * std::pow(dx_, D);
+  Particles<D> all;
+  for (std::size_t i = 0; i < file_.x.size(); ++i) {
+    Vector<D> x, v = Vector<D>::Zero();
+    for (int a = 0; a < D; ++a) x[a] = file_.x[i][a];
+    if (file_.kind[i] != kSceneFixedWall)
+      for (int a = 0; a < D; ++a) v[a] = file_.v[i][a];
+    all.add(x, v, mass, physics_.rho0, file_.p[i], file_.kind[i] == kSceneFluid ? kFluid : kWall);
+  }
+  P = rank_share(all);
+}
+
+template <int D> int SceneCase<D>::resolution() const { return std::max(1, static_cast<int>(std::lround(1.0 / dx_))); }
+
+template <int D> std::string SceneCase<D>::output_name() const {
+  return "scene_" + std::filesystem::path(file_.path).stem().string();
+}
+
+template <int D> std::string SceneCase<D>::thin_walls(double thickness_dx, double support_dx) const {
+  return file_.error("the walls near " + point<D>(thinnest_at_) + " are " + number(thickness_dx) +
+                     " dx thick, thinner than the kernel support (" + number(support_dx) +
+                     " dx); add wall layers (scripts/make-scene --wall-layers) or lower -h_over_dx");
+}
+
+template <int D> nlohmann::json SceneCase<D>::parameters() const {
+  char checksum[20];
+  std::snprintf(checksum, sizeof checksum, "%016llx", static_cast<unsigned long long>(file_.checksum));
+  long counts[3] = {0, 0, 0};
+  for (int k : file_.kind) ++counts[k];
+  std::vector<double> box;
+  std::vector<int> periodic;
+  for (int a = 0; a < D; ++a) box.push_back(box_.lo[a]), box.push_back(box_.hi[a]), periodic.push_back(box_.periodic[a]);
+  return {{"scene_file", file_.path},
+          {"scene_checksum", checksum},
+          {"dx", dx_},
+          {"box", box},
+          {"periodic", periodic},
+          {"gravity", std::vector<double>(physics_.gravity.data(), physics_.gravity.data() + D)},
+          {"nu", physics_.nu},
+          {"rho0", physics_.rho0},
+          {"U", physics_.U},
+          {"free_surface", physics_.free_surface},
+          {"free_surface_detected", free_surface_detected_},
+          {"fluid_particles", counts[kSceneFluid]},
+          {"fixed_wall_particles", counts[kSceneFixedWall]},
+          {"moving_wall_particles", counts[kSceneMovingWall]},
+          {"wall_thickness_dx", walls_ / dx_}};
+}
+
+int scene_file_dimension() {
+  char path[PETSC_MAX_PATH_LEN] = "";
+  PetscBool set = PETSC_FALSE;
+  SPH_PETSC(PetscOptionsGetString(nullptr, nullptr, "-scene_file", path, sizeof(path), &set));
+  return set && path[0] ? read_scene_file(path).dim : 2;
+}
+
+template class SceneCase<2>;
+template class SceneCase<3>;
+
+}  // namespace sph

@@ -1,0 +1,65 @@
+#pragma once
+// A scene read from a file (-case scene -scene_file FILE): the particles of a VTK XML PolyData file
+// (cases/scene/scene_file.hpp), with the parameters from its field data, each overridden by its option:
+//   -scene_dx (dx)           particle spacing; required from one or the other (mass = rho0 dx^D)
+//   -scene_box (box)         xmin,xmax,ymin,ymax[,zmin,zmax]; default: the particles' bounding box
+//                            grown by dx/2 (a box is needed along periodic axes)
+//   -scene_periodic (periodic: one 0/1 flag per axis)   periodic axes, "x,y", or "none"
+//   -gravity (gravity), -nu (nu, default 0), -rho0 (rho0, default 1), -t_end (t_end, default 1)
+//   -U (U)                   reference speed; default: the largest particle speed or the free-fall
+//                            speed sqrt(2 |g| H) over the fluid's height H, whichever is larger
+//   -free_surface (free_surface)   default: on when some fluid particle lies on a face of the filled
+//                            region (neither walls nor fluid nor a periodic image within 2 dx on a side)
+// Fixed-wall particles (kind 1) are at rest; moving-wall particles (kind 2) keep their place and their
+// velocity enters the walls' no-slip condition, as the lid of the lid-driven cavity: a wall sliding along
+// itself. The scene has no reference solution: no error norms.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "cases/case.hpp"
+#include "cases/scene/scene_file.hpp"
+
+namespace sph {
+
+// The options as given; *_set: given on the command line (then they override the file).
+struct SceneOptions {
+  char path[PETSC_MAX_PATH_LEN] = "", periodic[64] = "";
+  PetscReal dx = 0, box[6] = {}, gravity[3] = {}, nu = 0, rho0 = 1, U = 0;
+  PetscInt box_n = 6, gravity_n = 3;
+  PetscBool free_surface = PETSC_FALSE;
+  PetscBool dx_set = PETSC_FALSE, box_set = PETSC_FALSE, periodic_set = PETSC_FALSE, gravity_set = PETSC_FALSE,
+            nu_set = PETSC_FALSE, rho0_set = PETSC_FALSE, U_set = PETSC_FALSE, free_surface_set = PETSC_FALSE;
+};
+
+template <int D> class SceneCase : public Case<D> {
+ public:
+  std::string name() const override { return "scene"; }
+  std::string output_name() const override;
+  void set_from_options() override;
+  void create(Particles<D>& P, Domain<D>& domain) const override;
+  double spacing() const override { return dx_; }
+  int resolution() const override;
+  Physics<D> physics() const override { return physics_; }
+  double default_t_end() const override { return t_end_; }
+  double wall_thickness() const override { return walls_; }
+  std::string thin_walls(double thickness_dx, double support_dx) const override;
+  nlohmann::json parameters() const override;
+
+ private:
+  void resolve_parameters();  // file field data, then the options that override it
+  void check_particles_in_box() const;
+
+  SceneFile file_;
+  Domain<D> box_;
+  Physics<D> physics_;
+  double dx_ = 0.0, t_end_ = 1.0, walls_ = 0.0;
+  Vector<D> thinnest_at_ = Vector<D>::Zero();
+  SceneOptions opt_;
+  bool free_surface_given_ = false, free_surface_detected_ = false;
+};
+
+// The dimension of the scene named by -scene_file (2 when none is given: the case then asks for one).
+int scene_file_dimension();
+
+}  // namespace sph

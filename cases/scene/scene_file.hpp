@@ -1,0 +1,36 @@
+#pragma once
+// A scene file: particles in a VTK XML PolyData file (.vtp), read with VTK's own reader and checked
+// for what makes no scene (one-line sph::Error naming the file, what is wrong and the fix).
+//   point arrays: kind (required; 0 fluid, 1 fixed wall, 2 moving wall), velocity (optional, 1-3
+//                 components), pressure (optional)
+//   field data:   optional scene parameters by name (dx, box, periodic, gravity, nu, rho0, U,
+//                 free_surface, t_end), each an array of numbers; see cases/scene/scene.hpp
+// The points are 3D in VTK; the scene is 2D when all z coordinates are equal.
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace sph {
+
+enum SceneKind : int { kSceneFluid = 0, kSceneFixedWall = 1, kSceneMovingWall = 2 };
+
+struct SceneFile {
+  std::string path;
+  int dim = 2;
+  std::vector<std::array<double, 3>> x, v;  // positions; velocities (zero without the array)
+  std::vector<double> p;                     // pressures (zero without the array)
+  std::vector<int> kind;                     // SceneKind
+  std::map<std::string, std::vector<double>> field;  // numeric field data arrays, by name
+  std::uint64_t checksum = 0;                // 64-bit FNV-1a of the file's bytes: the scene's identity
+
+  // "scene file 'PATH': " + what, for one-line errors.
+  std::string error(const std::string& what) const;
+};
+
+// Reads and checks the file: readable VTK XML PolyData with points, a `kind` array of 0/1/2, finite
+// coordinates, velocities and pressures, at least one fluid particle. Throws sph::Error otherwise.
+SceneFile read_scene_file(const std::string& path);
+
+}  // namespace sph

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# Scenes from files (-case scene): every bad scene file is refused with one line naming the file and
+# what is wrong, before anything is written; scripts/make-scene's scenes run with ISPH and WCSPH, in 2D
+# and 3D, on 1 and 2 MPI ranks.   usage: scene.sh <sph executable> <source dir>
+set -u
+sph="$1"; src="$2"; tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+mpiexec="${MPIEXEC:-mpiexec}"
+fail=0
+source "$(dirname "$0")/lib/expect.sh"
+make_scene() { "$src/scripts/make-scene" "$@" >/dev/null || { echo "FAIL: make-scene $*"; fail=1; }; }
+damage() { /usr/bin/python3 "$(dirname "$0")/lib/bad_scene.py" "$tmp/cavity.vtp" "$tmp/$1.vtp" "$1" || { echo "FAIL: bad_scene.py $1"; fail=1; }; }
+
+make_scene cavity --nx 8 -o "$tmp/cavity.vtp"
+short="-case scene -t_end 0.02 -progress 0 -threads 1 -output_dir $tmp/refused"
+expect_error "-case scene needs -scene_file FILE" $short
+expect_error "scene file '$tmp/missing.vtp': cannot be opened" $short -scene_file "$tmp/missing.vtp"
+echo "not a scene" >"$tmp/text.vtp"
+expect_error "scene file '$tmp/text.vtp': is not a VTK XML PolyData" $short -scene_file "$tmp/text.vtp"
+for d in no_kind kind_5 nan outside no_fluid no_dx; do damage $d; done
+expect_error "scene file '$tmp/no_kind.vtp': has no point array 'kind' \(.*0 fluid, 1 fixed wall, 2 moving wall\)" $short -scene_file "$tmp/no_kind.vtp"
+expect_error "scene file '$tmp/kind_5.vtp': particle 3 has kind 5; kind must be 0 \(fluid\), 1 \(fixed wall\) or 2" $short -scene_file "$tmp/kind_5.vtp"
+expect_error "scene file '$tmp/nan.vtp': particle 7 has a coordinate that is not a number" $short -scene_file "$tmp/nan.vtp"
+expect_error "scene file '$tmp/outside.vtp': particle 7 at \(100, 0.5\) lies outside the box \[-0.5, 1.5\] along x" $short -scene_file "$tmp/outside.vtp"
+expect_error "scene file '$tmp/no_fluid.vtp': has no fluid particle" $short -scene_file "$tmp/no_fluid.vtp"
+expect_error "scene file '$tmp/no_dx.vtp': gives no particle spacing; add field data 'dx' or pass -scene_dx" $short -scene_file "$tmp/no_dx.vtp"
+make_scene cavity --nx 8 --wall-layers 2 -o "$tmp/thin.vtp"
+expect_error "scene file '$tmp/thin.vtp': the walls near \(.*\) are 2 dx thick, thinner than the kernel support \(3 dx\); add wall layers" $short -scene_file "$tmp/thin.vtp"
+# The kernel decides: the same walls are thick enough for a smaller support.
+expect_ok $short -scene_file "$tmp/thin.vtp" -h_over_dx 1 -output_dir "$tmp/thin_ok"
+expect_error "holds 2D points \(all z equal\), not 3D; drop -dim" $short -scene_file "$tmp/cavity.vtp" -dim 3
+expect_error "-scene_periodic must list axes of this 2D scene" $short -scene_file "$tmp/cavity.vtp" -scene_periodic z
+expect_error "-scene_box needs 4 values" $short -scene_file "$tmp/cavity.vtp" -scene_box 0,1,0
+[ -e "$tmp/refused" ] && { echo "FAIL: a refused scene created its output directory"; fail=1; }
+
+# Options override the file; a missing dx can come from the command line.
+expect_ok $short -scene_file "$tmp/no_dx.vtp" -scene_dx 0.125 -nu 0.02 -output_dir "$tmp/override"
+expect_json "$tmp/override/summary.json" "s['status'] == 'completed' and s['physics']['nu'] == 0.02 and s['dx'] == 0.125 and not s['parameters']['free_surface']" "override: -nu and -scene_dx taken, closed cavity has no free surface"
+# -help documents the scene's options.
+"$sph" -help -case scene 2>&1 | grep -q -- "-scene_file" && echo "ok: -help lists -scene_file" || { echo "FAIL: -help lacks -scene_file"; fail=1; }
+
+# Every scene of make-scene runs a few steps with both solvers; the 3D cavity too.
+for scene in dam_break cylinders sloshing cavity; do
+  make_scene $scene --nx 8 -o "$tmp/$scene.vtp"
+  for solver in isph wcsph; do
+    expect_ok -case scene -scene_file "$tmp/$scene.vtp" -solver $solver -max_steps 10 -progress 0 -threads 1 -output_dir "$tmp/$scene-$solver"
+  done
+done
+expect_json "$tmp/dam_break-isph/summary.json" "s['parameters']['free_surface'] and s['parameters']['wall_thickness_dx'] == 4" "dam break: free surface detected, walls 4 dx"
+make_scene cavity --dim 3 --nx 5 -o "$tmp/cavity3.vtp"
+expect_ok -case scene -scene_file "$tmp/cavity3.vtp" -max_steps 5 -progress 0 -threads 1 -output_dir "$tmp/cavity3"
+expect_json "$tmp/cavity3/summary.json" "s['dim'] == 3 and s['parameters']['moving_wall_particles'] > 0" "3D cavity: dimension from the points"
+
+# Two ranks give the one-rank result (ISPH to the solver tolerance).
+for n in 1 2; do
+  "$mpiexec" -n $n "$sph" -case scene -scene_file "$tmp/dam_break.vtp" -t_end 0.2 -ksp_rtol 1e-10 -progress 0 \
+    -output_interval 0 -output_dir "$tmp/mpi$n" >"$tmp/mpi$n.log" 2>&1 || { echo "FAIL: $n ranks:"; tail -3 "$tmp/mpi$n.log"; fail=1; }
+done
+/usr/bin/python3 - "$tmp/mpi1" "$tmp/mpi2" <<'PY' || fail=1
+import glob, sys
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+def state(d):
+    frames = sorted(glob.glob(d + "/particles_*.pvtp")) or sorted(glob.glob(d + "/particles_*.vtp"))
+    r = vtk.vtkXMLPPolyDataReader() if frames[-1].endswith("pvtp") else vtk.vtkXMLPolyDataReader()
+    r.SetFileName(frames[-1]); r.Update()
+    o = r.GetOutput(); pd = o.GetPointData()
+    order = vtk_to_numpy(pd.GetArray("id")).argsort()
+    return vtk_to_numpy(o.GetPoints().GetData())[order]
+a, b = state(sys.argv[1]), state(sys.argv[2])
+diff = abs(a - b).max()
+print(("ok" if diff < 1e-8 else "FAIL") + f": dam-break scene on 1 and 2 ranks, largest position difference {diff:.1e}")
+sys.exit(0 if diff < 1e-8 else 1)
+PY
+exit $fail
