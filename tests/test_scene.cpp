@@ -89,10 +89,8 @@ TEST(Scene, DamBreakFileMatchesBuiltinCaseWcsph) { expect_same_dam_break("wcsph"
 // state, K = g L^4 / (nu * sum_fluid(m u) / rho) with L = rho = 1. Measured 29.55 at nx 30 (t = 0.5,
 // 2.5% low) and 29.99 at nx 48 (t = 0.3, 1.0% low); 5% is the bound. Taking F = rho g A_fluid
 // instead would give 25.9, 15% low at every resolution: the pressure-driven definition matters.
-TEST(Scene, CylinderArrayDragMatchesSanganiAcrivos) {
-  const std::string file = make_scene("cylinders_30.vtp", "cylinders --nx 30");
-  const auto r = run_sph("cylinders_scene", "-case scene -scene_file " + file + " -t_end 0.5 -output_interval 0 -threads 1");
-  ASSERT_EQ(r.exit_code, 0);
+// Dimensionless drag K = F / (mu U) of a steady run of the cylinder scene (F = rho g L^2, L = 1).
+double steady_drag(const sph::testing::RunResult& r) {
   const double g = r.summary["physics"]["gravity"][0].get<double>(), nu = r.summary["physics"]["nu"].get<double>();
   // Momentum along x at the end and a tenth of the run earlier: the flow must be steady.
   std::ifstream in(r.output_dir + "/timeseries.csv");
@@ -106,17 +104,43 @@ TEST(Scene, CylinderArrayDragMatchesSanganiAcrivos) {
     while (std::getline(row, cell, ',')) v.push_back(std::atof(cell.c_str()));
     series.emplace_back(v[1], v[4]);  // step, t, dt, kinetic_energy, momentum_x
   }
-  ASSERT_GT(series.size(), 10u);
+  EXPECT_GT(series.size(), 10u);
+  if (series.empty()) return std::nan("");
   const double t_end = series.back().first, mx = series.back().second;
   double earlier = mx;
   for (const auto& [t, m] : series)
     if (t <= 0.9 * t_end) earlier = m;
   EXPECT_LT(std::abs(mx - earlier) / mx, 0.005) << "not steady";
+  return g / (nu * mx);
+}
+
+// Sangani & Acrivos (1982) square-array series at Morris et al.'s solid fraction.
+double sangani_acrivos_drag() {
   const double c = M_PI * 0.2 * 0.2;
-  const double reference = 4 * M_PI / (-0.5 * std::log(c) - 0.738 + c - 0.887 * c * c + 2.038 * c * c * c);
-  const double K = g / (nu * mx);
+  return 4 * M_PI / (-0.5 * std::log(c) - 0.738 + c - 0.887 * c * c + 2.038 * c * c * c);
+}
+
+TEST(Scene, CylinderArrayDragMatchesSanganiAcrivos) {
+  const std::string file = make_scene("cylinders_30.vtp", "cylinders --nx 30");
+  const auto r = run_sph("cylinders_scene", "-case scene -scene_file " + file + " -t_end 0.5 -output_interval 0 -threads 1");
+  ASSERT_EQ(r.exit_code, 0);
+  const double reference = sangani_acrivos_drag(), K = steady_drag(r);
   EXPECT_NEAR(reference, 30.30, 0.01);
   EXPECT_NEAR(K, reference, 0.05 * reference) << "K = " << K;
+}
+
+// WCSPH at its default sound speed: at Re ~ 0.03 the pressure scale is the body-force head, not
+// rho U^2, and c0 must follow it (Morris et al. 1997). With c0 = 10 U_ref = 1 the fluid was compressed
+// and K came out 43% low; c0 from the head, 10 sqrt(g L) = 10, gives 4.9% (measured, nx 30). The bound,
+// 10%, separates the two; the ISPH test above holds the 5% of the reference.
+TEST(Scene, CylinderArrayDragWcsphDefaultSoundSpeed) {
+  const std::string file = make_scene("cylinders_30w.vtp", "cylinders --nx 30");
+  const auto r = run_sph("cylinders_scene_wcsph",
+                         "-case scene -scene_file " + file + " -solver wcsph -t_end 0.5 -output_interval 0 -threads 1");
+  ASSERT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.summary["models"]["equation_of_state"]["c0_set_by"], "body-force head sqrt(|g| H)");
+  const double reference = sangani_acrivos_drag(), K = steady_drag(r);
+  EXPECT_NEAR(K, reference, 0.1 * reference) << "K = " << K;
 }
 
 }  // namespace

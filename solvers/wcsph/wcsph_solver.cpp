@@ -27,8 +27,11 @@ struct RawOptions {
 PetscErrorCode read_options(RawOptions* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Weakly-compressible SPH (-solver wcsph)", "Solver");
-  PetscCall(PetscOptionsReal("-c0", "Reference sound speed (0: c0_factor * U_ref)", "", o->c0, &o->c0, nullptr));
-  PetscCall(PetscOptionsReal("-c0_factor", "c0 / U_ref when -c0 is not given (>= 10 keeps density variations ~1%)",
+  PetscCall(PetscOptionsReal("-c0", "Reference sound speed (0: c0_factor times the largest of the flow's speed scales)",
+                             "", o->c0, &o->c0, nullptr));
+  PetscCall(PetscOptionsReal("-c0_factor",
+                             "c0 / V when -c0 is not given, V the largest of U_ref, sqrt(|g| H) and sqrt(nu U_ref / L) "
+                             "(Morris et al. 1997; 10 keeps density variations ~1%)",
                              "", o->c0_factor, &o->c0_factor, nullptr));
   PetscCall(PetscOptionsReal("-tait_gamma", "Tait equation-of-state exponent", "", o->gamma, &o->gamma, nullptr));
   PetscCall(PetscOptionsReal("-cfl", "Acoustic Courant number: dt <= cfl h / (c0 + U_max)", "", o->cfl, &o->cfl, nullptr));
@@ -95,7 +98,7 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
   scene_ = &scene;
   Particles<D>& P = scene.particles;
   eos_.rho0 = scene.physics.rho0;
-  eos_.c0 = c0_ > 0 ? c0_ : c0_factor_ * scene.physics.U;
+  eos_.c0 = c0_ > 0 ? c0_ : c0_factor_ * speed_scale(P, scene.physics);
   // The Tait EOS cannot give a density for p <= -B: such a start would be NaN from t = 0.
   double p_min = 0.0;
   for (std::size_t i = 0; i < P.n_owned; ++i) p_min = std::min(p_min, P.p[i]);
@@ -130,6 +133,28 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
   scene.neighbourhood.halo().update(P.rho);
   update_pressure();
   compute_rates();
+}
+
+// The sound speed keeps density variations near 1/c0_factor^2 only if c0 exceeds every speed whose
+// square sets a pressure scale (Morris, Fox & Zhu 1997, eq. 4.1): the flow speed U (dynamic pressure
+// rho U^2), the body-force head sqrt(|g| H) with H the fluid's extent along g (rho g H), and the
+// viscous sqrt(nu U / L) with L its smallest extent (mu U / L, which dominates at low Reynolds
+// number). With U alone a Stokes flow driven by a body force was compressed: the periodic cylinder
+// array (scripts/make-scene cylinders, U_ref = 0.1, g = 1) gave 43% too little drag at c0 = 1.
+template <int D> double WcsphSolver<D>::speed_scale(const Particles<D>& P, const Physics<D>& phys) {
+  Vector<D> lo = Vector<D>::Constant(1e300), hi = Vector<D>::Constant(-1e300);
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (P.kind[i] == kFluid) lo = lo.cwiseMin(P.x[i]), hi = hi.cwiseMax(P.x[i]);
+  MPI_Allreduce(MPI_IN_PLACE, lo.data(), D, MPI_DOUBLE, MPI_MIN, PETSC_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, hi.data(), D, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+  const Vector<D> extent = (hi - lo).cwiseMax(0.0) + Vector<D>::Constant(scene_->dx);  // particle centres: + dx
+  const double g = phys.gravity.norm();
+  const double H = g > 0 ? (phys.gravity.cwiseAbs() / g).dot(extent) : 0.0;
+  const double speeds[3] = {phys.U, std::sqrt(g * H), std::sqrt(phys.nu * phys.U / extent.minCoeff())};
+  const char* names[3] = {"flow speed U_ref", "body-force head sqrt(|g| H)", "viscous sqrt(nu U_ref / L)"};
+  const int k = static_cast<int>(std::max_element(speeds, speeds + 3) - speeds);
+  speed_scale_name_ = names[k];
+  return speeds[k];
 }
 
 template <int D> void WcsphSolver<D>::update_pressure() {
@@ -342,6 +367,7 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
   const Physics<D>& phys = scene_->physics;
   nlohmann::json models = nlohmann::json::object();
   models["equation_of_state"] = {{"model", "Tait"}, {"c0", eos_.c0}, {"gamma", eos_.gamma}, {"rho0", eos_.rho0}};
+  if (c0_ == 0) models["equation_of_state"]["c0_set_by"] = speed_scale_name_;
   models["density"] = density_names[static_cast<int>(density_)];
   if (diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity)
     models["density_diffusion"] = {{"model", diffusion_ == DensityDiffusion::Molteni ? "MolteniColagrossi" : "Antuono"},

@@ -33,6 +33,8 @@ template <int D> class WcsphSolver : public Solver<D> {
   // Accelerations and density rates at the current positions, velocities and densities.
   void compute_rates();
   void update_pressure();
+  // The largest speed whose square sets a pressure scale of the scene; c0 = c0_factor times it.
+  double speed_scale(const Particles<D>& P, const Physics<D>& phys);
   // Removes the fluid's net volume rate from the density rates (closed or periodic scenes).
   void remove_net_volume_rate();
 
@@ -53,6 +55,7 @@ template <int D> class WcsphSolver : public Solver<D> {
   std::vector<double> drho_;
   double max_acc_ = 0.0;
   bool walls_ = false;
+  std::string speed_scale_name_;
   int closed_volume_option_ = -1;  // -closed_volume: -1 unset (on without a free surface), 0 off, 1 on
   bool closed_volume_ = false;
 };
