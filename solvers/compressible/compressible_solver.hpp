@@ -42,9 +42,6 @@ template <int D> class CompressibleSolver : public Solver<D> {
   }
 
   // Per-particle state (owned entries), public for tests and diagnostics.
-  const std::vector<double>& smoothing_lengths() const { return h_; }
-  const std::vector<double>& thermal_energy() const { return u_; }
-  const std::vector<double>& grad_h_factors() const { return omega_; }
   const std::vector<double>& alphas() const { return alpha_; }
   double total_energy() const;
   Vector<D> total_momentum() const;

@@ -66,8 +66,6 @@ template <int D> class IsphSolver : public Solver<D> {
     return {{"free_surface", &surface_state_}};
   }
 
-  const PressurePoisson<D>& pressure_poisson() const { return ppe_; }
-
  private:
   std::vector<Vector<D>> pressure_gradient() const;
   // nu lap u at the current positions (walls: Adami's mirrored velocity); u has ghost values.

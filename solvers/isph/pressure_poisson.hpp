@@ -71,7 +71,6 @@ template <int D> class PressurePoisson {
                    bool use_guess = true);
 
   ::Mat matrix() const { return A_; }
-  KSP ksp() const { return ksp_; }
   nlohmann::json describe() const;
 
  private:

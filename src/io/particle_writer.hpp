@@ -40,7 +40,6 @@ template <int D> class ParticleWriter {
   void resume(double t);
 
   int frames_written() const { return static_cast<int>(frames_.size()); }
-  const std::string& directory() const { return dir_; }
   std::string pvd_path() const { return dir_ + "/" + base_ + ".pvd"; }
 
  private:
