@@ -100,9 +100,8 @@ std::map<std::string, double> DamBreak::errors(const Particles<2>& P, double t) 
     if (Te[k] > T || Ze[k] >= 4.0 || history_.size() < 2 || Te[k] < history_.front().T) continue;
     for (std::size_t h = 1; h < history_.size(); ++h) {
       if (history_[h].T < Te[k]) continue;
-      const auto [T0, Z0, P0] = history_[h - 1];
-      const auto [T1, Z1, P1] = history_[h];
-      const double Zs = Z0 + (Z1 - Z0) * (Te[k] - T0) / (T1 - T0);
+      const Record &a = history_[h - 1], &b = history_[h];
+      const double Zs = a.Z + (b.Z - a.Z) * (Te[k] - a.T) / (b.T - a.T);
       sum += std::abs(Zs - Ze[k]) / Ze[k];
       ++count;
       break;

@@ -98,7 +98,7 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
   scene_ = &scene;
   Particles<D>& P = scene.particles;
   eos_.rho0 = scene.physics.rho0;
-  eos_.c0 = c0_ > 0 ? c0_ : c0_factor_ * speed_scale(P, scene.physics);
+  eos_.c0 = c0_ > 0 ? c0_ : c0_factor_ * speed_scale();
   // The Tait EOS cannot give a density for p <= -B: such a start would be NaN from t = 0.
   double p_min = 0.0;
   for (std::size_t i = 0; i < P.n_owned; ++i) p_min = std::min(p_min, P.p[i]);
@@ -141,7 +141,9 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
 // viscous sqrt(nu U / L) with L its smallest extent (mu U / L, which dominates at low Reynolds
 // number). With U alone a Stokes flow driven by a body force was compressed: the periodic cylinder
 // array (scripts/make-scene cylinders, U_ref = 0.1, g = 1) gave 43% too little drag at c0 = 1.
-template <int D> double WcsphSolver<D>::speed_scale(const Particles<D>& P, const Physics<D>& phys) {
+template <int D> double WcsphSolver<D>::speed_scale() {
+  const Particles<D>& P = scene_->particles;
+  const Physics<D>& phys = scene_->physics;
   Vector<D> lo = Vector<D>::Constant(1e300), hi = Vector<D>::Constant(-1e300);
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (P.kind[i] == kFluid) lo = lo.cwiseMin(P.x[i]), hi = hi.cwiseMax(P.x[i]);

@@ -34,7 +34,7 @@ template <int D> class WcsphSolver : public Solver<D> {
   void compute_rates();
   void update_pressure();
   // The largest speed whose square sets a pressure scale of the scene; c0 = c0_factor times it.
-  double speed_scale(const Particles<D>& P, const Physics<D>& phys);
+  double speed_scale();
   // Removes the fluid's net volume rate from the density rates (closed or periodic scenes).
   void remove_net_volume_rate();
 
