@@ -52,4 +52,30 @@ sed 's/resolutions: \[8, 12\]/resolutions: [8, 12, 10]/' "$src/cases/studies/tin
 "$study" "$tmp/tiny3.yaml" --sph "$sph" --out "$tmp/s" >"$tmp/run3" 2>&1 || bad "third run exited non-zero"
 grep -q "ran 3 runs (1 failed), skipped 6 runs" "$tmp/run3" && say "ok: added resolution: $(grep '^ran ' "$tmp/run3")" ||
   { bad "adding a resolution did not run exactly the 3 new runs"; cat "$tmp/run3"; }
+
+# Options refined with h: one value per resolution, in the order the resolutions are listed; the sound
+# speed each run used (summary.json) follows its own resolution.
+cat >"$tmp/refined.yaml" <<'YAML'
+name: tiny_refined
+case: taylor_green
+solvers: [wcsph]
+resolutions: [12, 8]
+options: {re: 100, t_end: 0.02}
+solver_resolution_options:
+  wcsph: {c0_factor: [20, 10]}
+YAML
+"$study" "$tmp/refined.yaml" --sph "$sph" --out "$tmp/r" >"$tmp/run4" 2>&1 || { bad "refined study exited non-zero"; cat "$tmp/run4"; }
+c0_of() { /usr/bin/python3 -c 'import json,sys; print("%g" % json.load(open(sys.argv[1]))["models"]["equation_of_state"]["c0"])' "$1"; }
+c8=$(c0_of "$tmp/r/wcsph-nx8/summary.json"); c12=$(c0_of "$tmp/r/wcsph-nx12/summary.json")
+[ "$c8" = 10 ] && [ "$c12" = 20 ] && say "ok: resolution options follow their resolution (c0 $c8 at nx 8, $c12 at nx 12)" ||
+  bad "resolution options: c0 $c8 at nx 8 (want 10), $c12 at nx 12 (want 20)"
+grep -qF -- '`-c0_factor` 10, 20 at nx = 8, 12' "$tmp/r/report.md" && say "ok: report names the refined options" ||
+  bad "report.md does not name the options refined with h"
+sed 's/c0_factor: \[20, 10\]/c0_factor: [20]/' "$tmp/refined.yaml" >"$tmp/refined_bad.yaml"
+if "$study" "$tmp/refined_bad.yaml" --sph "$sph" --out "$tmp/r2" >"$tmp/run5" 2>&1; then
+  bad "a resolution option with too few values was accepted"
+else
+  grep -q "needs one value per resolution (2)" "$tmp/run5" && say "ok: too few resolution values refused: $(tail -1 "$tmp/run5")" ||
+    { bad "refusal message"; cat "$tmp/run5"; }
+fi
 exit $fail
