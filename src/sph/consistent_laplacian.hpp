@@ -60,15 +60,15 @@ template <int D> struct LaplacianSystem {
   using Vec = Eigen::Matrix<double, n, 1>;
   Eigen::Matrix<double, n, n> S = Eigen::Matrix<double, n, n>::Zero();
 
-  // r = x_j - x_i, in units of the support radius (keeps the system well scaled).
-  void add(double weight, const Vector<D>& r) {
-    const Vector<D> e = r.normalized();
+  // e = (x_j - x_i) / |x_j - x_i| and s = |x_j - x_i| in units of the support radius (keeps the system
+  // well scaled), so r = s e.
+  void add(double weight, const Vector<D>& e, double s) {
     Vec phi, psi;
     int q = 0;
     for (int a = 0; a < D; ++a)
-      for (int b = a; b < D; ++b, ++q) phi(q) = (a == b ? 1.0 : 2.0) * e(a) * e(b), psi(D + q) = r(a) * r(b);
-    for (int a = 0; a < D; ++a) phi(m + a) = e(a), psi(a) = r(a);
-    S += weight * psi * phi.transpose();
+      for (int b = a; b < D; ++b, ++q) phi(q) = (a == b ? 1.0 : 2.0) * e(a) * e(b), psi(D + q) = (s * s) * (e(a) * e(b));
+    for (int a = 0; a < D; ++a) phi(m + a) = e(a), psi(a) = s * e(a);
+    S.noalias() += (weight * psi) * phi.transpose();
   }
   // Returns false (and leaves f as it is) when the moments are degenerate.
   bool solve(LaplacianCorrection<D>& f) const {
@@ -95,22 +95,23 @@ std::vector<LaplacianCorrection<D>> laplacian_corrections(const Particles<D>& P,
   std::vector<LaplacianCorrection<D>> out(P.n_owned);
   const double inv_R = 1.0 / K.support_radius();
   for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
+    // The directions e_ij, kept for the sign check below (one pass over the pairs, not two).
+    thread_local std::vector<Vector<D>> directions;
+    directions.clear();
     detail::LaplacianSystem<D> system;
     // Moments of g_ij (the factor 2 of w and of the condition cancel); r scaled by 1 / R, so the
     // solution is A R^2 and c R: scaled back below.
     visit_pairs([&](int, int j, const PairGeometry<D>& g) {
-      system.add(P.m[j] / P.rho[j] * (-g.dWdr / g.r), Vector<D>(-g.rij * inv_R));
+      directions.push_back(-g.rij / g.r);
+      system.add(P.m[j] / P.rho[j] * (-g.dWdr / g.r), directions.back(), g.r * inv_R);
     });
     LaplacianCorrection<D> f;
     if (!system.solve(f)) return;
     // Keep the weights positive, as Morris' are: a negative weight (a one-sided neighbourhood, at a
     // free surface) makes the PPE row lose its diagonal dominance, and the dam break blew up.
-    bool positive = true;
-    visit_pairs([&](int, int, const PairGeometry<D>& g) {
-      const Vector<D> e = -g.rij / g.r;
-      positive = positive && e.dot(f.A * e) + f.c.dot(e) > 0.0;
-    });
-    if (positive) out[i] = {f.A * (inv_R * inv_R), f.c * (inv_R * inv_R)};
+    for (const Vector<D>& e : directions)
+      if (!(e.dot(f.A * e) + f.c.dot(e) > 0.0)) return;
+    out[i] = {f.A * (inv_R * inv_R), f.c * (inv_R * inv_R)};
   });
   return out;
 }
