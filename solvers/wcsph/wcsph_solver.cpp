@@ -226,40 +226,49 @@ template <int D> void WcsphSolver<D>::compute_rates() {
 
   acc_.assign(n, Vector<D>::Zero());
   drho_.assign(n, 0.0);
-  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+  // Each particle's sums live in locals while its pairs are visited, and are stored once.
+  for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
     if (P.kind[i] != kFluid) return;  // walls move as prescribed
-    const Vector<D> uij = P.v[i] - P.v[j];
-    const double Vj = P.m[j] / P.rho[j];
-    const double Pi = av_.active() ? av_.Pi(h, eos_, P.rho[i], P.rho[j], uij, g) : 0.0;
-    if (corrected_gradient) {
-      M[i] += correction_moment_term(Vj, g);
-      grad_p[i] += difference_gradient_term(Vj, P.p[i], P.p[j], g);
-      if (Pi != 0.0) acc_[i] -= (P.m[j] * Pi) * g.gradW;
-    } else {
-      acc_[i] += wcsph::pressure_acceleration_pair(P.m[j], P.p[i], P.p[j], P.rho[i], P.rho[j], Pi, g);
-    }
-    const double F = morris_factor(g, h);
-    if (phys.viscous())
-      acc_[i] += consistent ? Vector<D>(phys.nu * consistent_laplacian_coefficient(laplacian[i], Vj, g) * (uv[j] - uv[i]))
+    Vector<D> acc_i = Vector<D>::Zero(), grad_p_i = Vector<D>::Zero();
+    Tensor<D> M_i = Tensor<D>::Zero(), grad_u_i = Tensor<D>::Zero();
+    double drho_i = 0.0;
+    visit_pairs([&](int, int j, const PairGeometry<D>& g) {
+      const Vector<D> uij = P.v[i] - P.v[j];
+      const double Vj = P.m[j] / P.rho[j];
+      const double Pi = av_.active() ? av_.Pi(h, eos_, P.rho[i], P.rho[j], uij, g) : 0.0;
+      if (corrected_gradient) {
+        M_i += correction_moment_term(Vj, g);
+        grad_p_i += difference_gradient_term(Vj, P.p[i], P.p[j], g);
+        if (Pi != 0.0) acc_i -= (P.m[j] * Pi) * g.gradW;
+      } else {
+        acc_i += wcsph::pressure_acceleration_pair(P.m[j], P.p[i], P.p[j], P.rho[i], P.rho[j], Pi, g);
+      }
+      const double F = morris_factor(g, h);
+      if (phys.viscous())
+        acc_i += consistent ? Vector<D>(phys.nu * consistent_laplacian_coefficient(laplacian[i], Vj, g) * (uv[j] - uv[i]))
                             : morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], phys.nu, phys.nu, F,
                                                           Vector<D>(uv[i] - uv[j]));
-    if (continuity) {
-      // Walls count as at rest here: every wall is fixed or slides along itself (the cavity lid), so
-      // no mass crosses it, and the sliding velocity must stay out of the density. Where the lid ends
-      // at a fixed corner block its velocity jumps from U to 0 inside the kernel support, and the
-      // discrete divergence reads that jump as a source of order U/dx. Integrated in time by this
-      // equation, it compressed the whole cavity (density +18% at Re 100, nx 30; errors 4.5% / 5.7%
-      // instead of 1.9% / 0.5%). ISPH keeps v_w in its pressure source: the projection does not
-      // accumulate the source, which there only raises the stagnation pressure in the downstream
-      // corner (with walls at rest, Re 1000 let a particle through that corner at CFL 0.2; measured).
-      const Vector<D> u_j = P.kind[j] == kWall ? Vector<D>::Zero() : Vector<D>(P.v[j]);
-      if (corrected_continuity) grad_u[i] += difference_vector_gradient_term(Vj, P.v[i], u_j, g);
-      else drho_[i] += wcsph::continuity_pair(P.rho[i], Vj, Vector<D>(P.v[i] - u_j), g);
-      if (diffuse)
-        drho_[i] += wcsph::density_diffusion_pair(delta_h_c0, P.rho[i], P.rho[j], Vj, F,
+      if (continuity) {
+        // Walls count as at rest here: every wall is fixed or slides along itself (the cavity lid), so
+        // no mass crosses it, and the sliding velocity must stay out of the density. Where the lid ends
+        // at a fixed corner block its velocity jumps from U to 0 inside the kernel support, and the
+        // discrete divergence reads that jump as a source of order U/dx. Integrated in time by this
+        // equation, it compressed the whole cavity (density +18% at Re 100, nx 30; errors 4.5% / 5.7%
+        // instead of 1.9% / 0.5%). ISPH keeps v_w in its pressure source: the projection does not
+        // accumulate the source, which there only raises the stagnation pressure in the downstream
+        // corner (with walls at rest, Re 1000 let a particle through that corner at CFL 0.2; measured).
+        const Vector<D> u_j = P.kind[j] == kWall ? Vector<D>::Zero() : Vector<D>(P.v[j]);
+        if (corrected_continuity) grad_u_i += difference_vector_gradient_term(Vj, P.v[i], u_j, g);
+        else drho_i += wcsph::continuity_pair(P.rho[i], Vj, Vector<D>(P.v[i] - u_j), g);
+        if (diffuse)
+          drho_i += wcsph::density_diffusion_pair(delta_h_c0, P.rho[i], P.rho[j], Vj, F,
                                                   grad_rho.empty() ? zero : grad_rho[i],
                                                   grad_rho.empty() ? zero : grad_rho[j], g);
-    }
+      }
+    });
+    acc_[i] = acc_i, drho_[i] = drho_i;
+    if (corrected_gradient) M[i] = M_i, grad_p[i] = grad_p_i;
+    if (corrected_continuity) grad_u[i] = grad_u_i;
   });
   // The corrected forms: d rho_i/dt = -rho_i tr(L_i grad u_i) and a_i = -L_i grad p_i / rho_i, both
   // exact for linear fields on any particle distribution (the plain forms are O(1) wrong in the

@@ -126,11 +126,9 @@ std::vector<LaplacianCorrection<D>> laplacian_corrections(const Particles<D>& P,
 template <int D, class T>
 std::vector<T> laplacian_consistent(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                                     const std::vector<LaplacianCorrection<D>>& c, const std::vector<T>& f) {
-  std::vector<T> lap(P.n_owned, T(f.empty() ? T() : f[0] * 0.0));
-  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
-    lap[i] += consistent_laplacian_coefficient(c[i], P.m[j] / P.rho[j], g) * (f[j] - f[i]);
+  return sum_over_pairs(P, nl, K, T(f.empty() ? T() : f[0] * 0.0), [&](T& lap, int i, int j, const PairGeometry<D>& g) {
+    lap += consistent_laplacian_coefficient(c[i], P.m[j] / P.rho[j], g) * (f[j] - f[i]);
   });
-  return lap;
 }
 
 // (div u)_i = tr(L_i sum_j V_j grad_i W_ij (u_j - u_i)^T), with the correction matrices gathered in
@@ -139,14 +137,17 @@ std::vector<T> laplacian_consistent(const Particles<D>& P, const NeighbourList<D
 template <int D>
 std::vector<double> divergence_corrected(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                                          const std::vector<Vector<D>>& u) {
-  std::vector<Tensor<D>> M(P.n_owned, Tensor<D>::Zero()), G(P.n_owned, Tensor<D>::Zero());
-  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+  struct Sums {
+    Tensor<D> M, G;
+  };
+  const std::vector<Sums> sums = sum_over_pairs(P, nl, K, Sums{Tensor<D>::Zero(), Tensor<D>::Zero()},
+                                                [&](Sums& s, int i, int j, const PairGeometry<D>& g) {
     const double Vj = P.m[j] / P.rho[j];
-    M[i] += correction_moment_term(Vj, g);
-    G[i] += difference_vector_gradient_term(Vj, u[i], u[j], g);
+    s.M += correction_moment_term(Vj, g);
+    s.G += difference_vector_gradient_term(Vj, u[i], u[j], g);
   });
   std::vector<double> div(P.n_owned);
-  for (std::size_t i = 0; i < P.n_owned; ++i) div[i] = (correction_from_moments(M[i]) * G[i]).trace();
+  for (std::size_t i = 0; i < P.n_owned; ++i) div[i] = (correction_from_moments(sums[i].M) * sums[i].G).trace();
   return div;
 }
 

@@ -49,11 +49,9 @@ std::vector<double> divergence(const Particles<D>& P, const NeighbourList<D>& nl
 template <int D>
 std::vector<Vector<D>> gradient_difference(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                                         const std::vector<double>& f) {
-  std::vector<Vector<D>> grad(P.n_owned, Vector<D>::Zero());
-  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
-    grad[i] += difference_gradient_term(P.m[j] / P.rho[j], f[i], f[j], g);
+  return sum_over_pairs(P, nl, K, Vector<D>(Vector<D>::Zero()), [&](Vector<D>& grad, int i, int j, const PairGeometry<D>& g) {
+    grad += difference_gradient_term(P.m[j] / P.rho[j], f[i], f[j], g);
   });
-  return grad;
 }
 
 // (grad f)_i = rho_i sum_j m_j (f_i/rho_i^2 + f_j/rho_j^2) grad_i W_ij: the momentum-conserving
@@ -101,14 +99,18 @@ std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const Neighbour
 template <int D>
 std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                                        const std::vector<double>& f) {
-  std::vector<Tensor<D>> M(P.n_owned, Tensor<D>::Zero());
-  std::vector<Vector<D>> grad(P.n_owned, Vector<D>::Zero());
-  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+  struct Sums {
+    Tensor<D> M;
+    Vector<D> grad;
+  };
+  const std::vector<Sums> sums = sum_over_pairs(P, nl, K, Sums{Tensor<D>::Zero(), Vector<D>::Zero()},
+                                                [&](Sums& s, int i, int j, const PairGeometry<D>& g) {
     const double Vj = P.m[j] / P.rho[j];
-    M[i] += correction_moment_term(Vj, g);
-    grad[i] += difference_gradient_term(Vj, f[i], f[j], g);
+    s.M += correction_moment_term(Vj, g);
+    s.grad += difference_gradient_term(Vj, f[i], f[j], g);
   });
-  for (std::size_t i = 0; i < P.n_owned; ++i) grad[i] = correction_from_moments(M[i]) * grad[i];
+  std::vector<Vector<D>> grad(P.n_owned);
+  for (std::size_t i = 0; i < P.n_owned; ++i) grad[i] = correction_from_moments(sums[i].M) * sums[i].grad;
   return grad;
 }
 

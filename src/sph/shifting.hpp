@@ -15,6 +15,8 @@
 // (measured: 0.8 h^2 blew up), which the solvers add to their time-step limit (max_dt).
 //   grad C_i = sum_j V_j [1 + R (W_ij / W(dx))^n] grad_i W_ij  (R = 0.2, n = 4: the tensile-instability
 //   term of Monaghan 2000 that Lind et al. add to stop pairing).
+#include <array>
+#include <stdexcept>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -68,15 +70,27 @@ void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, 
   std::vector<Tensor<D>> L(n, Tensor<D>::Zero()), grad_u(n, Tensor<D>::Zero());
   std::vector<std::vector<Vector<D>>> grad_f(scalars.size(), std::vector<Vector<D>>(n, Vector<D>::Zero()));
   const double W_dx = K.W(dx);
-  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
-    const double Vj = P.m[j] / P.rho[j];
-    dr[i] += (Vj * (1.0 + model.R * integer_power(g.W / W_dx, model.n))) * g.gradW;
-    L[i] += correction_moment_term(Vj, g);
-    grad_u[i] += difference_vector_gradient_term(Vj, P.v[i], P.v[j], g);
-    for (std::size_t k = 0; k < scalars.size(); ++k) {
-      const std::vector<double>& f = *scalars[k];
-      grad_f[k][i] += difference_gradient_term(Vj, f[i], f[j], g);
-    }
+  // The sums of one particle live in locals while its pairs are visited (registers, not a store to
+  // the arrays at every pair); same terms in the same order.
+  constexpr std::size_t max_scalars = 4;
+  if (scalars.size() > max_scalars) throw std::logic_error("shift_particles: more than 4 scalar fields");
+  const std::size_t ns = scalars.size();
+  std::array<const double*, max_scalars> f{};
+  for (std::size_t k = 0; k < ns; ++k) f[k] = scalars[k]->data();
+  for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
+    Vector<D> dr_i = Vector<D>::Zero();
+    Tensor<D> L_i = Tensor<D>::Zero(), grad_u_i = Tensor<D>::Zero();
+    std::array<Vector<D>, max_scalars> grad_f_i;
+    for (std::size_t k = 0; k < ns; ++k) grad_f_i[k].setZero();
+    visit_pairs([&](int, int j, const PairGeometry<D>& g) {
+      const double Vj = P.m[j] / P.rho[j];
+      dr_i += (Vj * (1.0 + model.R * integer_power(g.W / W_dx, model.n))) * g.gradW;
+      L_i += correction_moment_term(Vj, g);
+      grad_u_i += difference_vector_gradient_term(Vj, P.v[i], P.v[j], g);
+      for (std::size_t k = 0; k < ns; ++k) grad_f_i[k] += difference_gradient_term(Vj, f[k][i], f[k][j], g);
+    });
+    dr[i] = dr_i, L[i] = L_i, grad_u[i] = grad_u_i;
+    for (std::size_t k = 0; k < ns; ++k) grad_f[k][i] = grad_f_i[k];
   });
   const double Dcoef = model.coefficient(K.h(), U, dt);
   for (std::size_t i = 0; i < n; ++i) {
