@@ -102,7 +102,8 @@ std::vector<LaplacianCorrection<D>> laplacian_corrections(const Particles<D>& P,
   const double inv_R = 1.0 / K.support_radius();
   for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
     // The directions e_ij, kept for the sign check below (one pass over the pairs, not two).
-    thread_local std::vector<Vector<D>> directions;
+    thread_local std::vector<Vector<D>> buffer;
+    std::vector<Vector<D>>& directions = buffer;  // a reference captures; the thread-local name would be looked up per pair
     directions.clear();
     detail::LaplacianSystem<D> system;
     // Moments of g_ij (the factor 2 of w and of the condition cancel); r scaled by 1 / R, so the
