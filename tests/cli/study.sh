@@ -63,6 +63,7 @@ resolutions: [12, 8]
 options: {re: 100, t_end: 0.02}
 solver_resolution_options:
   wcsph: {c0_factor: [20, 10]}
+levels: [0.5, 1e-9]
 YAML
 "$study" "$tmp/refined.yaml" --sph "$sph" --out "$tmp/r" >"$tmp/run4" 2>&1 || { bad "refined study exited non-zero"; cat "$tmp/run4"; }
 c0_of() { /usr/bin/python3 -c 'import json,sys; print("%g" % json.load(open(sys.argv[1]))["models"]["equation_of_state"]["c0"])' "$1"; }
@@ -71,6 +72,9 @@ c8=$(c0_of "$tmp/r/wcsph-nx8/summary.json"); c12=$(c0_of "$tmp/r/wcsph-nx12/summ
   bad "resolution options: c0 $c8 at nx 8 (want 10), $c12 at nx 12 (want 20)"
 grep -qF -- '`-c0_factor` 10, 20 at nx = 8, 12' "$tmp/r/report.md" && say "ok: report names the refined options" ||
   bad "report.md does not name the options refined with h"
+# The speed table has the study's own error levels: 0.5 reached by the coarsest run, 1e-9 by none.
+grep -qE '^\| 0\.5 \| ≤ ' "$tmp/r/report.md" && grep -qE '^\| 1e-09 \| – ' "$tmp/r/report.md" &&
+  say "ok: speed table at the study's levels" || { bad "speed table levels"; sed -n '/Speed against/,/In words/p' "$tmp/r/report.md"; }
 sed 's/c0_factor: \[20, 10\]/c0_factor: [20]/' "$tmp/refined.yaml" >"$tmp/refined_bad.yaml"
 if "$study" "$tmp/refined_bad.yaml" --sph "$sph" --out "$tmp/r2" >"$tmp/run5" 2>&1; then
   bad "a resolution option with too few values was accepted"
