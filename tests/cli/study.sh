@@ -75,6 +75,18 @@ grep -qF -- '`-c0_factor` 10, 20 at nx = 8, 12' "$tmp/r/report.md" && say "ok: r
 # The speed table has the study's own error levels: 0.5 reached by the coarsest run, 1e-9 by none.
 grep -qE '^\| 0\.5 \| ≤ ' "$tmp/r/report.md" && grep -qE '^\| 1e-09 \| – ' "$tmp/r/report.md" &&
   say "ok: speed table at the study's levels" || { bad "speed table levels"; sed -n '/Speed against/,/In words/p' "$tmp/r/report.md"; }
+# --nx takes any resolutions, except where options follow the study's own.
+"$study" "$src/cases/studies/tiny_test.yaml" --sph "$sph" --out "$tmp/s" --nx 9 --dry-run >"$tmp/run6" 2>&1 &&
+  grep -q -- "-nx 9 " "$tmp/run6" && say "ok: --nx 9, not in the study file, is planned" || { bad "--nx 9"; cat "$tmp/run6"; }
+"$study" "$tmp/refined.yaml" --sph "$sph" --out "$tmp/r" --nx 12 --dry-run >"$tmp/run7" 2>&1 &&
+  grep -q -- "-c0_factor 20 " "$tmp/run7" && ! grep -q -- "-nx 8 " "$tmp/run7" &&
+  say "ok: --nx 12 keeps nx 12's resolution options" || { bad "--nx 12 with resolution options"; cat "$tmp/run7"; }
+if "$study" "$tmp/refined.yaml" --sph "$sph" --out "$tmp/r" --nx 9 --dry-run >"$tmp/run8" 2>&1; then
+  bad "--nx 9 accepted although the study's options follow its resolutions"
+else
+  grep -q "which its resolution options follow" "$tmp/run8" && say "ok: --nx 9 refused with resolution options" ||
+    { bad "--nx refusal message"; cat "$tmp/run8"; }
+fi
 sed 's/c0_factor: \[20, 10\]/c0_factor: [20]/' "$tmp/refined.yaml" >"$tmp/refined_bad.yaml"
 if "$study" "$tmp/refined_bad.yaml" --sph "$sph" --out "$tmp/r2" >"$tmp/run5" 2>&1; then
   bad "a resolution option with too few values was accepted"
