@@ -35,6 +35,12 @@ std::vector<OptionOwner> option_owners(const RunOptions& chosen);
 
 namespace {
 
+// Relative tolerance for comparing times: t is a sum of steps, so t_end, output and checkpoint times
+// are reached up to round-off.
+constexpr double kTimeTolerance = 1e-12;
+// A run has blown up when the kinetic energy exceeds this many times 1/2 M U^2 (README, Outputs).
+constexpr double kBlowUpKineticEnergy = 1e3;
+
 // Linear-solver iteration statistics over a run.
 struct StepStats {
   long solves = 0, total_iterations = 0;
@@ -319,13 +325,13 @@ template <int D> void Run<D>::execute() {
   };
   Progress progress(opt.progress, opt.t_end);
   const double frame_interval = opt.output_interval > 0 ? opt.output_interval : opt.t_end;
-  double next_output = frame_interval * (std::floor(t / frame_interval * (1 + 1e-12)) + 1);
+  double next_output = frame_interval * (std::floor(t / frame_interval * (1.0 + kTimeTolerance)) + 1);
   const double checkpoint_interval = opt.checkpoint_interval < 0 ? frame_interval : opt.checkpoint_interval;
-  double next_checkpoint = checkpoint_interval > 0 ? checkpoint_interval * (std::floor(t / checkpoint_interval * (1 + 1e-12)) + 1)
+  double next_checkpoint = checkpoint_interval > 0 ? checkpoint_interval * (std::floor(t / checkpoint_interval * (1.0 + kTimeTolerance)) + 1)
                                                    : std::numeric_limits<double>::infinity();
   if (!restarting) writer.write(P, t, frame_fields());
   double last_frame_t = t;
-  const double ke_bound = 1e3 * 0.5 * fluid_mass(P) * scene.physics.U * scene.physics.U;
+  const double ke_bound = kBlowUpKineticEnergy * 0.5 * fluid_mass(P) * scene.physics.U * scene.physics.U;
   // A -dt above the stability limit is refused at the start unless -dt_force; a forced one, or the
   // limit falling below -dt later, is a warning, printed once and kept in summary.json.
   bool warned_dt = false;
@@ -382,14 +388,14 @@ template <int D> void Run<D>::execute() {
 
   try {
     const TimeLoopLogStage log_stage;
-    while (t < opt.t_end * (1.0 - 1e-12) && (opt.max_steps < 0 || step < opt.max_steps) && !steady.reached()) {
+    while (t < opt.t_end * (1.0 - kTimeTolerance) && (opt.max_steps < 0 || step < opt.max_steps) && !steady.reached()) {
       const double stable = solver->stable_dt();
       double dt = opt.dt > 0 ? opt.dt : stable;
       if (opt.dt > stable) warn_dt(stable);
       // Equal steps that land on t_end: a last sliver of a step would be a different discretisation
       // (ISPH's pressure scales with 1/dt).
       const double remaining = opt.t_end - t;
-      dt = remaining / std::ceil(remaining / dt * (1.0 - 1e-12));
+      dt = remaining / std::ceil(remaining / dt * (1.0 - kTimeTolerance));
       LogEventScope log_step(LogEvent::Step);
       failing_step = step + 1;
       const StepReport report = solver->step(dt);
@@ -414,15 +420,15 @@ template <int D> void Run<D>::execute() {
       series.row(row);
       log_diagnostics.end();
       progress.update(step, t, dt, report.linear_iterations);
-      if (t >= next_output * (1.0 - 1e-12) || t >= opt.t_end * (1.0 - 1e-12)) {
+      if (t >= next_output * (1.0 - kTimeTolerance) || t >= opt.t_end * (1.0 - kTimeTolerance)) {
         const LogEventScope log_output(LogEvent::Output);
         writer.write(P, t, frame_fields());
         last_frame_t = t;
-        while (next_output <= t * (1.0 + 1e-12)) next_output += frame_interval;
+        while (next_output <= t * (1.0 + kTimeTolerance)) next_output += frame_interval;
       }
-      if (t >= next_checkpoint * (1.0 - 1e-12)) {
+      if (t >= next_checkpoint * (1.0 - kTimeTolerance)) {
         write_state(t, step);
-        while (next_checkpoint <= t * (1.0 + 1e-12)) next_checkpoint += checkpoint_interval;
+        while (next_checkpoint <= t * (1.0 + kTimeTolerance)) next_checkpoint += checkpoint_interval;
       }
       if ((interrupted = interrupt_requested())) break;  // all ranks see the same answer
     }

@@ -42,7 +42,6 @@ template <int D> class CompressibleSolver : public Solver<D> {
   }
 
   // Per-particle state (owned entries), public for tests and diagnostics.
-  const std::vector<double>& alphas() const { return alpha_; }
   double total_energy() const;
   Vector<D> total_momentum() const;
 

@@ -7,6 +7,7 @@
 #include "src/run/log_events.hpp"
 #include "src/sph/free_surface.hpp"
 #include "src/sph/operators.hpp"
+#include "src/sph/step_limits.hpp"
 
 namespace sph {
 
@@ -85,7 +86,7 @@ template <int D> double IsphSolver<D>::stable_dt() const {
   const Physics<D>& phys = scene_->physics;
   // The reference speed bounds the step too, so a fluid at rest does not take an unbounded step.
   double dt = cfl_ * h / std::max(max_speed(), phys.U);
-  if (phys.viscous()) dt = std::min(dt, viscous_dt_factor_ * h * h / phys.nu);  // Morris et al. (1997)
+  if (phys.viscous()) dt = std::min(dt, kViscousStepFactor * h * h / phys.nu);  // Morris et al. (1997)
   if (shifting_) dt = std::min(dt, shifting_model_.max_dt(h, phys.U));
   return dt;
 }

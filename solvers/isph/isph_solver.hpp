@@ -84,7 +84,6 @@ template <int D> class IsphSolver : public Solver<D> {
   Scene<D>* scene_ = nullptr;
   PressurePoisson<D> ppe_;
   double cfl_ = 0.2;
-  double viscous_dt_factor_ = 0.125;
   PetscBool shifting_ = PETSC_TRUE;
   LindShifting shifting_model_;
   PressureGradient gradient_ = PressureGradient::Corrected;

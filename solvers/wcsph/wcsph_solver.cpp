@@ -9,6 +9,7 @@
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/free_surface.hpp"
 #include "src/sph/operators.hpp"
+#include "src/sph/step_limits.hpp"
 
 namespace sph {
 
@@ -325,8 +326,8 @@ template <int D> double WcsphSolver<D>::stable_dt() const {
   }
   MPI_Allreduce(MPI_IN_PLACE, buf, 2, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
   double dt = cfl_ * h / (buf[1] + std::sqrt(buf[0]));
-  if (phys.viscous()) dt = std::min(dt, 0.125 * h * h / phys.nu);
-  if (max_acc_ > 0.0) dt = std::min(dt, 0.25 * std::sqrt(h / max_acc_));
+  if (phys.viscous()) dt = std::min(dt, kViscousStepFactor * h * h / phys.nu);
+  if (max_acc_ > 0.0) dt = std::min(dt, kForceStepFactor * std::sqrt(h / max_acc_));
   if (shifting_) dt = std::min(dt, shifting_model_.max_dt(h, phys.U));
   return dt;
 }

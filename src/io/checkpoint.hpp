@@ -14,16 +14,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "src/particles/particle_field.hpp"
 #include "src/particles/particles.hpp"
 
 namespace sph {
 
-// A per-particle array to save: n_owned * components contiguous doubles.
-struct CheckpointField {
-  std::string name;
-  double* data;
-  int components;
-};
+// A per-particle array to save.
+using CheckpointField = ParticleField;
 
 template <int D> struct CheckpointState {
   double t = 0.0;

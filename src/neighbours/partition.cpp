@@ -86,9 +86,9 @@ double partition_along_curve(Particles<D>& P, const Domain<D>& domain, const Par
   }
 
   // Pack every particle, in curve order, into one row of doubles per particle.
-  std::vector<CheckpointField> fields = arrays ? arrays() : std::vector<CheckpointField>{};
+  std::vector<ParticleField> fields = arrays ? arrays() : std::vector<ParticleField>{};
   int stride = 2 * D + 5;
-  for (const CheckpointField& f : fields) stride += f.components;
+  for (const ParticleField& f : fields) stride += f.components;
   std::vector<double> send(n * stride);
   std::vector<int> send_count(size, 0);
   for (std::size_t k = 0; k < n; ++k) {
@@ -98,7 +98,7 @@ double partition_along_curve(Particles<D>& P, const Domain<D>& domain, const Par
     for (int a = 0; a < D; ++a) *row++ = P.v[i][a];
     *row++ = P.m[i], *row++ = P.rho[i], *row++ = P.p[i];
     *row++ = P.kind[i], *row++ = static_cast<double>(P.id[i]);  // exact below 2^53
-    for (const CheckpointField& f : fields)
+    for (const ParticleField& f : fields)
       for (int c = 0; c < f.components; ++c) *row++ = f.data[i * f.components + c];
     const int dest = static_cast<int>(std::upper_bound(split_hi.begin(), split_hi.end(), order[k].key) - split_hi.begin());
     send_count[dest] += stride;
@@ -128,7 +128,7 @@ double partition_along_curve(Particles<D>& P, const Domain<D>& domain, const Par
 
   P.n_owned = m;
   P.set_ghost_count(0);
-  fields = arrays ? arrays() : std::vector<CheckpointField>{};  // resized to the new owned count
+  fields = arrays ? arrays() : std::vector<ParticleField>{};  // resized to the new owned count
   for (std::size_t i = 0; i < m; ++i) {
     const double* row = &recv[mine[i].slot * stride];
     for (int a = 0; a < D; ++a) P.x[i][a] = *row++;
@@ -136,7 +136,7 @@ double partition_along_curve(Particles<D>& P, const Domain<D>& domain, const Par
     P.m[i] = *row++, P.rho[i] = *row++, P.p[i] = *row++;
     P.kind[i] = static_cast<int>(*row++);
     P.id[i] = static_cast<GlobalIndex>(*row++);
-    for (const CheckpointField& f : fields)
+    for (const ParticleField& f : fields)
       for (int c = 0; c < f.components; ++c) f.data[i * f.components + c] = *row++;
   }
   assign_global_indices(P);

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "src/core/domain.hpp"
-#include "src/io/checkpoint.hpp"
+#include "src/particles/particle_field.hpp"
 #include "src/particles/particles.hpp"
 
 namespace sph {
@@ -21,7 +21,7 @@ template <int D> std::uint64_t morton_key(const Vector<D>& x, const Vector<D>& l
 // slot: the solver's checkpoint fields (the state it carries from one step to the next). The function
 // is called before the move (to pack, sized to the old owned count) and after it (to unpack, sized to
 // the new owned count).
-using ParticleArrays = std::function<std::vector<CheckpointField>()>;
+using ParticleArrays = std::function<std::vector<ParticleField>()>;
 
 // Wraps owned particles into the periodic box, re-orders (and on several ranks migrates) them along
 // the curve, renumbers global indices, and drops the ghosts (the caller rebuilds its neighbourhood).
