@@ -49,7 +49,7 @@ template <int D> struct LaplacianCorrection {
 template <int D>
 inline double consistent_laplacian_coefficient(const LaplacianCorrection<D>& f, double Vj, const PairGeometry<D>& g) {
   const Vector<D> e = -g.rij / g.r;
-  return 2.0 * Vj * (-g.dWdr / g.r) * (e.dot(f.A * e) + f.c.dot(e));
+  return 2.0 * Vj * (-g.dWdr_r) * (e.dot(f.A * e) + f.c.dot(e));
 }
 
 namespace detail {
@@ -110,7 +110,7 @@ std::vector<LaplacianCorrection<D>> laplacian_corrections(const Particles<D>& P,
     // solution is A R^2 and c R: scaled back below.
     visit_pairs([&](int, int j, const PairGeometry<D>& g) {
       directions.push_back(-g.rij / g.r);
-      system.add(P.m[j] / P.rho[j] * (-g.dWdr / g.r), directions.back(), g.r * inv_R);
+      system.add(P.m[j] / P.rho[j] * (-g.dWdr_r), directions.back(), g.r * inv_R);
     });
     LaplacianCorrection<D> f;
     if (!system.solve(f)) return;

@@ -16,7 +16,8 @@ template <int D> struct PairGeometry {
   double r;        // |x_i - x_j| > 0
   double W;        // W(r, h)
   double dWdr;     // dW/dr
-  Vector<D> gradW;    // grad_i W_ij
+  double dWdr_r;   // dW/dr / r (< 0): the radial factor of the gradient, divided once per pair
+  Vector<D> gradW;    // grad_i W_ij = dWdr_r r_ij
 };
 
 // Whether a listed neighbour at squared distance r2 forms a pair: inside the support (rc2 its square)
@@ -37,7 +38,8 @@ inline void pairs_of(std::size_t i, const Particles<D>& P, const NeighbourList<D
     g.r = std::sqrt(r2);
     g.W = K.W(g.r);
     g.dWdr = K.dWdr(g.r);
-    g.gradW = (g.dWdr / g.r) * g.rij;
+    g.dWdr_r = g.dWdr / g.r;
+    g.gradW = g.dWdr_r * g.rij;
     f(static_cast<int>(i), j, g);
   }
 }
