@@ -7,6 +7,7 @@
 
 #include "src/core/options.hpp"
 #include "src/run/log_events.hpp"
+#include "src/sph/leapfrog.hpp"
 
 namespace sph {
 
@@ -375,33 +376,18 @@ template <int D> StepReport CompressibleSolver<D>::step(double dt) {
   Particles<D>& P = scene_->particles;
   const std::size_t n = P.n_owned;
   const bool mm = switch_ == ViscositySwitch::MorrisMonaghan;
-  // Kick (half step with the rates at t^n) and drift; velocity and thermal variable are predicted to
-  // t^{n+1} for the velocity- and energy-dependent terms of the force evaluation.
-  std::vector<Vector<D>> v_half(n);
-  std::vector<double> th_half(n), alpha_half(mm ? n : 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    v_half[i] = P.v[i] + (0.5 * dt) * acc_[i];
-    th_half[i] = thermal_[i] + 0.5 * dt * dthermal_[i];
-    P.x[i] += dt * v_half[i];
-    P.v[i] = v_half[i] + (0.5 * dt) * acc_[i];
-    thermal_[i] = th_half[i] + 0.5 * dt * dthermal_[i];
-    if (mm) {
-      alpha_half[i] = alpha_[i] + 0.5 * dt * dalpha_[i];
-      alpha_[i] = std::clamp<double>(alpha_half[i] + 0.5 * dt * dalpha_[i], alpha_min_, alpha_max_);
-    }
-  }
-  check_thermal_state();
-  scene_->neighbourhood.update(P);
-  prune_pairs();  // particles moved: distances changed
-  solve_density();
-  update_thermodynamics();
-  compute_forces();
-  // Kick with the rates at t^{n+1}.
-  for (std::size_t i = 0; i < n; ++i) {
-    P.v[i] = v_half[i] + (0.5 * dt) * acc_[i];
-    thermal_[i] = th_half[i] + 0.5 * dt * dthermal_[i];
-    if (mm) alpha_[i] = std::clamp<double>(alpha_half[i] + 0.5 * dt * dalpha_[i], alpha_min_, alpha_max_);
-  }
+  // Kick-drift-kick; velocity, thermal variable and viscosity switch are predicted to t^{n+1} for the
+  // velocity- and energy-dependent terms of the force evaluation.
+  std::vector<LeapfrogScalar> scalars = {{&thermal_, &dthermal_}};
+  if (mm) scalars.push_back({&alpha_, &dalpha_, alpha_min_, alpha_max_});
+  leapfrog_step<D>(dt, n, P.x, P.v, acc_, scalars, [](std::size_t) { return true; }, [&] {
+    check_thermal_state();
+    scene_->neighbourhood.update(P);
+    prune_pairs();  // particles moved: distances changed
+    solve_density();
+    update_thermodynamics();
+    compute_forces();
+  });
   check_thermal_state();
   // Pressure and thermal energy of the final state (what the outputs and the errors see).
   for (std::size_t i = 0; i < n; ++i) {

@@ -8,6 +8,7 @@
 #include "src/run/log_events.hpp"
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/free_surface.hpp"
+#include "src/sph/leapfrog.hpp"
 #include "src/sph/operators.hpp"
 #include "src/sph/step_limits.hpp"
 
@@ -338,29 +339,14 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
   const std::size_t n = P.n_owned;
   const bool continuity = density_ == DensityMethod::Continuity;
 
-  // Kick (half step) and drift.
-  std::vector<Vector<D>> v_half(n);
-  std::vector<double> rho_half(n);
   // Wall particles have zero rates: they keep their prescribed velocity and place.
-  for (std::size_t i = 0; i < n; ++i) {
-    v_half[i] = P.v[i] + 0.5 * dt * acc_[i];
-    rho_half[i] = P.rho[i] + (continuity ? 0.5 * dt * drho_[i] : 0.0);
-    if (P.kind[i] == kFluid) P.x[i] += dt * v_half[i];
-  }
-  // Velocity-dependent rates see a predicted end-of-step velocity and density.
-  for (std::size_t i = 0; i < n; ++i) {
-    P.v[i] = v_half[i] + 0.5 * dt * acc_[i];
-    if (continuity) P.rho[i] = rho_half[i] + 0.5 * dt * drho_[i];
-  }
-  if (!nh.update(P)) nh.halo().update(P.v);
-  nh.halo().update(P.rho);
-  compute_rates();
-
-  // Closing kick.
-  for (std::size_t i = 0; i < n; ++i) {
-    P.v[i] = v_half[i] + 0.5 * dt * acc_[i];
-    if (continuity) P.rho[i] = rho_half[i] + 0.5 * dt * drho_[i];
-  }
+  std::vector<LeapfrogScalar> scalars;
+  if (continuity) scalars.push_back({&P.rho, &drho_});
+  leapfrog_step<D>(dt, n, P.x, P.v, acc_, scalars, [&](std::size_t i) { return P.kind[i] == kFluid; }, [&] {
+    if (!nh.update(P)) nh.halo().update(P.v);
+    nh.halo().update(P.rho);
+    compute_rates();
+  });
   if (shifting_) {
     if (!nh.update(P)) nh.halo().update(P.rho);
     // At a free surface particles shift only along it (Lind et al. 2012).
