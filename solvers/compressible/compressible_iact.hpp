@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "src/kernels/kernel.hpp"
+#include "src/sph/artificial_viscosity.hpp"
 #include "src/neighbours/neighbour_list.hpp"
 #include "src/particles/particles.hpp"
 
@@ -167,9 +168,7 @@ struct ArtificialViscosity {
       const double w = vr / g.r;
       return -0.5 * alpha_ij * signal_velocity(ci, cj, w, beta) * w / rho_bar;
     }
-    const double h_bar = 0.5 * (hi + hj);
-    const double mu = h_bar * vr / (g.r * g.r + epsilon * h_bar * h_bar);
-    return (-alpha_ij * 0.5 * (ci + cj) * mu + beta * mu * mu) / rho_bar;
+    return monaghan_viscosity(alpha_ij, beta, epsilon, 0.5 * (hi + hj), 0.5 * (ci + cj), rho_bar, vr, g.r);
   }
 };
 

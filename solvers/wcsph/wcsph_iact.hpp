@@ -2,6 +2,7 @@
 // Pair physics of weakly-compressible SPH (one i-j interaction each; the loops live in the solver).
 #include <cmath>
 
+#include "src/sph/artificial_viscosity.hpp"
 #include "src/sph/pair_terms.hpp"
 
 namespace sph::wcsph {
@@ -31,7 +32,7 @@ inline double density_diffusion_pair(double delta_h_c0, double rho_i, double rho
   return delta_h_c0 * Vj * (-2.0 * (rho_j - rho_i) * F - (Gi + Gj).dot(g.gradW));
 }
 
-// Monaghan (1992) artificial viscosity Pi_ij (only for approaching pairs).
+// Monaghan (1992) artificial viscosity Pi_ij (only for approaching pairs) with WCSPH's sound speeds.
 struct MonaghanAV {
   double alpha = 0.0, beta = 0.0, epsilon = 0.01;
   bool active() const { return alpha > 0.0 || beta > 0.0; }
@@ -41,9 +42,8 @@ struct MonaghanAV {
             const PairGeometry<D>& g) const {
     const double ur = uij.dot(g.rij);
     if (ur >= 0.0) return 0.0;
-    const double mu = h * ur / (g.r * g.r + epsilon * h * h);
     const double c_mean = 0.5 * (eos.sound_speed(rho_i) + eos.sound_speed(rho_j));
-    return (-alpha * c_mean * mu + beta * mu * mu) / (0.5 * (rho_i + rho_j));
+    return monaghan_viscosity(alpha, beta, epsilon, h, c_mean, 0.5 * (rho_i + rho_j), ur, g.r);
   }
 };
 
