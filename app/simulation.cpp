@@ -141,7 +141,7 @@ PetscErrorCode read_driver_options(DriverOptions* o) {
                             "re-balances them over MPI ranks (0: only at start-up and at checkpoints)",
                             "", o->partition_interval, &o->partition_interval, nullptr));
   PetscCall(PetscOptionsInt("-threads",
-                            "OpenMP threads per MPI rank for the pair loops, neighbour search and hypre (0: "
+                            "OpenMP threads per MPI rank for the pair loops, neighbour search and PPE assembly (0: "
                             "OMP_NUM_THREADS if set, else this rank's cores shared with the other ranks on the node)",
                             "", o->threads, &o->threads, nullptr));
   PetscCall(PetscOptionsString("-restart", "Resume from this checkpoint (same case, solver and options)", "", o->restart,
