@@ -1,6 +1,6 @@
 #pragma once
-// The driver of one run: builds the scene from a case, hands it to a solver, advances it to t_end,
-// and writes the outputs (VTK frames + .pvd, timeseries.csv, summary.json).
+// The sph program's wiring: picks the case and the solver by name, reads the run's options and hands
+// them to the time loop (src/run/time_loop.hpp).
 #include <string>
 
 namespace sph {

@@ -2,7 +2,7 @@
 """Fixed benchmark workloads for the sph program, timed per phase with PETSc's -log_view.
 
 Each workload runs a fixed number of steps (-max_steps, no frames, no checkpoints, no progress line)
-with -log_view written to a file. The events of the "SPH time loop" stage (see src/run/log_events.hpp)
+with -log_view written to a file. The events of the "SPH time loop" stage (see src/core/log_events.hpp)
 are turned into seconds per particle-step for each phase, next to PETSc's PCSetUp/KSPSolve, the KSP
 iterations from summary.json and the child's peak resident memory (getrusage of that one child).
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "cases/case.hpp"
+#include "src/run/case.hpp"
 
 namespace sph {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "solvers/solver.hpp"
+#include "src/run/solver.hpp"
 
 namespace sph {
 

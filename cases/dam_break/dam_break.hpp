@@ -7,7 +7,7 @@
 // the pressure at the foot of the left wall, the probe where ISPH and WCSPH differ most.
 #include <vector>
 
-#include "cases/case.hpp"
+#include "src/run/case.hpp"
 
 namespace sph {
 

@@ -6,7 +6,7 @@
 #include "cases/common/lattice.hpp"
 #include "cases/common/wall_options.hpp"
 #include "src/core/options.hpp"
-#include "src/io/reference_data.hpp"
+#include "cases/common/reference_data.hpp"
 #include "src/sph/interpolation.hpp"
 
 namespace sph {

@@ -3,7 +3,7 @@
 // walls); the top layers slide at the lid speed U. Re = U L / nu. Runs to steady state. Reference:
 // Ghia, Ghia & Shin (1982, JCP 48:387) centreline tables for Re = 100, 400, 1000 (compiled in from
 // cases/lid_driven_cavity/data/).
-#include "cases/case.hpp"
+#include "src/run/case.hpp"
 
 namespace sph {
 

@@ -4,7 +4,7 @@
 //   u(y,t) = F/(2 nu) y (L - y)
 //          - sum_n 4 F L^2 / (nu pi^3 (2n+1)^3) sin((2n+1) pi y / L) exp(-(2n+1)^2 pi^2 nu t / L^2),
 // whose steady centreline speed is U = F L^2 / (8 nu); Re = U L / nu.
-#include "cases/case.hpp"
+#include "src/run/case.hpp"
 
 namespace sph {
 

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "cases/case.hpp"
+#include "src/run/case.hpp"
 #include "cases/scene/scene_file.hpp"
 
 namespace sph {

@@ -25,7 +25,7 @@
 #include <memory>
 #include <vector>
 
-#include "cases/case.hpp"
+#include "src/run/case.hpp"
 #include "cases/sedov/sedov_solution.hpp"
 
 namespace sph {

@@ -7,7 +7,7 @@
 // on the tube |x| <= 0.5 against the exact Riemann solution (Toro 2009, ch. 4).
 // -dim 2 / 3: a thin periodic box in y (and z) of -ny particle layers of the left state; the right
 // state's lattice is as close to isotropic as the layer count allows, masses nearly equal.
-#include "cases/case.hpp"
+#include "src/run/case.hpp"
 #include "cases/sod/exact_riemann.hpp"
 
 namespace sph {

@@ -5,7 +5,7 @@
 // a stability test for free-surface treatment and tensile instability. There is no closed-form
 // solution at later times; the run reports what an inviscid flow must conserve: angular momentum
 // about the centre (angular_momentum_drift_rel) and kinetic energy (kinetic_energy_change_rel).
-#include "cases/case.hpp"
+#include "src/run/case.hpp"
 
 namespace sph {
 

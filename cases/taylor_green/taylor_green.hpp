@@ -3,7 +3,7 @@
 // an exact Navier-Stokes solution:
 //   u = -U e^{bt} cos(2 pi x) sin(2 pi y),  v = U e^{bt} sin(2 pi x) cos(2 pi y),
 //   p = -(rho U^2 / 4) e^{2bt} (cos 4 pi x + cos 4 pi y),  b = -8 pi^2 / Re,  Re = U L / nu, L = 1.
-#include "cases/case.hpp"
+#include "src/run/case.hpp"
 
 namespace sph {
 

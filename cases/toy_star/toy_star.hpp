@@ -8,7 +8,7 @@
 // breathe with the linear frequency Omega sqrt(gamma + 1). The scene is isentropic (no energy equation).
 #include <array>
 
-#include "cases/case.hpp"
+#include "src/run/case.hpp"
 
 namespace sph {
 

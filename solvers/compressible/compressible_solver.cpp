@@ -6,12 +6,23 @@
 #include <sstream>
 
 #include "src/core/options.hpp"
-#include "src/run/log_events.hpp"
+#include "src/core/log_events.hpp"
 #include "src/sph/leapfrog.hpp"
 
 namespace sph {
 
 namespace {
+// This scheme's phases in -log_view, beside the core's (src/core/log_events.hpp): density and smoothing
+// length by Newton-Raphson (grad-h), and the pruned pair lists.
+PetscLogEvent density_h_event() {
+  static const PetscLogEvent e = register_log_event("SPHGasDensityH");
+  return e;
+}
+PetscLogEvent pairs_event() {
+  static const PetscLogEvent e = register_log_event("SPHGasPairs");
+  return e;
+}
+
 const char* const viscosity_names[] = {"none", "signal_velocity", "monaghan"};
 const char* const switch_names[] = {"none", "morris_monaghan"};
 
@@ -173,7 +184,7 @@ template <int D> void CompressibleSolver<D>::ensure_search_radius(double h_max, 
 constexpr double prune_margin = 1.2;
 
 template <int D> void CompressibleSolver<D>::prune_pairs() {
-  const LogEventScope log_pairs(LogEvent::GasPairs);
+  const LogEventScope log_pairs(pairs_event());
   Particles<D>& P = scene_->particles;
   const Neighbourhood<D>& nh = scene_->neighbourhood;
   h_.resize(P.n_owned);
@@ -193,7 +204,7 @@ template <int D> bool CompressibleSolver<D>::pairs_valid() const {
 
 template <int D> void CompressibleSolver<D>::solve_density() {
   using namespace compressible;
-  const LogEventScope log_density_h(LogEvent::GasDensityH);
+  const LogEventScope log_density_h(density_h_event());
   Particles<D>& P = scene_->particles;
   const std::size_t n = P.n_owned;
   const KernelType type = scene_->kernel.type();

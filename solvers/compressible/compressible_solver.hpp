@@ -16,7 +16,7 @@
 
 #include "solvers/compressible/compressible_iact.hpp"
 #include "solvers/compressible/pruned_pairs.hpp"
-#include "solvers/solver.hpp"
+#include "src/run/solver.hpp"
 
 namespace sph {
 

@@ -4,7 +4,7 @@
 
 #include "src/boundary/adami_wall.hpp"
 #include "src/core/options.hpp"
-#include "src/run/log_events.hpp"
+#include "src/core/log_events.hpp"
 #include "src/sph/free_surface.hpp"
 #include "src/sph/operators.hpp"
 #include "src/sph/step_limits.hpp"
@@ -12,6 +12,17 @@
 namespace sph {
 
 namespace {
+// This scheme's phases in -log_view, beside the core's (src/core/log_events.hpp): the PPE's source,
+// free-surface flags and matrix; the pressure solve (KSPSolve, whose PCSetUp PETSc logs itself).
+PetscLogEvent ppe_assembly_event() {
+  static const PetscLogEvent e = register_log_event("SPHPPEAssembly");
+  return e;
+}
+PetscLogEvent ppe_solve_event() {
+  static const PetscLogEvent e = register_log_event("SPHPPESolve");
+  return e;
+}
+
 const char* const gradient_names[] = {"corrected", "difference", "symmetric"};
 
 PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscReal* shift_A, PetscInt* gradient,
@@ -141,7 +152,7 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
   const bool consistent = operators_ == OperatorSet::Consistent;
 
   // div(grad p / rho) = div(u*) / tau.
-  LogEventScope log_assembly(LogEvent::PpeAssembly);
+  LogEventScope log_assembly(ppe_assembly_event());
   std::vector<double> source =
       consistent ? divergence_corrected(P, nh.list(), K, u_star) : divergence(P, nh.list(), K, u_star);
   // Free surface (Lind et al. 2012): surface particles get p = 0.
@@ -163,7 +174,7 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
   for (double& s : source) s /= tau;
   ppe_.assemble(P, nh, K, phys.gravity, phys.free_surface ? &surface : nullptr, consistent ? &corrections : nullptr);
   log_assembly.end();
-  LogEventScope log_solve(LogEvent::PpeSolve);
+  LogEventScope log_solve(ppe_solve_event());
   // The first solve starts from zero: the case's initial pressure is not the projection's.
   const StepReport report = ppe_.solve(source, P.m, P.p, solves_ > 0);
   ++solves_;

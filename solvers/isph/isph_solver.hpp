@@ -34,7 +34,7 @@
 // Density stays at rho0 (the divergence-free variant); the time step obeys the advective CFL and the
 // viscous limit only: no sound speed, which is ISPH's advantage over WCSPH.
 #include "solvers/isph/pressure_poisson.hpp"
-#include "solvers/solver.hpp"
+#include "src/run/solver.hpp"
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/shifting.hpp"
 

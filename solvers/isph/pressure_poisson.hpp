@@ -32,7 +32,7 @@
 #include <string>
 #include <vector>
 
-#include "solvers/solver.hpp"
+#include "src/run/solver.hpp"
 #include "solvers/isph/ppe_rows.hpp"
 
 namespace sph {

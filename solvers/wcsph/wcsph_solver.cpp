@@ -5,7 +5,7 @@
 
 #include "src/boundary/adami_wall.hpp"
 #include "src/core/options.hpp"
-#include "src/run/log_events.hpp"
+#include "src/core/log_events.hpp"
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/free_surface.hpp"
 #include "src/sph/leapfrog.hpp"

@@ -4,7 +4,7 @@
 // or summation; optional delta-SPH density diffusion (Molteni & Colagrossi 2009; Antuono et al. 2010),
 // Monaghan (1992) artificial viscosity, Morris et al. (1997) laminar viscosity; kick-drift-kick
 // leapfrog (Monaghan 2005, sec. 5.3); dt from the acoustic CFL, viscous and force limits.
-#include "solvers/solver.hpp"
+#include "src/run/solver.hpp"
 #include "solvers/wcsph/wcsph_iact.hpp"
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/shifting.hpp"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "src/run/log_events.hpp"
+#include "src/core/log_events.hpp"
 
 namespace sph {
 

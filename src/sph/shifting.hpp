@@ -22,7 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "src/neighbours/neighbourhood.hpp"
-#include "src/run/log_events.hpp"
+#include "src/core/log_events.hpp"
 #include "src/sph/operators.hpp"
 
 namespace sph {

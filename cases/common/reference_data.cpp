@@ -1,4 +1,4 @@
-#include "src/io/reference_data.hpp"
+#include "cases/common/reference_data.hpp"
 
 #include <sstream>
 

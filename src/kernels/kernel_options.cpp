@@ -1,0 +1,36 @@
+#include "src/kernels/kernel_options.hpp"
+
+#include <petscsys.h>
+
+#include "src/core/error.hpp"
+#include "src/core/options.hpp"
+
+namespace sph {
+
+namespace {
+PetscErrorCode read_options(PetscInt* kernel, PetscReal* h_over_dx) {
+  PetscFunctionBeginUser;
+  std::vector<const char*> kernels;
+  for (const auto& k : kernel_names()) kernels.push_back(k.c_str());
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Smoothing kernel", "sph");
+  PetscCall(PetscOptionsEList("-kernel", "Smoothing kernel", "", kernels.data(), static_cast<PetscInt>(kernels.size()),
+                              kernels[*kernel], kernel, nullptr));
+  PetscCall(PetscOptionsReal("-h_over_dx", "Smoothing length over particle spacing (-1: support radius 3 dx)", "",
+                             *h_over_dx, h_over_dx, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+}  // namespace
+
+KernelChoice read_kernel_options() {
+  KernelChoice choice;
+  PetscInt kernel = static_cast<PetscInt>(choice.type);
+  PetscReal h_over_dx = choice.h_over_dx;
+  SPH_PETSC(read_options(&kernel, &h_over_dx));
+  require(h_over_dx == -1 || h_over_dx > 0, "-h_over_dx", "positive", h_over_dx);
+  choice.type = static_cast<KernelType>(kernel);
+  choice.h_over_dx = h_over_dx;
+  return choice;
+}
+
+}  // namespace sph

@@ -1,0 +1,86 @@
+#include "src/run/run_control.hpp"
+
+#include <sstream>
+
+#include "src/core/error.hpp"
+#include "src/core/options.hpp"
+#include "src/run/threads.hpp"
+
+namespace sph {
+
+namespace {
+PetscErrorCode read_options(RunControl* o) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Run control and output", "sph");
+  PetscCall(PetscOptionsReal("-t_end", "End time", "", o->t_end, &o->t_end, nullptr));
+  PetscCall(PetscOptionsReal("-dt", "Fixed time step (0: from the solver's stability limits)", "", o->dt, &o->dt, nullptr));
+  PetscCall(PetscOptionsBool("-dt_force", "Run a -dt above the stability limit instead of refusing it (recorded in summary.json)",
+                             "", o->dt_force, &o->dt_force, nullptr));
+  PetscCall(PetscOptionsInt("-max_steps", "Stop after this many steps (-1: no limit)", "", o->max_steps, &o->max_steps, nullptr));
+  PetscCall(PetscOptionsReal("-output_interval", "Time between VTK frames (-1: t_end/20, 0: first and last only)", "",
+                             o->output_interval, &o->output_interval, nullptr));
+  PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/<case>-<solver>-<nx>)", "", o->output_dir,
+                               o->output_dir, sizeof(o->output_dir), nullptr));
+  PetscCall(PetscOptionsString("-output_fields",
+                               "Extra point arrays in the VTK frames: vorticity (the solver's own fields, e.g. ISPH's "
+                               "free_surface, are always written)",
+                               "", o->output_fields, o->output_fields, sizeof(o->output_fields), nullptr));
+  PetscCall(PetscOptionsBool("-overwrite", "Replace the run already in -output_dir (its frames, tables, summary, checkpoint)",
+                             "", o->overwrite, &o->overwrite, nullptr));
+  PetscCall(PetscOptionsReal("-neighbour_skin", "Verlet-list skin as a fraction of the kernel support", "", o->skin,
+                             &o->skin, nullptr));
+  PetscCall(PetscOptionsReal("-steady_tol",
+                             "Stop when |dKE/dt| / KE over the last time unit falls below this (0: run to t_end; "
+                             "-1: the case's default)",
+                             "", o->steady_tol, &o->steady_tol, nullptr));
+  PetscCall(PetscOptionsReal("-checkpoint_interval",
+                             "Time between checkpoints (<output_dir>/checkpoint.bin; -1: with every frame, 0: never)", "",
+                             o->checkpoint_interval, &o->checkpoint_interval, nullptr));
+  PetscCall(PetscOptionsInt("-partition_interval",
+                            "Steps between re-orderings of the particles along a space-filling curve, which also "
+                            "re-balances them over MPI ranks (0: only at start-up and at checkpoints)",
+                            "", o->partition_interval, &o->partition_interval, nullptr));
+  PetscCall(PetscOptionsInt("-threads",
+                            "OpenMP threads per MPI rank for the pair loops, neighbour search and PPE assembly (0: "
+                            "OMP_NUM_THREADS if set, else this rank's cores shared with the other ranks on the node)",
+                            "", o->threads, &o->threads, nullptr));
+  PetscCall(PetscOptionsString("-restart", "Resume from this checkpoint (same case, solver and options)", "", o->restart,
+                               o->restart, sizeof(o->restart), nullptr));
+  PetscCall(PetscOptionsBool("-progress", "Print a progress line on stderr about once a second", "", o->progress,
+                             &o->progress, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+}  // namespace
+
+void read_run_control_block() {
+  RunControl control;
+  SPH_PETSC(read_options(&control));
+}
+
+void read_run_control(RunControl& opt, double case_steady_tol, int dim) {
+  SPH_PETSC(read_options(&opt));
+  require(opt.t_end > 0, "-t_end", "positive", opt.t_end);
+  require(opt.dt >= 0, "-dt", "non-negative", opt.dt);
+  require(opt.max_steps >= -1, "-max_steps", "-1 (no limit) or non-negative", opt.max_steps);
+  require(opt.output_interval == -1 || opt.output_interval >= 0, "-output_interval",
+          "-1 (t_end/20), 0 (first and last frame) or positive", opt.output_interval);
+  require(opt.checkpoint_interval == -1 || opt.checkpoint_interval >= 0, "-checkpoint_interval",
+          "-1 (with every frame), 0 (never) or positive", opt.checkpoint_interval);
+  require(opt.steady_tol == -1 || opt.steady_tol >= 0, "-steady_tol", "-1 (the case's default), 0 (off) or positive",
+          opt.steady_tol);
+  require(opt.skin >= 0 && opt.skin <= 1, "-neighbour_skin", "in [0, 1]", opt.skin);
+  require(opt.partition_interval >= 0, "-partition_interval", "non-negative", opt.partition_interval);
+  require(opt.threads >= 0, "-threads", "non-negative", opt.threads);
+  opt.threads = configure_threads(static_cast<int>(opt.threads));
+  std::stringstream fields(opt.output_fields);
+  for (std::string f; std::getline(fields, f, ',');) {
+    if (f != "vorticity") throw Error("-output_fields takes vorticity (got '" + f + "')");
+    if (dim == 1) throw Error("-output_fields vorticity needs a 2D or 3D scene");
+    opt.vorticity_output = true;
+  }
+  if (opt.output_interval < 0) opt.output_interval = opt.t_end / 20;
+  if (opt.steady_tol < 0) opt.steady_tol = case_steady_tol;
+}
+
+}  // namespace sph
