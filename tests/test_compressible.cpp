@@ -103,8 +103,8 @@ TEST(ExactRiemann, RefusesVacuum) {
 // ------------------------------------------------------------------------------------------------
 // Pair physics.
 
-template <int D> cs::GasPair<D> make_pair(const sph::Vector<D>& rij, const sph::Kernel<D>& Ki, const sph::Kernel<D>& Kj) {
-  cs::GasPair<D> g;
+template <int D> sph::VariableHPair<D> make_pair(const sph::Vector<D>& rij, const sph::Kernel<D>& Ki, const sph::Kernel<D>& Kj) {
+  sph::VariableHPair<D> g;
   g.rij = rij, g.r = rij.norm();
   g.Wi = Ki.W(g.r), g.dWi = Ki.dWdr(g.r), g.Wj = Kj.W(g.r), g.dWj = Kj.dWdr(g.r);
   return g;

@@ -517,4 +517,41 @@ TEST(Shifting, FusedPairLoopEqualsTheSeparateOperators) {
   EXPECT_GT(largest_shift, 1e-3 * dx);  // the disorder does make particles move
 }
 
+// -shift_rate strain: D = A h^2 |S| dt with S the corrected strain-rate tensor. A rigid rotation has no
+// strain, so nothing moves, however disordered the particles; a simple shear u = (g y, 0) has
+// |S| = g / sqrt(2) everywhere, so the shift is the speed form's times A_s h |S| / (A U) at every
+// particle (the corrected gradient is exact for linear fields on any distribution).
+TEST(Shifting, StrainRateShiftFollowsTheStrainNotTheRotation) {
+  const int nx = 16;
+  const double dx = 1.0 / nx, U = 1.0, gamma = 0.8;
+  LindShifting strain;
+  strain.rate = ShiftRate::Strain;
+  const LindShifting speed;
+  auto shifts = [&](const LindShifting& model, auto velocity) {
+    Patch S(nx, kCases[0]);
+    for (std::size_t i = 0; i < S.P.n_owned; ++i) S.P.v[i] = velocity(S.P.x[i]);
+    const std::vector<V2> x0 = S.P.x;
+    const double dt = 0.05 * S.K.h() / U;
+    shift_particles(S.P, *S.nh, S.K, model, dx, U, dt);
+    std::vector<V2> dr(S.P.n_owned);
+    for (std::size_t i = 0; i < dr.size(); ++i) dr[i] = S.P.x[i] - x0[i];
+    return std::make_pair(dr, S.K.h());
+  };
+  const auto [rotation, h] = shifts(strain, [](const V2& x) { return V2(-(x[1] - 0.5), x[0] - 0.5); });
+  double largest = 0.0;
+  for (const V2& d : rotation) largest = std::max(largest, d.norm());
+  EXPECT_LT(largest, 1e-12 * dx);
+
+  auto shear = [&](const V2& x) { return V2(gamma * x[1], 0.0); };
+  const auto by_strain = shifts(strain, shear).first, by_speed = shifts(speed, shear).first;
+  const double ratio = strain.coefficient_A() * h * (gamma / std::sqrt(2.0)) / (speed.coefficient_A() * U);
+  double moved = 0.0;
+  for (std::size_t i = 0; i < by_strain.size(); ++i) {
+    EXPECT_NEAR(by_strain[i][0], ratio * by_speed[i][0], 1e-9 * dx) << i;
+    EXPECT_NEAR(by_strain[i][1], ratio * by_speed[i][1], 1e-9 * dx) << i;
+    moved = std::max(moved, by_strain[i].norm());
+  }
+  EXPECT_GT(moved, 1e-5 * dx);
+}
+
 }  // namespace

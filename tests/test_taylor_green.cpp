@@ -31,6 +31,14 @@ TEST(TaylorGreen, IsphMatchesAnalyticDecayAndConverges) {
     EXPECT_EQ(s["ksp"]["type"], "gmres");
     EXPECT_EQ(s["ksp"]["pc_type"], "hypre");
   }
+  // The error splits into the amplitude's and the shape's: |u - u_e| <= |u - a u_e| + |a - 1| |u_e|,
+  // and |u_e| <= U e^{bt}. On this run most of the error is the amplitude's (the decay rate).
+  for (const auto* r : {&coarse, &fine}) {
+    const auto& e = r->summary["errors"];
+    const double l1 = e["l1_velocity"], shape = e["l1_velocity_shape"], amplitude = e["amplitude_rel"];
+    EXPECT_LE(l1, shape + std::abs(amplitude) + 1e-12);
+    EXPECT_LT(shape, 0.5 * l1);
+  }
   // Refinement reduces the error.
   EXPECT_LT(fine.summary["errors"]["l1_velocity"].get<double>(), coarse.summary["errors"]["l1_velocity"].get<double>());
   EXPECT_LT(fine.summary["errors"]["decay_rel"].get<double>(), coarse.summary["errors"]["decay_rel"].get<double>());
@@ -48,7 +56,7 @@ TEST(TaylorGreen, SummaryCarriesRequiredFields) {
   EXPECT_EQ(r.summary["dim"], 2);
   for (const char* key : {"type", "pc_type", "iterations_mean", "iterations_max"})
     EXPECT_TRUE(r.summary["ksp"].contains(key)) << key;
-  for (const char* key : {"l1_velocity", "linf_velocity", "decay_rel", "l1_pressure"})
+  for (const char* key : {"l1_velocity", "linf_velocity", "decay_rel", "amplitude_rel", "l1_velocity_shape", "l1_pressure"})
     EXPECT_TRUE(r.summary["errors"].contains(key)) << key;
   EXPECT_TRUE(r.summary["models"].contains("shifting"));
   EXPECT_TRUE(r.summary["models"].contains("viscosity"));

@@ -1,6 +1,6 @@
 #pragma once
 // Pair physics of compressible SPH with variable smoothing lengths (one i-j interaction each; the
-// loops live in compressible_solver.cpp). Every particle carries its own h_i, fixed by
+// loops are the variable-h ones of src/sph/pair_loop.hpp, run by compressible_solver.cpp). Every particle carries its own h_i, fixed by
 //   rho_i h_i^D = m_i eta^D   together with   rho_i = sum_j m_j W(r_ij, h_i),
 // and the grad-h factor  Omega_i = 1 - (dh_i/drho_i) sum_j m_j dW(r_ij, h_i)/dh_i  (Springel & Hernquist
 // 2002, MNRAS 333:649; Monaghan 2002; Price 2012, JCP 231:759, sec. 3). With P_i/(Omega_i rho_i^2) = q_i
@@ -16,68 +16,10 @@
 
 #include "src/kernels/kernel.hpp"
 #include "src/sph/artificial_viscosity.hpp"
-#include "src/neighbours/neighbour_list.hpp"
+#include "src/sph/pair_loop.hpp"
 #include "src/particles/particles.hpp"
 
 namespace sph::compressible {
-
-// ---------------------------------------------------------------------------------------------------
-// Loops. Lists (NeighbourList or PrunedPairs: begin(i)/end(i) over neighbour indices) must hold every
-// pair within the supports in use.
-
-// For owned particle i: f(j, r_ij, r) for every neighbour j with 0 < r < support of K (i's own kernel),
-// the "gather" view used by the density / smoothing-length iteration.
-template <int D, class List, class Fn>
-inline void for_each_gather_neighbour(const Particles<D>& P, const List& nl, std::size_t i, const Kernel<D>& K,
-                                      Fn&& f) {
-  const double rc2 = K.support_radius() * K.support_radius();
-  for (const int* it = nl.begin(i); it != nl.end(i); ++it) {
-    const int j = *it;
-    const Vector<D> rij = P.x[i] - P.x[j];
-    const double r2 = rij.squaredNorm();
-    if (r2 >= rc2 || r2 == 0.0) continue;
-    f(j, rij, std::sqrt(r2));
-  }
-}
-
-// Geometry of a pair seen with both smoothing lengths: kernels and their radial derivatives at h_i and
-// at h_j (each zero outside its own support).
-template <int D> struct GasPair {
-  Vector<D> rij;  // x_i - x_j
-  double r;       // |r_ij| > 0
-  double Wi, Wj, dWi, dWj;
-  Vector<D> gradWi() const { return (dWi / r) * rij; }               // grad_i W(r_ij, h_i)
-  Vector<D> gradWj() const { return (dWj / r) * rij; }               // grad_i W(r_ij, h_j)
-  double dW_mean() const { return 0.5 * (dWi + dWj); }
-  Vector<D> gradW_mean() const { return (dW_mean() / r) * rij; }     // symmetric in i, j
-};
-
-// f(i, j, pair) for every owned i and neighbour j within the larger of the two supports ("scatter +
-// gather", what the symmetric force needs). kernels[k] is particle k's kernel (owned and ghosts).
-template <int D, class List, class Fn>
-void for_each_gas_pair(const Particles<D>& P, const List& nl, const std::vector<Kernel<D>>& kernels, Fn&& f) {
-  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
-  // Threads share the particles i; f writes only to entries of i (as for sph::for_each_pair).
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
-    const std::size_t i = static_cast<std::size_t>(ii);
-    GasPair<D> g;
-    const Kernel<D>& Ki = kernels[i];
-    const double rci = Ki.support_radius();
-    for (const int* it = nl.begin(i); it != nl.end(i); ++it) {
-      const int j = *it;
-      const Kernel<D>& Kj = kernels[j];
-      const double rc = std::max(rci, Kj.support_radius());
-      g.rij = P.x[i] - P.x[j];
-      const double r2 = g.rij.squaredNorm();
-      if (r2 >= rc * rc || r2 == 0.0) continue;
-      g.r = std::sqrt(r2);
-      g.Wi = Ki.W(g.r), g.dWi = Ki.dWdr(g.r);
-      g.Wj = Kj.W(g.r), g.dWj = Kj.dWdr(g.r);
-      f(static_cast<int>(i), j, g);
-    }
-  }
-}
 
 // ---------------------------------------------------------------------------------------------------
 // Density and smoothing length.
@@ -131,12 +73,12 @@ inline double grad_h_factor(int D, double h, const DensitySums& s) { return 1.0 
 // Forces and heating of one pair (i from j).
 
 // Pressure acceleration on i from j; q = P / (Omega rho^2).
-template <int D> inline Vector<D> pressure_acceleration(double mj, double qi, double qj, const GasPair<D>& g) {
+template <int D> inline Vector<D> pressure_acceleration(double mj, double qi, double qj, const VariableHPair<D>& g) {
   return (-mj / g.r * (qi * g.dWi + qj * g.dWj)) * g.rij;
 }
 
 // Compressional (pdV) heating of i by j.
-template <int D> inline double pdv_heating(double mj, double qi, const Vector<D>& vij, const GasPair<D>& g) {
+template <int D> inline double pdv_heating(double mj, double qi, const Vector<D>& vij, const VariableHPair<D>& g) {
   return qi * mj * vij.dot(g.gradWi());
 }
 
@@ -160,7 +102,7 @@ struct ArtificialViscosity {
   bool active() const { return model != ViscosityModel::None; }
   template <int D>
   double Pi(double alpha_ij, double ci, double cj, double rho_i, double rho_j, double hi, double hj,
-            const Vector<D>& vij, const GasPair<D>& g) const {
+            const Vector<D>& vij, const VariableHPair<D>& g) const {
     const double vr = vij.dot(g.rij);
     if (vr >= 0.0) return 0.0;
     const double rho_bar = 0.5 * (rho_i + rho_j);
@@ -174,10 +116,10 @@ struct ArtificialViscosity {
 
 // Viscous acceleration on i from j and its heating of i: -m_j Pi grad_bar W and (1/2) m_j Pi v_ij . grad_bar W,
 // which together conserve the total energy exactly.
-template <int D> inline Vector<D> viscous_acceleration(double mj, double Pi, const GasPair<D>& g) {
+template <int D> inline Vector<D> viscous_acceleration(double mj, double Pi, const VariableHPair<D>& g) {
   return (-mj * Pi) * g.gradW_mean();
 }
-template <int D> inline double viscous_heating(double mj, double Pi, const Vector<D>& vij, const GasPair<D>& g) {
+template <int D> inline double viscous_heating(double mj, double Pi, const Vector<D>& vij, const VariableHPair<D>& g) {
   return 0.5 * mj * Pi * vij.dot(g.gradW_mean());
 }
 

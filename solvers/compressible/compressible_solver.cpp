@@ -12,6 +12,14 @@
 namespace sph {
 
 namespace {
+// The neighbour search reaches kSearchHeadroom times the largest support: smoothing lengths drift by a
+// fraction of a percent per step, so the search radius need not change every step. It shrinks again
+// once the largest support falls below kSearchShrink of it (after an expansion, say).
+constexpr double kSearchHeadroom = 1.1, kSearchShrink = 0.7;
+// Density and smoothing length: Newton-Raphson, safeguarded by bisection from iteration
+// kNewtonIterationsBeforeBisection on; a particle not converged after kMaxDensityIterations is an error.
+constexpr int kNewtonIterationsBeforeBisection = 10, kMaxDensityIterations = 80;
+
 // This scheme's phases in -log_view, beside the core's (src/core/log_events.hpp): density and smoothing
 // length by Newton-Raphson (grad-h), and the pruned pair lists.
 PetscLogEvent density_h_event() {
@@ -36,7 +44,7 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Compressible SPH, ideal gas with grad-h terms (-solver compressible)",
                     "Solver");
-  PetscCall(PetscOptionsReal("-cfl", "Courant number: dt <= cfl h_i / v_sig,i (signal velocity)", "", o->cfl, &o->cfl,
+  PetscCall(PetscOptionsReal("-cfl", "Compressible: Courant number on the signal velocity, dt <= cfl h_i / v_sig,i", "", o->cfl, &o->cfl,
                              nullptr));
   PetscCall(PetscOptionsReal("-cfl_force", "Force criterion: dt <= cfl_force sqrt(h_i / |a_i|)", "", o->cfl_force,
                              &o->cfl_force, nullptr));
@@ -46,7 +54,7 @@ PetscErrorCode read_options(RawOptions* o) {
                              &o->h_tol, nullptr));
   PetscCall(PetscOptionsEList("-av", "Artificial viscosity: none, signal_velocity (Monaghan 1997), monaghan (1992)", "",
                               viscosity_names, 3, viscosity_names[o->viscosity], &o->viscosity, nullptr));
-  PetscCall(PetscOptionsReal("-av_alpha", "Artificial viscosity alpha (initial alpha with -av_switch)", "", o->alpha,
+  PetscCall(PetscOptionsReal("-av_alpha", "Compressible: artificial viscosity alpha (default 1, initial alpha with -av_switch; WCSPH's default is 0)", "", o->alpha,
                              &o->alpha, nullptr));
   PetscCall(PetscOptionsReal("-av_beta", "Artificial viscosity beta (-1: 3 for signal_velocity, 2 for monaghan)", "",
                              o->beta, &o->beta, nullptr));
@@ -150,7 +158,7 @@ template <int D> void CompressibleSolver<D>::setup(Scene<D>& scene) {
 
   double h_max = 0.0;
   for (std::size_t i = 0; i < n; ++i) h_max = std::max(h_max, h_[i]);
-  scene.neighbourhood.set_support_radius(1.1 * kappa_ * mpi_max(h_max));
+  scene.neighbourhood.set_support_radius(kSearchHeadroom * kappa_ * mpi_max(h_max));
   scene.neighbourhood.update(P, true);
   prune_pairs();
   solve_density();
@@ -172,9 +180,8 @@ template <int D> void CompressibleSolver<D>::setup(Scene<D>& scene) {
 template <int D> void CompressibleSolver<D>::ensure_search_radius(double h_max, bool allow_shrink) {
   Neighbourhood<D>& nh = scene_->neighbourhood;
   const double need = kappa_ * h_max;
-  if (need > nh.support_radius() || (allow_shrink && need < 0.7 * nh.support_radius())) {
-    // 10% headroom: smoothing lengths drift by a fraction of a percent per step.
-    nh.set_support_radius(1.1 * need);
+  if (need > nh.support_radius() || (allow_shrink && need < kSearchShrink * nh.support_radius())) {
+    nh.set_support_radius(kSearchHeadroom * need);
     nh.update(scene_->particles, true);
     ++radius_changes_;
   }
@@ -215,7 +222,7 @@ template <int D> void CompressibleSolver<D>::solve_density() {
   std::vector<std::size_t> active(n);
   for (std::size_t i = 0; i < n; ++i) active[i] = i;
   std::vector<HBracket> bracket(n);
-  const int max_iterations = 80;  // Newton, then (from step 10) bisection
+  const int max_iterations = kMaxDensityIterations;
   for (int iteration = 1;; ++iteration) {
     double h_max = 0.0;
     for (std::size_t k : active) h_max = std::max(h_max, h_[k]);
@@ -251,7 +258,7 @@ template <int D> void CompressibleSolver<D>::solve_density() {
       // The pruned list while it covers this h, the full list when the iteration has gone beyond it.
       if (K.support_radius() <= pairs_.reach(i)) for_each_gather_neighbour(P, pairs_, i, K, gather);
       else for_each_gather_neighbour(P, nl, i, K, gather);
-      const double h_new = newton_h_update(D, P.m[i], eta_, h, s, bracket[i], iteration > 10);
+      const double h_new = newton_h_update(D, P.m[i], eta_, h, s, bracket[i], iteration > kNewtonIterationsBeforeBisection);
       const bool closed = bracket[i].hi > 0.0 && bracket[i].hi - bracket[i].lo <= h_tolerance_ * h;
       if (std::abs(h_new - h) <= h_tolerance_ * h || closed) {
         // Converged: the sums were taken at this h.
@@ -327,7 +334,7 @@ template <int D> void CompressibleSolver<D>::compute_forces() {
   vsig_.assign(n, 0.0);
 
   if (!pairs_valid()) prune_pairs();
-  for_each_gas_pair(P, pairs_, kernels_, [&](int i, int j, const GasPair<D>& g) {
+  for_each_variable_h_pair(P, pairs_, kernels_, [&](int i, int j, const VariableHPair<D>& g) {
     const Vector<D> vij = P.v[i] - P.v[j];
     acc_[i] += pressure_acceleration(P.m[j], q_[i], q_[j], g);
     pdv[i] += pdv_heating(P.m[j], q_[i], vij, g);

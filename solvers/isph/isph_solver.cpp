@@ -25,14 +25,15 @@ PetscLogEvent ppe_solve_event() {
 
 const char* const gradient_names[] = {"corrected", "difference", "symmetric"};
 
-PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscReal* shift_A, PetscInt* gradient,
+PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscInt* shift_rate, PetscReal* shift_A, PetscInt* gradient,
                             PetscReal* fs_threshold, PetscReal* fs_exit_threshold, PetscInt* operators) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "ISPH projection solver (-solver isph)", "Solver");
-  PetscCall(PetscOptionsReal("-cfl", "Advective Courant number: dt <= cfl h / U", "", *cfl, cfl, nullptr));
+  PetscCall(PetscOptionsReal("-cfl", "ISPH: advective Courant number, dt <= cfl h / U (the explicit schemes read -cfl as an acoustic one)", "", *cfl, cfl, nullptr));
   PetscCall(PetscOptionsBool("-shifting", "Particle shifting (Lind et al. 2012)", "", *shifting, shifting, nullptr));
-  PetscCall(PetscOptionsReal("-shift_coefficient", "Shifting coefficient A in D = A h U_ref dt (Lind et al. 2012; dt also kept below 0.5 h / (A U_ref))", "", *shift_A,
-                             shift_A, nullptr));
+  PetscCall(PetscOptionsEList("-shift_rate", shift_rate_help, "", shift_rate_names, 2, shift_rate_names[*shift_rate],
+                              shift_rate, nullptr));
+  PetscCall(PetscOptionsReal("-shift_coefficient", shift_coefficient_help, "", *shift_A, shift_A, nullptr));
   PetscCall(PetscOptionsEList("-pressure_gradient",
                               "Pressure gradient: corrected (Bonet & Lok), difference, symmetric (Monaghan)", "",
                               gradient_names, 3, gradient_names[*gradient], gradient, nullptr));
@@ -54,15 +55,17 @@ PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscReal* shif
 
 template <int D> void IsphSolver<D>::set_from_options() {
   PetscReal cfl = cfl_, A = shifting_model_.A;
+  PetscInt shift_rate = static_cast<PetscInt>(shifting_model_.rate);
   PetscInt gradient = static_cast<PetscInt>(gradient_), operators = static_cast<PetscInt>(operators_);
-  SPH_PETSC(read_options(&cfl, &shifting_, &A, &gradient, &free_surface_threshold_, &free_surface_exit_threshold_,
+  SPH_PETSC(read_options(&cfl, &shifting_, &shift_rate, &A, &gradient, &free_surface_threshold_, &free_surface_exit_threshold_,
                          &operators));
   require(free_surface_threshold_ >= 0 && free_surface_threshold_ < D, "-free_surface_threshold",
           "in [0, dimension)", free_surface_threshold_);
   require(free_surface_exit_threshold_ >= 0 && free_surface_exit_threshold_ < D, "-free_surface_exit_threshold",
           "in [0, dimension)", free_surface_exit_threshold_);
   require(cfl > 0 && cfl <= 1.0, "-cfl", "in (0, 1]", cfl);
-  require(A >= 0, "-shift_coefficient", "non-negative", A);
+  require(A >= 0 || A == -1, "-shift_coefficient", "non-negative (or -1: the shift rate's default)", A);
+  shifting_model_.rate = static_cast<ShiftRate>(shift_rate);
   cfl_ = cfl, shifting_model_.A = A, gradient_ = static_cast<PressureGradient>(gradient);
   operators_ = static_cast<OperatorSet>(operators);
   ppe_.set_from_options();

@@ -15,6 +15,13 @@
 
 namespace sph {
 
+// Coefficient c_ij of the Cummins & Rudman (1999) pressure Laplacian (the classic operator set)
+//   div(grad p / rho)_i = sum_j c_ij (p_i - p_j),  c_ij = m_j 8 / (rho_i + rho_j)^2 F_ij.
+inline double ppe_pair_coefficient(double mj, double rho_i, double rho_j, double F) {
+  const double s = rho_i + rho_j;
+  return 8.0 * mj * F / (s * s);
+}
+
 struct PpeRows {
   // This rank's rows split as MPIAIJ keeps them: the "diagonal" block of the columns this rank owns
   // (local column indices) and the "off-diagonal" rest (global indices). Row i is [di[i], di[i + 1]).

@@ -21,7 +21,7 @@ const char* const gradient_names[] = {"auto", "corrected", "symmetric"};
 
 struct RawOptions {
   PetscReal c0, c0_factor, gamma, cfl, delta, alpha, beta, epsilon, shift_A;
-  PetscInt density, diffusion, operators, gradient;
+  PetscInt density, diffusion, operators, gradient, shift_rate;
   PetscBool shifting;
   PetscBool closed_volume, closed_volume_set;
 };
@@ -36,13 +36,13 @@ PetscErrorCode read_options(RawOptions* o) {
                              "(Morris et al. 1997; 10 keeps density variations ~1%)",
                              "", o->c0_factor, &o->c0_factor, nullptr));
   PetscCall(PetscOptionsReal("-tait_gamma", "Tait equation-of-state exponent", "", o->gamma, &o->gamma, nullptr));
-  PetscCall(PetscOptionsReal("-cfl", "Acoustic Courant number: dt <= cfl h / (c0 + U_max)", "", o->cfl, &o->cfl, nullptr));
+  PetscCall(PetscOptionsReal("-cfl", "WCSPH: acoustic Courant number, dt <= cfl h / (c0 + U_max) (ISPH reads -cfl as an advective one)", "", o->cfl, &o->cfl, nullptr));
   PetscCall(PetscOptionsEList("-density", "Density: continuity equation or kernel summation", "", density_names, 2,
                               density_names[o->density], &o->density, nullptr));
   PetscCall(PetscOptionsEList("-density_diffusion", "delta-SPH density diffusion: none, molteni (2009), antuono (2010)",
                               "", diffusion_names, 3, diffusion_names[o->diffusion], &o->diffusion, nullptr));
   PetscCall(PetscOptionsReal("-delta", "delta-SPH coefficient", "", o->delta, &o->delta, nullptr));
-  PetscCall(PetscOptionsReal("-av_alpha", "Monaghan artificial viscosity alpha (0: off)", "", o->alpha, &o->alpha, nullptr));
+  PetscCall(PetscOptionsReal("-av_alpha", "WCSPH: Monaghan artificial viscosity alpha (default 0: off; the compressible solver's default is 1)", "", o->alpha, &o->alpha, nullptr));
   PetscCall(PetscOptionsReal("-av_beta", "Monaghan artificial viscosity beta", "", o->beta, &o->beta, nullptr));
   PetscCall(PetscOptionsReal("-av_epsilon", "Artificial viscosity singularity guard epsilon", "", o->epsilon, &o->epsilon,
                              nullptr));
@@ -62,8 +62,9 @@ PetscErrorCode read_options(RawOptions* o) {
                              "", o->closed_volume, &o->closed_volume, &o->closed_volume_set));
   PetscCall(PetscOptionsBool("-shifting", "Particle shifting (Lind et al. 2012) with Taylor-corrected u and rho", "",
                              o->shifting, &o->shifting, nullptr));
-  PetscCall(PetscOptionsReal("-shift_coefficient", "Shifting coefficient A in D = A h U_ref dt (Lind et al. 2012; dt also kept below 0.5 h / (A U_ref))", "", o->shift_A,
-                             &o->shift_A, nullptr));
+  PetscCall(PetscOptionsEList("-shift_rate", shift_rate_help, "", shift_rate_names, 2, shift_rate_names[o->shift_rate],
+                              &o->shift_rate, nullptr));
+  PetscCall(PetscOptionsReal("-shift_coefficient", shift_coefficient_help, "", o->shift_A, &o->shift_A, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -72,7 +73,8 @@ PetscErrorCode read_options(RawOptions* o) {
 template <int D> void WcsphSolver<D>::set_from_options() {
   RawOptions o{c0_, c0_factor_, eos_.gamma, cfl_, delta_, av_.alpha, av_.beta, av_.epsilon,
                shifting_model_.A, static_cast<PetscInt>(density_), static_cast<PetscInt>(diffusion_),
-               static_cast<PetscInt>(operators_), static_cast<PetscInt>(gradient_), shifting_,
+               static_cast<PetscInt>(operators_), static_cast<PetscInt>(gradient_),
+               static_cast<PetscInt>(shifting_model_.rate), shifting_,
                closed_volume_option_ > 0 ? PETSC_TRUE : PETSC_FALSE, PETSC_FALSE};
   SPH_PETSC(read_options(&o));
   require(o.c0 >= 0, "-c0", "non-negative", o.c0);
@@ -83,8 +85,9 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   require(o.alpha >= 0, "-av_alpha", "non-negative", o.alpha);
   require(o.beta >= 0, "-av_beta", "non-negative", o.beta);
   require(o.epsilon > 0, "-av_epsilon", "positive", o.epsilon);
-  require(o.shift_A >= 0, "-shift_coefficient", "non-negative", o.shift_A);
-  shifting_ = o.shifting, shifting_model_.A = o.shift_A;
+  require(o.shift_A >= 0 || o.shift_A == -1, "-shift_coefficient", "non-negative (or -1: the shift rate's default)",
+          o.shift_A);
+  shifting_ = o.shifting, shifting_model_.A = o.shift_A, shifting_model_.rate = static_cast<ShiftRate>(o.shift_rate);
   if (o.closed_volume_set) closed_volume_option_ = o.closed_volume ? 1 : 0;
   c0_ = o.c0, c0_factor_ = o.c0_factor, eos_.gamma = o.gamma, cfl_ = o.cfl, delta_ = o.delta;
   av_.alpha = o.alpha, av_.beta = o.beta, av_.epsilon = o.epsilon;
@@ -199,7 +202,6 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   }
   log_density.end();
   const LogEventScope log_forces(LogEvent::Forces);
-  const Vector<D> zero = Vector<D>::Zero();
   const double delta_h_c0 = delta_ * h * eos_.c0;
   const bool diffuse = diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity;
 
@@ -228,49 +230,18 @@ template <int D> void WcsphSolver<D>::compute_rates() {
 
   acc_.assign(n, Vector<D>::Zero());
   drho_.assign(n, 0.0);
+  const wcsph::RatesInputs<D> in{P,          uv,         laplacian,      grad_rho,
+                                 eos_,       av_,        h,              phys.nu,
+                                 delta_h_c0, phys.viscous(), consistent, corrected_gradient,
+                                 continuity, corrected_continuity, diffuse};
   // Each particle's sums live in locals while its pairs are visited, and are stored once.
   for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
     if (P.kind[i] != kFluid) return;  // walls move as prescribed
-    Vector<D> acc_i = Vector<D>::Zero(), grad_p_i = Vector<D>::Zero();
-    Tensor<D> M_i = Tensor<D>::Zero(), grad_u_i = Tensor<D>::Zero();
-    double drho_i = 0.0;
-    visit_pairs([&](int, int j, const PairGeometry<D>& g) {
-      const Vector<D> uij = P.v[i] - P.v[j];
-      const double Vj = P.m[j] / P.rho[j];
-      const double Pi = av_.active() ? av_.Pi(h, eos_, P.rho[i], P.rho[j], uij, g) : 0.0;
-      if (corrected_gradient) {
-        M_i += correction_moment_term(Vj, g);
-        grad_p_i += difference_gradient_term(Vj, P.p[i], P.p[j], g);
-        if (Pi != 0.0) acc_i -= (P.m[j] * Pi) * g.gradW;
-      } else {
-        acc_i += wcsph::pressure_acceleration_pair(P.m[j], P.p[i], P.p[j], P.rho[i], P.rho[j], Pi, g);
-      }
-      const double F = morris_factor(g, h);
-      if (phys.viscous())
-        acc_i += consistent ? Vector<D>(phys.nu * consistent_laplacian_coefficient(laplacian[i], Vj, g) * (uv[j] - uv[i]))
-                            : morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], phys.nu, phys.nu, F,
-                                                          Vector<D>(uv[i] - uv[j]));
-      if (continuity) {
-        // Walls count as at rest here: every wall is fixed or slides along itself (the cavity lid), so
-        // no mass crosses it, and the sliding velocity must stay out of the density. Where the lid ends
-        // at a fixed corner block its velocity jumps from U to 0 inside the kernel support, and the
-        // discrete divergence reads that jump as a source of order U/dx. Integrated in time by this
-        // equation, it compressed the whole cavity (density +18% at Re 100, nx 30; errors 4.5% / 5.7%
-        // instead of 1.9% / 0.5%). ISPH keeps v_w in its pressure source: the projection does not
-        // accumulate the source, which there only raises the stagnation pressure in the downstream
-        // corner (with walls at rest, Re 1000 let a particle through that corner at CFL 0.2; measured).
-        const Vector<D> u_j = P.kind[j] == kWall ? Vector<D>::Zero() : Vector<D>(P.v[j]);
-        if (corrected_continuity) grad_u_i += difference_vector_gradient_term(Vj, P.v[i], u_j, g);
-        else drho_i += wcsph::continuity_pair(P.rho[i], Vj, Vector<D>(P.v[i] - u_j), g);
-        if (diffuse)
-          drho_i += wcsph::density_diffusion_pair(delta_h_c0, P.rho[i], P.rho[j], Vj, F,
-                                                  grad_rho.empty() ? zero : grad_rho[i],
-                                                  grad_rho.empty() ? zero : grad_rho[j], g);
-      }
-    });
-    acc_[i] = acc_i, drho_[i] = drho_i;
-    if (corrected_gradient) M[i] = M_i, grad_p[i] = grad_p_i;
-    if (corrected_continuity) grad_u[i] = grad_u_i;
+    wcsph::RateSums<D> sums;
+    visit_pairs([&](int, int j, const PairGeometry<D>& g) { wcsph::add_rates_pair(in, sums, i, j, g); });
+    acc_[i] = sums.acc, drho_[i] = sums.drho;
+    if (corrected_gradient) M[i] = sums.M, grad_p[i] = sums.grad_p;
+    if (corrected_continuity) grad_u[i] = sums.grad_u;
   });
   // The corrected forms: d rho_i/dt = -rho_i tr(L_i grad u_i) and a_i = -L_i grad p_i / rho_i, both
   // exact for linear fields on any particle distribution (the plain forms are O(1) wrong in the

@@ -2,6 +2,7 @@
 // The one neighbour loop of the code. Schemes supply the physics of a single i-j pair as a callable;
 // the loop supplies the pair geometry (separation, kernel value and gradient), evaluated at current
 // positions (lists may hold skin neighbours outside the support: those are skipped here).
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -108,6 +109,65 @@ template <int D, class PairFn>
 void for_each_pair_in_order(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, PairFn&& f) {
   const double rc2 = K.support_radius() * K.support_radius();
   for (std::size_t i = 0; i < P.n_owned; ++i) detail::pairs_of(i, P, nl, K, rc2, f);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Variable smoothing lengths: every particle k has its own kernel kernels[k] (the compressible
+// solver's grad-h SPH). Lists (a NeighbourList, or any begin(i)/end(i) over neighbour indices) must
+// hold every pair within the supports in use.
+
+// For owned particle i: f(j, r_ij, r) for every neighbour j with 0 < r < support of K (i's own kernel),
+// the "gather" view used by the density / smoothing-length iteration.
+template <int D, class List, class Fn>
+inline void for_each_gather_neighbour(const Particles<D>& P, const List& nl, std::size_t i, const Kernel<D>& K,
+                                      Fn&& f) {
+  const double rc2 = K.support_radius() * K.support_radius();
+  for (const int* it = nl.begin(i); it != nl.end(i); ++it) {
+    const int j = *it;
+    const Vector<D> rij = P.x[i] - P.x[j];
+    const double r2 = rij.squaredNorm();
+    if (r2 >= rc2 || r2 == 0.0) continue;
+    f(j, rij, std::sqrt(r2));
+  }
+}
+
+// Geometry of a pair seen with both smoothing lengths: kernels and their radial derivatives at h_i and
+// at h_j (each zero outside its own support).
+template <int D> struct VariableHPair {
+  Vector<D> rij;  // x_i - x_j
+  double r;       // |r_ij| > 0
+  double Wi, Wj, dWi, dWj;
+  Vector<D> gradWi() const { return (dWi / r) * rij; }               // grad_i W(r_ij, h_i)
+  Vector<D> gradWj() const { return (dWj / r) * rij; }               // grad_i W(r_ij, h_j)
+  double dW_mean() const { return 0.5 * (dWi + dWj); }
+  Vector<D> gradW_mean() const { return (dW_mean() / r) * rij; }     // symmetric in i, j
+};
+
+// f(i, j, pair) for every owned i and neighbour j within the larger of the two supports ("scatter +
+// gather", what the symmetric force needs). kernels[k] is particle k's kernel (owned and ghosts).
+template <int D, class List, class Fn>
+void for_each_variable_h_pair(const Particles<D>& P, const List& nl, const std::vector<Kernel<D>>& kernels, Fn&& f) {
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
+  // Threads share the particles i; f writes only to entries of i (as for sph::for_each_pair).
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    VariableHPair<D> g;
+    const Kernel<D>& Ki = kernels[i];
+    const double rci = Ki.support_radius();
+    for (const int* it = nl.begin(i); it != nl.end(i); ++it) {
+      const int j = *it;
+      const Kernel<D>& Kj = kernels[j];
+      const double rc = std::max(rci, Kj.support_radius());
+      g.rij = P.x[i] - P.x[j];
+      const double r2 = g.rij.squaredNorm();
+      if (r2 >= rc * rc || r2 == 0.0) continue;
+      g.r = std::sqrt(r2);
+      g.Wi = Ki.W(g.r), g.dWi = Ki.dWdr(g.r);
+      g.Wj = Kj.W(g.r), g.dWj = Kj.dWdr(g.r);
+      f(static_cast<int>(i), j, g);
+    }
+  }
 }
 
 }  // namespace sph

@@ -15,13 +15,6 @@ template <int D> inline double morris_factor(const PairGeometry<D>& g, double h)
   return g.r * g.dWdr / (g.r * g.r + eta2 * h * h);
 }
 
-// Coefficient c_ij of the Cummins & Rudman (1999) pressure Laplacian
-//   div(grad p / rho)_i = sum_j c_ij (p_i - p_j),  c_ij = m_j 8 / (rho_i + rho_j)^2 F_ij.
-inline double ppe_pair_coefficient(double mj, double rho_i, double rho_j, double F) {
-  const double s = rho_i + rho_j;
-  return 8.0 * mj * F / (s * s);
-}
-
 // Morris et al. (1997) laminar viscous acceleration on i from j:
 //   sum_j m_j (mu_i + mu_j) / (rho_i rho_j) F_ij u_ij, with mu = rho nu.
 template <int D>
