@@ -77,19 +77,6 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscFunctionReturn(0);
 }
 
-// h = eta (m/rho)^(1/D): about 1.2 for the cubic spline (Price 2012 sec. 3.2), fewer smoothing lengths for
-// the kernels with support 3h, more for the Wendland kernels, which need more neighbours (Dehnen & Aly 2012).
-double default_eta(KernelType t) {
-  switch (t) {
-    case KernelType::CubicSpline: return 1.2;
-    case KernelType::QuinticSpline: return 1.0;
-    case KernelType::WendlandC2: return 1.3;
-    case KernelType::WendlandC4: return 1.5;
-    case KernelType::Gaussian: return 1.0;
-  }
-  return 1.2;
-}
-
 double mpi_max(double x) {
   MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
   return x;
@@ -137,7 +124,7 @@ template <int D> void CompressibleSolver<D>::setup(Scene<D>& scene) {
   entropy_ = phys.isentropic;
   const KernelType type = scene.kernel.type();
   kappa_ = Kernel<D>::support_factor(type);
-  if (eta_ == 0.0) eta_ = default_eta(type);
+  if (eta_ == 0.0) eta_ = Kernel<D>::default_eta(type);
 
   const std::size_t n = P.n_owned;
   h_.assign(n, 0.0), thermal_.assign(n, 0.0);

@@ -47,6 +47,17 @@ double sigma(KernelType t, int D) {
 
 }  // namespace
 
+template <int D> double Kernel<D>::default_eta(KernelType t) {
+  switch (t) {
+    case KernelType::CubicSpline: return 1.2;
+    case KernelType::QuinticSpline: return 1.0;
+    case KernelType::WendlandC2: return 1.3;
+    case KernelType::WendlandC4: return 1.5;
+    case KernelType::Gaussian: return 1.0;
+  }
+  return 1.2;
+}
+
 template <int D> double Kernel<D>::support_factor(KernelType t) {
   return (t == KernelType::QuinticSpline || t == KernelType::Gaussian) ? 3.0 : 2.0;
 }

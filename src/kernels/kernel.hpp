@@ -30,6 +30,10 @@ template <int D> class Kernel {
   double h() const { return h_; }
   // Support radius in units of h (kappa), and in length units.
   static double support_factor(KernelType type);
+  // eta in h = eta (m / rho)^(1/D) for variable smoothing lengths: about 1.2 for the cubic spline (Price
+  // 2012 sec. 3.2), fewer smoothing lengths for the kernels with support 3h, more for the Wendland
+  // kernels, which need more neighbours (Dehnen & Aly 2012).
+  static double default_eta(KernelType type);
   double support_radius() const { return kappa_ * h_; }
 
   // Both vanish for r >= support_radius(): tested on r itself, since r/h rounds to just below kappa
