@@ -20,6 +20,7 @@
 #include "src/run/provenance.hpp"
 #include "src/run/run_identity.hpp"
 #include "src/run/run_statistics.hpp"
+#include "src/run/run_summary.hpp"
 #include "src/run/schedule.hpp"
 #include "src/sph/vorticity.hpp"
 
@@ -189,34 +190,9 @@ template <int D> void run_time_loop(const RunParts<D>& run) {
     summary["t_final"] = t;
     summary["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     summary["time_per_particle_step_s"] = step > 0 ? loop_s / (double(step) * double(P.n_global)) : 0.0;
-    nlohmann::json solver_info = solver.describe();
-    summary["models"] = solver_info["models"];
-    if (solver_info.contains("ksp")) {
-      summary["ksp"] = solver_info["ksp"];
-      summary["ksp"]["iterations_mean"] = stats.mean_iterations();
-      summary["ksp"]["iterations_max"] = stats.max_iterations;
-    }
-    // Total momentum change relative to the initial sum of |m v|: round-off for pairwise-symmetric
-    // schemes without shifting (shifting's Taylor correction and corrected gradients do not conserve it).
-    const Totals<D> now = totals(P);
     summary["partition"] = {{"curve", "morton"}, {"interval", opt.partition_interval}, {"count", partitions},
                             {"imbalance", imbalance}};
-    // Relative to the larger of the initial and final sums of |m v|: a scene that starts at rest
-    // (the cavity) has no initial scale to measure against.
-    summary["conservation"] = {{"momentum_drift", (now.momentum - initial.momentum).norm() /
-                                                      std::max({initial.momentum_scale, now.momentum_scale, 1e-300})}};
-    for (auto it = solver_info.begin(); it != solver_info.end(); ++it) {
-      if (it.key() == "models" || it.key() == "ksp") continue;
-      if (it.key() == "conservation") summary["conservation"].update(it.value());
-      else summary["solver_parameters"][it.key()] = it.value();
-    }
-    summary["errors"] = nlohmann::json::object();
-    for (const auto& [name, value] : scene_case.errors(P, t)) {
-      summary["errors"][name] = value;  // NaN becomes null: a metric that could not be measured
-      if (std::isfinite(value)) continue;
-      const std::string why = scene_case.unmeasured_reason(name);
-      summary["errors_unmeasured"][name] = why.empty() ? "not a finite number at the end of the run" : why;
-    }
+    add_final_state(summary, solver, scene_case, P, t, stats, initial);
     write_json_file(output_dir + "/summary.json", summary);
   };
 
