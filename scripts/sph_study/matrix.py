@@ -1,0 +1,160 @@
+"""Stability matrix: rows = cases (with options), columns = scheme variants (solver + options); every
+cell is one run, classified as ok / failed (during time stepping) / n/a (refused at start-up).
+Planning is in plan.py (load_matrix, plan_matrix_runs); here: the cells, matrix.csv, matrix.md and the
+matrix form of the command."""
+
+import csv
+import os
+import re
+import shlex
+import sys
+
+from .common import REPO, read_json
+from .execute import run_all, up_to_date
+from .plan import option_args, plan_matrix_runs
+from .report import fmt, fmt_time, md_table
+
+
+def short_reason(msg, n=60):
+    """A failure without its 'step N (t = ...): ' prefix, cut to about n characters."""
+    msg = re.sub(r"^\s*step \d+ \(t = [^)]*\):\s*", "", (msg or "").strip()).replace("\n", " ")
+    return msg if len(msg) <= n else msg[:n].rstrip() + "…"
+
+
+def option_problem(msg):
+    """True for start-up errors about the options themselves (a typo, a bad value): a study-file mistake,
+    not a case the solver refuses."""
+    return bool(re.match(r"^\s*-\w", msg or "")) or "option" in (msg or "").lower()
+
+
+def classify_cell(run):
+    """(status, reason, metric, value, wall_time_s, steps) of one matrix cell. status: ok, failed (during
+    time stepping, or a timeout), n/a (the program refused the case/solver pair at start-up), error (a
+    start-up error about the options), not run."""
+    rec = read_json(os.path.join(run["dir"], "run.json")) or {}
+    s = read_json(os.path.join(run["dir"], "summary.json")) or {}
+    metric = run.get("metric")
+    wall = s.get("wall_time_s", rec.get("elapsed_s"))
+    steps = s.get("steps")
+    if not rec and not s:
+        return "not run", "", metric or "", None, None, None
+    errors = s.get("errors") or {}
+    if s and s.get("status", "completed") == "completed" and rec.get("status") != "failed":
+        if not metric or metric not in errors:
+            reason = "" if not metric else "no %s in summary.json" % metric
+            metric = metric if not errors else (metric if metric in errors else list(errors)[0])
+        elif errors[metric] is None:  # null: the run could not measure it; summary.json says why
+            reason = "not measured: " + (s.get("errors_unmeasured") or {}).get(metric, "no reason given")
+        else:
+            reason = ""
+        return "ok", reason, metric or "", errors.get(metric), wall, steps
+    failure = s.get("failure") or rec.get("failure") or "unknown failure"
+    if s or "timed out" in failure or rec.get("returncode") is None or (rec.get("returncode") or 0) < 0:
+        return "failed", failure, metric or "", errors.get(metric), wall, steps
+    if option_problem(failure):
+        return "error", failure, metric or "", None, wall, steps
+    return "n/a", failure, metric or "", None, wall, steps
+
+
+def cell_text(c):
+    status, reason, metric, value, wall, steps = c
+    if status == "ok":
+        t = "ok, %s=%s" % (metric, fmt(value, "%.3g")) if value is not None else "ok" + (" (%s)" % reason if reason else "")
+        return t + (" (%s)" % fmt_time(wall) if isinstance(wall, (int, float)) else "")
+    if status == "failed":
+        return "**failed**: %s" % short_reason(reason)
+    if status == "n/a":
+        return "n/a (%s)" % short_reason(reason, 80)
+    if status == "error":
+        return "**error**: %s" % short_reason(reason, 80)
+    return status
+
+
+def make_matrix_outputs(study, study_file, runs, out_dir, counts):
+    m = study["matrix"]
+    cells = {(r["row"], r["column"]): (r, classify_cell(r)) for r in runs}
+    with open(os.path.join(out_dir, "matrix.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["row", "column", "status", "reason", "metric", "value", "wall_time_s", "steps", "run_dir"])
+        for r in runs:
+            status, reason, metric, value, wall, steps = cells[(r["row"], r["column"])][1]
+            w.writerow([r["row"], r["column"], status, short_reason(reason, 10 ** 6), metric,
+                        "" if value is None else value, "" if wall is None else wall, "" if steps is None else steps,
+                        os.path.relpath(r["dir"], out_dir)])
+    cols = [c["label"] for c in m["columns"]]
+    L = ["# Stability matrix: %s" % study["name"], ""]
+    if study.get("description"):
+        L += [str(study["description"]).strip(), ""]
+    ran, skipped, failed = counts
+    L += ["Study file `%s`; %d cells (%d run now, %d up to date). Cells: **ok**, the row's error norm and the "
+          "wall time; **failed**: the run stopped during time stepping (reason); **n/a**: the program refuses "
+          "this case with this solver at start-up; **error**: a start-up error about the options." %
+          (os.path.relpath(os.path.abspath(study_file), REPO) if os.path.abspath(study_file).startswith(REPO)
+           else study_file, len(runs), ran, skipped), ""]
+    L += ["Columns: " + "; ".join("**%s** = `-solver %s%s`" % (c["label"], c["solver"],
+                                   "".join(" " + a for a in option_args(c["options"]))) for c in m["columns"]), ""]
+    body = []
+    for row in m["rows"]:
+        body.append([row["label"]] + [cell_text(cells[(row["label"], c)][1]).replace("|", "\\|") for c in cols])
+    L += [md_table(["case"] + cols, body, align=["---"] * (len(cols) + 1)), ""]
+    L += ["Per case:", ""]
+    for row in m["rows"]:
+        cs = [(c, cells[(row["label"], c)][1]) for c in cols]
+        ok = [(c, x) for c, x in cs if x[0] == "ok"]
+        parts = []
+        if ok:
+            best = [(x[3], c) for c, x in ok if isinstance(x[3], (int, float))]
+            s = "survived with %s" % ", ".join(c for c, _ in ok)
+            if len(best) > 1:
+                v, c = min(best)
+                s += " (lowest `%s`: %s, %.3g)" % (ok[0][1][2], c, v)
+            parts.append(s)
+        else:
+            parts.append("no variant survived")
+        for st, word in (("failed", "failed"), ("n/a", "not applicable"), ("error", "option errors"),
+                         ("not run", "not run")):
+            names = [c for c, x in cs if x[0] == st]
+            if names:
+                parts.append("%s: %s" % (word, ", ".join(names)))
+        L.append("- **%s** (`-case %s%s`): %s." % (row["label"], row["case"],
+                 "".join(" " + a for a in option_args(row["options"])), "; ".join(parts)))
+    L += [""]
+    details = [(r, cells[(r["row"], r["column"])][1]) for r in runs]
+    details = [(r, c) for r, c in details if c[0] in ("failed", "n/a", "error")]
+    if details:
+        L += ["Full reasons:", ""]
+        L += ["- %s × %s: %s (`%s`)" % (r["row"], r["column"], c[1].replace("\n", " "),
+                                        os.path.relpath(r["dir"], out_dir)) for r, c in details]
+        L += [""]
+    L += ["Every cell's exact command is in its folder's `run.json`; outputs in `summary.json`, `stderr.txt`. "
+          "All cells: `matrix.csv`.", ""]
+    with open(os.path.join(out_dir, "matrix.md"), "w") as f:
+        f.write("\n".join(L))
+
+
+def main_matrix(a, study):
+    """The 'matrix:' form: every (row, column) cell once; matrix.csv and matrix.md."""
+    if a.nx:
+        sys.exit("study: --nx does not apply to a matrix study (set nx in the rows' options)")
+    mpi = a.mpi if a.mpi is not None else int(study.get("mpi") or 0)
+    sph = os.path.abspath(a.sph)
+    out_dir = os.path.abspath(a.out or os.path.join(REPO, "out", "studies", study["name"]))
+    runs = plan_matrix_runs(study, out_dir, sph, mpi)
+    if a.dry_run:
+        for r in runs:
+            print(("skip " if up_to_date(r) else "run  ") + " ".join(shlex.quote(c) for c in r["command"]))
+        return 0
+    if not a.report_only and not os.access(sph, os.X_OK):
+        sys.exit("study: no sph executable at %s (build it with scripts/build, or pass --sph PATH)" % sph)
+    os.makedirs(out_dir, exist_ok=True)
+    counts = (0, len(runs), 0) if a.report_only else run_all(runs, max(1, a.jobs), a.timeout, a.force,
+                                                                   a.retry_failed, None)
+    make_matrix_outputs(study, a.study, runs, out_dir, counts)
+    tally = {}
+    for r in runs:
+        st = classify_cell(r)[0]
+        tally[st] = tally.get(st, 0) + 1
+    print("matrix: " + ", ".join("%d %s" % (tally[k], k) for k in ("ok", "failed", "n/a", "error", "not run")
+                                 if tally.get(k)))
+    print("wrote %s" % os.path.join(out_dir, "matrix.md"))
+    return 0

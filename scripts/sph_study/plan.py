@@ -1,0 +1,218 @@
+"""Study file -> list of runs: loading and checking the study file (both forms, convergence study and
+stability matrix), the sph options of every run, its folder and its command line."""
+
+import itertools
+import json
+import os
+import re
+import sys
+
+
+def load_study(path):
+    with open(path) as f:
+        text = f.read()
+    if path.endswith(".json"):
+        study = json.loads(text)
+    else:
+        try:
+            import yaml
+        except ImportError:
+            sys.exit("study: PyYAML is needed for YAML study files (Debian: apt-get install python3-yaml; "
+                     "run the script with /usr/bin/python3)")
+        study = yaml.safe_load(text)
+    if not isinstance(study, dict):
+        sys.exit("study: %s: expected a mapping at the top level" % path)
+    if "matrix" in study:
+        return load_matrix(study, path)
+    known = {"name", "case", "solvers", "solver", "resolutions", "options", "sweeps", "solver_options",
+             "solver_sweeps", "resolution_options", "solver_resolution_options", "metric", "levels", "mpi",
+             "description"}
+    unknown = sorted(set(study) - known)
+    if unknown:
+        sys.exit("study: %s: unknown key(s) %s (known: %s)" % (path, ", ".join(unknown), ", ".join(sorted(known))))
+    for key in ("case", "resolutions"):
+        if key not in study:
+            sys.exit("study: %s: missing '%s'" % (path, key))
+    solvers = study.get("solvers", study.get("solver"))
+    if solvers is None:
+        sys.exit("study: %s: missing 'solvers'" % path)
+    study["solvers"] = [solvers] if isinstance(solvers, str) else list(solvers)
+    given = [int(n) for n in study["resolutions"]]
+    order = sorted(range(len(given)), key=lambda i: given[i])
+    study["resolutions"] = [given[i] for i in order]
+    study.setdefault("name", os.path.splitext(os.path.basename(path))[0])
+    for key in ("options", "sweeps", "solver_options", "solver_sweeps", "resolution_options",
+                "solver_resolution_options"):
+        study[key] = study.get(key) or {}
+        if not isinstance(study[key], dict):
+            sys.exit("study: %s: '%s' must be a mapping" % (path, key))
+    for key, values in study["sweeps"].items():
+        if not isinstance(values, list) or not values:
+            sys.exit("study: %s: sweep '%s' must be a non-empty list" % (path, key))
+    per_solver = study["solver_resolution_options"]
+    for where, table in [("resolution_options", study["resolution_options"])] + [
+            ("solver_resolution_options: %s" % k, v) for k, v in per_solver.items()]:
+        if not isinstance(table, dict):
+            sys.exit("study: %s: '%s' must be a mapping" % (path, where))
+        for key, values in table.items():
+            if not isinstance(values, list) or len(values) != len(study["resolutions"]):
+                sys.exit("study: %s: %s '%s' needs one value per resolution (%d), got %s" % (
+                    path, where, key, len(study["resolutions"]), values))
+            table[key] = [values[i] for i in order]  # follow the resolutions into increasing nx
+    study.setdefault("metric", "l1_velocity")
+    levels = study.get("levels")
+    if levels is not None:
+        def positive(v):  # YAML 1.1 reads 1e-3 (no dot) as a string
+            try:
+                return None if isinstance(v, bool) else float(v) if float(v) > 0 else None
+            except (TypeError, ValueError):
+                return None
+        values = [positive(v) for v in levels] if isinstance(levels, list) else []
+        if not values or None in values:
+            sys.exit("study: %s: 'levels' must be a list of positive error levels, e.g. [1e-3, 3e-4]" % path)
+        study["levels"] = sorted(values, reverse=True)
+    return study
+
+
+def option_value(v):
+    if v is None:
+        return None
+    if isinstance(v, bool):
+        return "1" if v else "0"
+    if isinstance(v, float):
+        return repr(v)
+    return str(v)
+
+
+def option_args(options):
+    args = []
+    for k, v in options.items():
+        k = str(k).lstrip("-")
+        args.append("-" + k)
+        v = option_value(v)
+        if v is not None and v != "":
+            args.append(v)
+    return args
+
+
+def sweep_choice(key, value):
+    """(label value, options dict) of one sweep value: a scalar sets -key, a mapping sets several options."""
+    if isinstance(value, dict):
+        opts = {k: v for k, v in value.items() if k != "label"}
+        label = value.get("label") or "+".join(option_value(v) or k for k, v in opts.items())
+        return str(label), opts
+    return option_value(value) if value is not None else "", {key: value}
+
+
+def safe_name(s):
+    return re.sub(r"[^A-Za-z0-9._=+-]", "_", s)
+
+
+def resolution_options(study, solver, i):
+    """The options refined with h at the i-th resolution: every solver's, then this solver's own."""
+    options = {k: v[i] for k, v in study["resolution_options"].items()}
+    options.update({k: v[i] for k, v in (study["solver_resolution_options"].get(solver) or {}).items()})
+    return options
+
+
+def plan_runs(study, out_dir, sph, mpi):
+    """Every run of the study: dict(solver, nx, sweep {key: label}, args, dir, key, label)."""
+    runs = []
+    for solver in study["solvers"]:
+        sweeps = dict(study["sweeps"])
+        sweeps.update((study["solver_sweeps"].get(solver) or {}))
+        keys = list(sweeps)
+        choices = [[sweep_choice(k, v) for v in sweeps[k]] for k in keys]
+        for combo in itertools.product(*choices) if keys else [()]:
+            sweep = {k: c[0] for k, c in zip(keys, combo)}
+            for i, nx in enumerate(study["resolutions"]):
+                options = {"case": study["case"], "solver": solver, "nx": nx}
+                options.update(study["options"])
+                options.update(study["solver_options"].get(solver) or {})
+                options.update(resolution_options(study, solver, i))
+                for _, opts in combo:
+                    options.update(opts)
+                options.setdefault("output_interval", 0)
+                options["progress"] = 0
+                name = "-".join([solver] + ["%s=%s" % (k, sweep[k]) for k in keys] + ["nx%d" % nx])
+                run_dir = os.path.join(out_dir, safe_name(name))
+                args = option_args(options) + ["-output_dir", run_dir]
+                label = solver + "".join(", %s=%s" % (k, sweep[k]) for k in keys)
+                runs.append({"solver": solver, "nx": nx, "sweep": sweep, "args": args, "dir": run_dir,
+                             "label": label, "name": name,
+                             "command": (["mpirun", "-n", str(mpi), "--allow-run-as-root", "--oversubscribe"]
+                                         if mpi and mpi > 0 else []) + [sph] + args,
+                             "mpi": mpi or 0})
+    return runs
+
+
+def load_matrix(study, path):
+    """Checks and normalises the 'matrix:' form of a study file."""
+    known = {"name", "description", "matrix", "mpi"}
+    unknown = sorted(set(study) - known)
+    if unknown:
+        sys.exit("study: %s: with 'matrix:', unknown key(s) %s (known: %s)" %
+                 (path, ", ".join(unknown), ", ".join(sorted(known))))
+    m = study["matrix"]
+    if not isinstance(m, dict):
+        sys.exit("study: %s: 'matrix' must be a mapping with 'rows' and 'columns'" % path)
+    unknown = sorted(set(m) - {"rows", "columns", "options", "metric"})
+    if unknown:
+        sys.exit("study: %s: matrix: unknown key(s) %s (known: columns, metric, options, rows)" % (path, ", ".join(unknown)))
+    m["options"] = m.get("options") or {}
+    for what, need, allowed in (("rows", "case", {"label", "case", "options", "solver_options", "metric"}),
+                                ("columns", "solver", {"label", "solver", "options"})):
+        items = m.get(what)
+        if not isinstance(items, list) or not items:
+            sys.exit("study: %s: matrix: '%s' must be a non-empty list" % (path, what))
+        labels = set()
+        for i, it in enumerate(items):
+            if not isinstance(it, dict) or need not in it:
+                sys.exit("study: %s: matrix: %s[%d] must be a mapping with '%s'" % (path, what, i, need))
+            bad = sorted(set(it) - allowed)
+            if bad:
+                sys.exit("study: %s: matrix: %s[%d]: unknown key(s) %s (known: %s)" %
+                         (path, what, i, ", ".join(bad), ", ".join(sorted(allowed))))
+            it["label"] = str(it.get("label") or it[need])
+            if it["label"] in labels:
+                sys.exit("study: %s: matrix: two %s labelled '%s'" % (path, what, it["label"]))
+            labels.add(it["label"])
+            for key in ("options", "solver_options"):
+                it[key] = it.get(key) or {}
+                if not isinstance(it[key], dict):
+                    sys.exit("study: %s: matrix: %s '%s': '%s' must be a mapping" % (path, what, it["label"], key))
+            it.setdefault("metric", m.get("metric"))
+    study.setdefault("name", os.path.splitext(os.path.basename(path))[0])
+    return study
+
+
+def plan_matrix_runs(study, out_dir, sph, mpi):
+    """One run per (row, column): options = matrix options, then the row's, the column's, and the row's
+    solver_options for the column's solver (or keyed by the column's label)."""
+    m = study["matrix"]
+    runs = []
+    for i, row in enumerate(m["rows"]):
+        for j, col in enumerate(m["columns"]):
+            options = {"case": row["case"], "solver": col["solver"]}
+            options.update(m["options"])
+            options.update(row["options"])
+            options.update(col["options"])
+            options.update(row["solver_options"].get(col["solver"]) or {})
+            options.update(row["solver_options"].get(col["label"]) or {})
+            options.setdefault("output_interval", 0)
+            options.setdefault("checkpoint_interval", 0)
+            options["progress"] = 0
+            name = "r%d-%s--c%d-%s" % (i + 1, row["label"], j + 1, col["label"])
+            run_dir = os.path.join(out_dir, safe_name(name))
+            args = option_args(options) + ["-output_dir", run_dir]
+            try:
+                nx = int(options.get("nx") or 0)
+            except (TypeError, ValueError):
+                nx = 0
+            runs.append({"solver": col["solver"], "nx": nx, "sweep": {}, "args": args, "dir": run_dir,
+                         "label": "%s | %s" % (row["label"], col["label"]), "name": name,
+                         "row": row["label"], "column": col["label"], "metric": row["metric"],
+                         "command": (["mpirun", "-n", str(mpi), "--allow-run-as-root", "--oversubscribe"]
+                                     if mpi and mpi > 0 else []) + [sph] + args,
+                         "mpi": mpi or 0})
+    return runs

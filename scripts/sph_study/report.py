@@ -1,0 +1,239 @@
+"""Report: report.md of a convergence study, and every output of one (results.csv, plots, report.md)."""
+
+import datetime
+import os
+import sys
+
+from .collect import collect, completed, error_names, groups_of, write_csv
+from .common import REPO
+from .orders import observed_order, pareto_table
+from .plan import option_args, option_value
+from .plots import plot_all_errors_vs_h, plot_centrelines, plot_error_vs_h, plot_ksp, plot_pareto, plotting
+
+
+def md_table(header, rows, align=None):
+    out = ["| " + " | ".join(header) + " |",
+           "|" + "|".join(align or ["---:" if i else "---" for i in range(len(header))]) + "|"]
+    out += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return "\n".join(out)
+
+
+def fmt_time(t):
+    if t is None:
+        return "–"
+    if t < 10:
+        return "%.3g s" % t
+    return "%.0f s" % t
+
+
+def fmt(v, spec="%.4g"):
+    if v is None or v == "":
+        return ""
+    if isinstance(v, float):
+        return spec % v
+    return str(v)
+
+
+def write_report(path, study, study_file, rows, groups, errors, metric, plots, pareto, counts, jobs, mpi, notes):
+    name = study["name"]
+    L = ["# Study `%s`" % name, ""]
+    if study.get("description"):
+        L += [str(study["description"]).strip(), ""]
+    fixed = dict(study["options"])
+    L += ["Case `%s`, solvers %s, resolutions nx = %s. Study file `%s`; generated %s by `scripts/study`%s." % (
+        study["case"], ", ".join("`%s`" % s for s in study["solvers"]),
+        ", ".join(str(n) for n in study["resolutions"]), os.path.relpath(study_file, REPO)
+        if os.path.abspath(study_file).startswith(REPO + os.sep) else study_file,
+        datetime.datetime.now().strftime("%Y-%m-%d %H:%M"),
+        " with `-j %d`" % jobs if jobs > 1 else "") + (" MPI ranks per run: %d." % mpi if mpi else ""), ""]
+    if fixed:
+        L += ["Fixed options: " + " ".join("`%s`" % " ".join(option_args({k: v})) for k, v in fixed.items()) + "."]
+    for solver, opts in study["solver_options"].items():
+        if opts:
+            L += ["Options of `%s` only: " % solver + " ".join("`%s`" % " ".join(option_args({k: v}))
+                                                            for k, v in opts.items()) + "."]
+    for who, table in [("every solver", study["resolution_options"])] + [
+            ("`%s`" % k, v) for k, v in study["solver_resolution_options"].items()]:
+        if table:
+            L += ["Options refined with h (%s): " % who + "; ".join(
+                "`-%s` %s at nx = %s" % (k, ", ".join(option_value(x) or "" for x in v),
+                                         ", ".join(str(n) for n in study["resolutions"]))
+                for k, v in table.items()) + "."]
+    ran, skipped, failed = counts
+    n_ok = len(completed(rows))
+    L += ["", "Runs: %d in all, %d completed, %d failed (the last invocation ran %d and found %d up to date). "
+          "Error metric of the plots and the speed comparison: `%s`. Observed order between successive "
+          "resolutions: p = log(e₁/e₂) / log(h₁/h₂), shown in the row of the finer run." %
+          (len(rows), n_ok, len([r for r in rows if r["status"] == "failed"]), ran, skipped, metric), ""]
+    if jobs > 1:
+        L += ["Note: runs were made %d at a time, so wall times include contention for the cores." % jobs, ""]
+    # One run at a time: other work on more than half a core at a run's start. Several at a time: the
+    # load average, which then counts the study's own runs, beyond the core count.
+    limit = (lambda r: 0.5) if jobs <= 1 else (lambda r: r["cpus"])
+    busy = [r for r in rows if r.get("load") is not None and r.get("cpus") and r["load"] > limit(r)]
+    if busy:
+        which = ("all %d runs" % len(busy) if len(busy) == len(rows) else
+                 "; ".join("%s nx=%d" % (r["label"], r["nx"]) for r in busy[:6]) + ("; …" if len(busy) > 6 else ""))
+        L += ["Note: %s started while other work kept up to %.1f of the %d cores busy: wall times may be "
+              "inflated." % (which, max(r["load"] for r in busy), busy[0]["cpus"]), ""]
+
+    # Observed orders at a glance: finest pair of every line and norm.
+    L += ["## Observed orders (finest pair of resolutions)", ""]
+    hdr = ["solver / sweep", "nx pair"] + errors
+    body = []
+    for label, g in groups.items():
+        ok = [r for r in completed(g) if r["h"]]
+        if len(ok) < 2:
+            body.append([label, "–"] + ["" for _ in errors])
+            continue
+        a, b = ok[-2], ok[-1]
+        body.append([label, "%d→%d" % (a["nx"], b["nx"])] +
+                    [fmt(observed_order(a["errors"].get(e), b["errors"].get(e), a["h"], b["h"]), "%.2f")
+                     for e in errors])
+    L += [md_table(hdr, body), ""]
+    remarks = []
+    for label, g in groups.items():
+        ok = [r for r in completed(g) if isinstance(r["errors"].get(metric), (int, float)) and r["h"]]
+        for a, b in zip(ok, ok[1:]):
+            if b["errors"][metric] > a["errors"][metric]:
+                remarks.append("`%s`: `%s` grows from nx=%d to nx=%d (%.3g → %.3g)." % (
+                    label, metric, a["nx"], b["nx"], a["errors"][metric], b["errors"][metric]))
+        if len(ok) >= 2:
+            p = observed_order(ok[-2]["errors"][metric], ok[-1]["errors"][metric], ok[-2]["h"], ok[-1]["h"])
+            if p is not None and 0 <= p < 0.5:
+                remarks.append("`%s`: `%s` stagnates between nx=%d and nx=%d (order %.2f): an error floor "
+                               "independent of h dominates there." % (label, metric, ok[-2]["nx"], ok[-1]["nx"], p))
+    if remarks:
+        L += ["Remarks on `%s`:" % metric, ""] + ["- " + m for m in remarks] + [""]
+
+    L += ["## Results", ""]
+    for label, g in groups.items():
+        L += ["### %s" % label, ""]
+        isph_like = any(r["ksp_iterations_mean"] is not None for r in g)
+        hdr = ["nx", "status", "steady state", "N", "h", "steps", "wall [s]", "s / (particle·step)"]
+        if isph_like:
+            hdr.append("KSP its mean / max")
+        for e in errors:
+            hdr += [e, "order"]
+        body = []
+        prev = None
+        for r in g:
+            # steady state: reached or not where the run checked for it, "–" where it did not.
+            steady = {True: "reached", False: "not reached"}.get(r["steady_state_reached"], "–")
+            if r["status"] != "completed":
+                body.append([r["nx"], "**%s**" % r["status"], steady, fmt(r["N"]), "", "", "", "",
+                             *([""] if isph_like else []), r["failure"].replace("|", "\\|")] +
+                            [""] * (2 * len(errors) - 1))
+                continue
+            row = [r["nx"], r["status"], steady, fmt(r["N"]), fmt(r["h"]), fmt(r["steps"]),
+                   fmt(r["wall_time_s"], "%.3g"), fmt(r["time_per_particle_step_s"], "%.3g")]
+            if isph_like:
+                row.append("%s / %s" % (fmt(r["ksp_iterations_mean"], "%.1f"), fmt(r["ksp_iterations_max"]))
+                           if r["ksp_iterations_mean"] is not None else "")
+            for e in errors:
+                # null in summary.json: the run could not measure it (summary.json says why)
+                row.append("not measured" if e in r["errors"] and r["errors"][e] is None else fmt(r["errors"].get(e), "%.3e"))
+                row.append(fmt(observed_order(prev["errors"].get(e), r["errors"].get(e), prev["h"], r["h"]), "%.2f")
+                           if prev else "")
+            body.append(row)
+            prev = r
+        L += [md_table(hdr, body), ""]
+
+    failed_rows = [r for r in rows if r["status"] == "failed"]
+    if failed_rows:
+        L += ["## Failed runs", ""]
+        L += ["- `%s` nx=%d: %s (folder `%s`)" % (r["label"], r["nx"], r["failure"],
+                                                   os.path.relpath(r["dir"], os.path.dirname(path)))
+              for r in failed_rows]
+        L += [""]
+
+    L += ["## Speed against accuracy", ""]
+    if pareto:
+        labels = [l for l in groups if any(l in row["times"] for row in pareto)]
+        L += ["Wall time each line needs to reach a `%s` level, interpolated log-log between successive "
+              "resolutions (≤: already reached by the coarsest run; –: not reached):" % metric, ""]
+        hdr = ["%s ≤" % metric] + labels + ["fastest", "speed-up vs next"]
+        body = []
+        for row in pareto:
+            cells = ["%.3g" % row["level"]]
+            for l in labels:
+                t, exact = row["times"].get(l, (None, False))
+                cells.append(("" if exact or t is None else "≤ ") + fmt_time(t))
+            cells += [row["best"] or "none", "%.2f×" % row["speedup"] if row["speedup"] else ""]
+            body.append(cells)
+        L += [md_table(hdr, body), ""]
+        L += ["In words:", ""]
+        for row in pareto:
+            if not row["best"]:
+                L.append("- `%s` ≤ %.3g: no run reached it." % (metric, row["level"]))
+            elif row["runner_up"]:
+                L.append("- `%s` ≤ %.3g: **%s** is ahead (%s against %s for %s, %.2f× faster)." % (
+                    metric, row["level"], row["best"], fmt_time(row["times"][row["best"]][0]),
+                    fmt_time(row["times"][row["runner_up"]][0]), row["runner_up"], row["speedup"]))
+            else:
+                L.append("- `%s` ≤ %.3g: only **%s** reaches it (%s)." % (
+                    metric, row["level"], row["best"], fmt_time(row["times"][row["best"]][0])))
+        L += [""]
+    else:
+        L += ["No completed runs with the metric `%s` and a wall time." % metric, ""]
+
+    if plots:
+        L += ["## Plots", ""]
+        for title, fname in plots:
+            L += ["### %s" % title, "", "![%s](%s)" % (title, fname), ""]
+    if notes:
+        L += ["## Notes", ""] + ["- " + n for n in notes] + [""]
+    L += ["Every run's inputs and exact command are in its folder's `run.json`; its outputs in `summary.json`, "
+          "`timeseries.csv`, `stderr.txt`. All rows: `results.csv`.", ""]
+    with open(path, "w") as f:
+        f.write("\n".join(L))
+
+
+def make_outputs(study, study_file, runs, out_dir, counts, jobs, mpi):
+    rows = collect(runs)
+    errors = error_names(rows)
+    metric = study["metric"]
+    notes = []
+    if errors and metric not in errors:
+        notes.append("metric `%s` is not among the errors of the runs (%s); using `%s`" %
+                     (metric, ", ".join(errors), errors[0]))
+        print("study: metric %s not found; using %s" % (metric, errors[0]), file=sys.stderr)
+        metric = errors[0]
+    sweep_keys = []
+    for r in runs:
+        for k in r["sweep"]:
+            if k not in sweep_keys:
+                sweep_keys.append(k)
+    write_csv(os.path.join(out_dir, "results.csv"), rows, sweep_keys, errors)
+    errors = [metric] + [e for e in errors if e != metric] if metric in errors else errors
+    groups = groups_of(rows)
+    lines = {}
+    for label, g in groups.items():
+        pts = [(r["wall_time_s"], r["errors"].get(metric)) for r in completed(g)]
+        pts = [(t, e) for t, e in pts if isinstance(t, (int, float)) and isinstance(e, (int, float))]
+        if pts:
+            lines[label] = pts
+    pareto = pareto_table(lines, study.get("levels"))
+    plots = []
+    plt = plotting()
+    title = study["name"] if study["case"] in study["name"] else "%s: %s" % (study["name"], study["case"])
+    if plt is not None:
+        if plot_error_vs_h(plt, groups, metric, os.path.join(out_dir, "error_vs_h.png"), title):
+            plots.append(("%s against h" % metric, "error_vs_h.png"))
+        if plot_all_errors_vs_h(plt, groups, errors, os.path.join(out_dir, "errors_vs_h.png"), title):
+            plots.append(("Every error norm against h", "errors_vs_h.png"))
+        if plot_pareto(plt, groups, metric, os.path.join(out_dir, "pareto.png"), title + ", speed against accuracy"):
+            plots.append(("%s against wall time (speed–accuracy)" % metric, "pareto.png"))
+        if plot_ksp(plt, groups, os.path.join(out_dir, "ksp_iterations.png"), title + ", pressure solve"):
+            plots.append(("KSP iterations against N", "ksp_iterations.png"))
+        ok, note = plot_centrelines(plt, groups, study["case"], study["options"],
+                                    os.path.join(out_dir, "centrelines.png"), title)
+        if ok:
+            plots.append(("Centreline velocity profiles", "centrelines.png"))
+        if note:
+            notes.append("centreline plot: " + note)
+    else:
+        notes.append("plots skipped: matplotlib is not available to this Python")
+    write_report(os.path.join(out_dir, "report.md"), study, study_file, rows, groups, errors, metric, plots,
+                 pareto, counts, jobs, mpi, notes)
+    return rows
