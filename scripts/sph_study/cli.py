@@ -49,11 +49,9 @@ failed (during time stepping: why), n/a (the program refused the case with that 
 
 import argparse
 import os
-import shlex
-import sys
 
 from .common import REPO
-from .execute import run_all, up_to_date
+from .execute import carry_out, study_settings
 from .matrix import main_matrix
 from .plan import load_study, plan_runs
 from .report import make_outputs
@@ -100,19 +98,11 @@ def main(argv=None):
             for key in table:
                 table[key] = [table[key][i] for i in keep]
         study["resolutions"] = sorted(set(a.nx))
-    mpi = a.mpi if a.mpi is not None else int(study.get("mpi") or 0)
-    sph = os.path.abspath(a.sph)
-    out_dir = os.path.abspath(a.out or os.path.join(REPO, "out", "studies", study["name"]))
+    mpi, sph, out_dir = study_settings(a, study)
     runs = plan_runs(study, out_dir, sph, mpi)
-    if a.dry_run:
-        for r in runs:
-            print(("skip " if up_to_date(r) else "run  ") + " ".join(shlex.quote(c) for c in r["command"]))
+    counts = carry_out(a, runs, sph, out_dir, study["metric"])
+    if counts is None:
         return 0
-    if not a.report_only and not os.access(sph, os.X_OK):
-        sys.exit("study: no sph executable at %s (build it with scripts/build, or pass --sph PATH)" % sph)
-    os.makedirs(out_dir, exist_ok=True)
-    counts = (0, len(runs), 0) if a.report_only else run_all(runs, max(1, a.jobs), a.timeout, a.force, a.retry_failed,
-                                                                   study["metric"])
     make_outputs(study, a.study, runs, out_dir, counts, max(1, a.jobs), mpi)
     print("wrote %s" % os.path.join(out_dir, "report.md"))
     return 0

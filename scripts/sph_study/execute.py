@@ -7,6 +7,7 @@ import os
 import re
 import shlex
 import subprocess
+import sys
 import threading
 import time
 
@@ -151,3 +152,25 @@ def run_all(runs, jobs, timeout, force, retry_failed, metric):
                 f.result()
     print("ran %d runs (%d failed), skipped %d runs (up to date)" % (len(todo), failed[0], len(skipped)), flush=True)
     return len(todo), len(skipped), failed[0]
+
+
+def study_settings(a, study):
+    """(mpi ranks per run, absolute sph path, study folder) from the command line and the study file."""
+    mpi = a.mpi if a.mpi is not None else int(study.get("mpi") or 0)
+    sph = os.path.abspath(a.sph)
+    out_dir = os.path.abspath(a.out or os.path.join(REPO, "out", "studies", study["name"]))
+    return mpi, sph, out_dir
+
+
+def carry_out(a, runs, sph, out_dir, metric):
+    """--dry-run lists the runs and returns None; otherwise checks the program, makes the study folder and
+    runs what is not up to date (nothing with --report-only); returns run_all's counts."""
+    if a.dry_run:
+        for r in runs:
+            print(("skip " if up_to_date(r) else "run  ") + " ".join(shlex.quote(c) for c in r["command"]))
+        return None
+    if not a.report_only and not os.access(sph, os.X_OK):
+        sys.exit("study: no sph executable at %s (build it with scripts/build, or pass --sph PATH)" % sph)
+    os.makedirs(out_dir, exist_ok=True)
+    return (0, len(runs), 0) if a.report_only else run_all(runs, max(1, a.jobs), a.timeout, a.force, a.retry_failed,
+                                                            metric)

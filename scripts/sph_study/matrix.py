@@ -6,11 +6,10 @@ matrix form of the command."""
 import csv
 import os
 import re
-import shlex
 import sys
 
 from .common import REPO, read_json
-from .execute import run_all, up_to_date
+from .execute import carry_out, study_settings
 from .plan import option_args, plan_matrix_runs
 from .report import fmt, fmt_time, md_table
 
@@ -136,19 +135,11 @@ def main_matrix(a, study):
     """The 'matrix:' form: every (row, column) cell once; matrix.csv and matrix.md."""
     if a.nx:
         sys.exit("study: --nx does not apply to a matrix study (set nx in the rows' options)")
-    mpi = a.mpi if a.mpi is not None else int(study.get("mpi") or 0)
-    sph = os.path.abspath(a.sph)
-    out_dir = os.path.abspath(a.out or os.path.join(REPO, "out", "studies", study["name"]))
+    mpi, sph, out_dir = study_settings(a, study)
     runs = plan_matrix_runs(study, out_dir, sph, mpi)
-    if a.dry_run:
-        for r in runs:
-            print(("skip " if up_to_date(r) else "run  ") + " ".join(shlex.quote(c) for c in r["command"]))
+    counts = carry_out(a, runs, sph, out_dir, None)
+    if counts is None:
         return 0
-    if not a.report_only and not os.access(sph, os.X_OK):
-        sys.exit("study: no sph executable at %s (build it with scripts/build, or pass --sph PATH)" % sph)
-    os.makedirs(out_dir, exist_ok=True)
-    counts = (0, len(runs), 0) if a.report_only else run_all(runs, max(1, a.jobs), a.timeout, a.force,
-                                                                   a.retry_failed, None)
     make_matrix_outputs(study, a.study, runs, out_dir, counts)
     tally = {}
     for r in runs:
