@@ -25,7 +25,7 @@ PetscLogEvent ppe_solve_event() {
 
 const char* const gradient_names[] = {"corrected", "difference", "symmetric"};
 
-PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscInt* shift_rate, PetscReal* shift_A, PetscInt* gradient,
+PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscInt* shift_rate, PetscInt* shift_scales, PetscReal* shift_A, PetscInt* gradient,
                             PetscReal* fs_threshold, PetscReal* fs_exit_threshold, PetscInt* operators) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "ISPH projection solver (-solver isph)", "Solver");
@@ -34,6 +34,8 @@ PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscInt* shift
   PetscCall(PetscOptionsEList("-shift_rate", shift_rate_help, "", shift_rate_names, 2, shift_rate_names[*shift_rate],
                               shift_rate, nullptr));
   PetscCall(PetscOptionsReal("-shift_coefficient", shift_coefficient_help, "", *shift_A, shift_A, nullptr));
+  PetscCall(PetscOptionsEList("-shift_scales", shift_scales_help, "", shift_scales_names, 2,
+                              shift_scales_names[*shift_scales], shift_scales, nullptr));
   PetscCall(PetscOptionsEList("-pressure_gradient",
                               "Pressure gradient: corrected (Bonet & Lok), difference, symmetric (Monaghan)", "",
                               gradient_names, 3, gradient_names[*gradient], gradient, nullptr));
@@ -55,9 +57,9 @@ PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscInt* shift
 
 template <int D> void IsphSolver<D>::set_from_options() {
   PetscReal cfl = cfl_, A = shifting_model_.A;
-  PetscInt shift_rate = static_cast<PetscInt>(shifting_model_.rate);
+  PetscInt shift_rate = static_cast<PetscInt>(shifting_model_.rate), shift_scales = static_cast<PetscInt>(shifting_model_.scales);
   PetscInt gradient = static_cast<PetscInt>(gradient_), operators = static_cast<PetscInt>(operators_);
-  SPH_PETSC(read_options(&cfl, &shifting_, &shift_rate, &A, &gradient, &free_surface_threshold_, &free_surface_exit_threshold_,
+  SPH_PETSC(read_options(&cfl, &shifting_, &shift_rate, &shift_scales, &A, &gradient, &free_surface_threshold_, &free_surface_exit_threshold_,
                          &operators));
   require(free_surface_threshold_ >= 0 && free_surface_threshold_ < D, "-free_surface_threshold",
           "in [0, dimension)", free_surface_threshold_);
@@ -66,6 +68,7 @@ template <int D> void IsphSolver<D>::set_from_options() {
   require(cfl > 0 && cfl <= 1.0, "-cfl", "in (0, 1]", cfl);
   require(A >= 0 || A == -1, "-shift_coefficient", "non-negative (or -1: the shift rate's default)", A);
   shifting_model_.rate = static_cast<ShiftRate>(shift_rate);
+  shifting_model_.scales = static_cast<ShiftScales>(shift_scales);
   cfl_ = cfl, shifting_model_.A = A, gradient_ = static_cast<PressureGradient>(gradient);
   operators_ = static_cast<OperatorSet>(operators);
   ppe_.set_from_options();

@@ -21,7 +21,7 @@ const char* const gradient_names[] = {"auto", "corrected", "symmetric"};
 
 struct RawOptions {
   PetscReal c0, c0_factor, gamma, cfl, delta, alpha, beta, epsilon, shift_A;
-  PetscInt density, diffusion, operators, gradient, shift_rate;
+  PetscInt density, diffusion, operators, gradient, shift_rate, shift_scales;
   PetscBool shifting;
   PetscBool closed_volume, closed_volume_set;
 };
@@ -65,6 +65,8 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscCall(PetscOptionsEList("-shift_rate", shift_rate_help, "", shift_rate_names, 2, shift_rate_names[o->shift_rate],
                               &o->shift_rate, nullptr));
   PetscCall(PetscOptionsReal("-shift_coefficient", shift_coefficient_help, "", o->shift_A, &o->shift_A, nullptr));
+  PetscCall(PetscOptionsEList("-shift_scales", shift_scales_help, "", shift_scales_names, 2,
+                              shift_scales_names[o->shift_scales], &o->shift_scales, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -74,7 +76,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   RawOptions o{c0_, c0_factor_, eos_.gamma, cfl_, delta_, av_.alpha, av_.beta, av_.epsilon,
                shifting_model_.A, static_cast<PetscInt>(density_), static_cast<PetscInt>(diffusion_),
                static_cast<PetscInt>(operators_), static_cast<PetscInt>(gradient_),
-               static_cast<PetscInt>(shifting_model_.rate), shifting_,
+               static_cast<PetscInt>(shifting_model_.rate), static_cast<PetscInt>(shifting_model_.scales), shifting_,
                closed_volume_option_ > 0 ? PETSC_TRUE : PETSC_FALSE, PETSC_FALSE};
   SPH_PETSC(read_options(&o));
   require(o.c0 >= 0, "-c0", "non-negative", o.c0);
@@ -88,6 +90,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   require(o.shift_A >= 0 || o.shift_A == -1, "-shift_coefficient", "non-negative (or -1: the shift rate's default)",
           o.shift_A);
   shifting_ = o.shifting, shifting_model_.A = o.shift_A, shifting_model_.rate = static_cast<ShiftRate>(o.shift_rate);
+  shifting_model_.scales = static_cast<ShiftScales>(o.shift_scales);
   if (o.closed_volume_set) closed_volume_option_ = o.closed_volume ? 1 : 0;
   c0_ = o.c0, c0_factor_ = o.c0_factor, eos_.gamma = o.gamma, cfl_ = o.cfl, delta_ = o.delta;
   av_.alpha = o.alpha, av_.beta = o.beta, av_.epsilon = o.epsilon;

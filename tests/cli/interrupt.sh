@@ -6,7 +6,7 @@ set -u
 sph="$1"; src="$2"; tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail=0
 source "$(dirname "$0")/lib/expect.sh"
-run="-case taylor_green -solver isph -nx 24 -t_end 1 -progress 0 -output_interval 0 -checkpoint_interval 0 -ksp_rtol 1e-12"
+run="-case poiseuille -solver isph -nx 20 -t_end 1 -progress 0 -output_interval 0 -checkpoint_interval 0 -ksp_rtol 1e-12"
 # interrupt <signal> <dir>: starts a long run, signals it after a few steps, checks what it left.
 interrupt() {
   local sig="$1" d="$2" want="$3"
@@ -30,10 +30,11 @@ PY
 interrupt TERM "$tmp/term" 143
 interrupt INT "$tmp/int" 130
 
-# Resume and compare with the run that was never interrupted. The resumed run equals, bit for bit, a
-# run that wrote a checkpoint at the same step (measured); a checkpoint re-orders the particles, so
-# against a run without one the match is to round-off: 1e-10 in the L1 norms, 2e-6 measured in the
-# norms of a maximum (decay_rel, linf), which follow a single particle.
+# Resume and compare with the run that was never interrupted. A checkpoint re-orders the particles, so
+# the match is to round-off (measured: 9e-15). The flow is Poiseuille's because it keeps round-off at
+# round-off: on Taylor-Green the particles rearrange from their lattice and amplify any difference (nx
+# 24: a start perturbed by 1e-9 dx differs by 1e-5 in l1_velocity at t = 0.9, with either shift scale),
+# so there a lost piece of state could not be told from round-off.
 expect_ok $run -output_dir "$tmp/whole"
 expect_ok $run -output_dir "$tmp/int" -restart "$tmp/int/checkpoint.bin"
 python3 - "$tmp/whole/summary.json" "$tmp/int/summary.json" <<'PY' || fail=1
@@ -41,7 +42,7 @@ import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:])
 rel = {k: abs(a["errors"][k] - b["errors"][k]) / abs(a["errors"][k]) for k in a["errors"]}
 worst = max(rel.values())
-ok = all(r < (1e-8 if k.startswith("l1") else 2e-5) for k, r in rel.items())
+ok = all(r < 1e-8 for r in rel.values())
 ok &= a["steps"] == b["steps"] and len(b["history"]) == 2 and b["history"][0]["status"].startswith("interrupted")
 # Same solver set-up; iteration counts equal up to one, since at -ksp_rtol 1e-12 a solve's count can
 # flip by one with that round-off (measured: 9 against 10 in one resumed run of ten).
