@@ -202,17 +202,21 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   auto fluid = [&](std::size_t i) { return P.kind[i] == kFluid; };  // walls keep their prescribed motion
   nh.update(P);
   nh.halo().update(P.p);
+  energy_.start(P);
 
   // Opening kick with a^n at x^n. Before the first projection there is no pressure of the scheme's
   // own (a case's initial pressure need not be one), so that step projects the whole dt below.
   LogEventScope log_forces(LogEvent::Forces);
   const bool have_pressure = solves_ > 0;
-  std::vector<Vector<D>> acc(n, Vector<D>::Zero());
+  std::vector<Vector<D>> acc(n, Vector<D>::Zero()), pressure_acc(n, Vector<D>::Zero());
   if (phys.viscous()) acc = viscous_acceleration(P.v, laplacian_corrections_if_used());
+  const std::vector<Vector<D>> viscous_acc = acc, gravity(n, phys.gravity);
   if (have_pressure) {
     const std::vector<Vector<D>> grad_p = pressure_gradient();
-    for (std::size_t i = 0; i < n; ++i) acc[i] -= grad_p[i] / P.rho[i];
+    for (std::size_t i = 0; i < n; ++i) pressure_acc[i] = -grad_p[i] / P.rho[i], acc[i] += pressure_acc[i];
   }
+  energy_.add_update(P, P.v, {{EnergyCause::Viscous, 0.5 * dt, &viscous_acc}, {EnergyCause::Pressure, 0.5 * dt, &pressure_acc},
+                              {EnergyCause::BodyForce, 0.5 * dt, &gravity}});
   std::vector<Vector<D>> u_half = P.v;
   for (std::size_t i = 0; i < n; ++i) {
     if (!fluid(i)) continue;
@@ -235,15 +239,20 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
       if (fluid(i)) u_pred[i] += (0.5 * dt) * acc[i];
     nh.halo().update(u_pred);
     const std::vector<Vector<D>> visc = viscous_acceleration(u_pred, corrections);
+    energy_.add_update(P, u_star, {{EnergyCause::Viscous, 0.5 * dt, &visc}, {EnergyCause::BodyForce, 0.5 * dt, &gravity}});
     for (std::size_t i = 0; i < n; ++i)
       if (fluid(i)) u_star[i] += (0.5 * dt) * visc[i];
+  } else {
+    energy_.add_update(P, u_star, {{EnergyCause::BodyForce, 0.5 * dt, &gravity}});
   }
   for (std::size_t i = 0; i < n; ++i)
     if (fluid(i)) u_star[i] += (0.5 * dt) * phys.gravity;
   log_closing_forces.end();
   nh.halo().update(u_star);
   const std::vector<double> p_start(P.p.begin(), P.p.begin() + n);
+  const double energy_before_projection = EnergyBudget::kinetic_energy(P, u_star);
   const StepReport report = project(u_star, have_pressure ? 0.5 * dt : dt, corrections);
+  energy_.add_change(EnergyCause::Pressure, energy_before_projection, EnergyBudget::kinetic_energy(P, P.v));
   // P.p holds psi: turn it into the step's mean pressure and its extrapolation to t^{n+1}.
   mean_pressure_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -252,7 +261,11 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
     mean_pressure_[i] = mean;
   }
   nh.halo().update(P.p);
-  if (shifting_) shift(dt);
+  if (shifting_) {
+    const double energy_before_shift = EnergyBudget::kinetic_energy(P, P.v);
+    shift(dt);
+    energy_.add_change(EnergyCause::Shifting, energy_before_shift, EnergyBudget::kinetic_energy(P, P.v));
+  }
   return report;
 }
 
@@ -296,7 +309,8 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
     models["viscosity"] = {{"model", consistent ? "ConsistentLaplacian" : "MorrisViscosity"}, {"nu", phys.nu}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
   if (shifting_) models["shifting"] = shifting_model_.describe();
-  return {{"models", models}, {"cfl", cfl_}, {"ksp", ppe_.describe()}};
+  return {{"models", models}, {"cfl", cfl_}, {"ksp", ppe_.describe()},
+          {"conservation", {{"energy_budget", energy_.describe(scene_->particles)}}}};
 }
 
 template class IsphSolver<1>;

@@ -36,6 +36,7 @@
 #include "solvers/isph/pressure_poisson.hpp"
 #include "src/run/solver.hpp"
 #include "src/sph/consistent_laplacian.hpp"
+#include "src/sph/energy_budget.hpp"
 #include "src/sph/shifting.hpp"
 
 namespace sph {
@@ -94,6 +95,7 @@ template <int D> class IsphSolver : public Solver<D> {
   PetscReal free_surface_threshold_ = 0.0;       // 0: the dimension's default
   PetscReal free_surface_exit_threshold_ = 0.0;  // 0: default_free_surface_exit_threshold
   std::vector<double> surface_state_;            // 1: on the free surface at the last projection
+  EnergyBudget energy_;                          // since this run's start (a restart: since the restart)
 };
 
 }  // namespace sph
