@@ -26,7 +26,7 @@ PetscLogEvent ppe_solve_event() {
 const char* const gradient_names[] = {"corrected", "difference", "symmetric"};
 
 PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscInt* shift_rate, PetscInt* shift_scales, PetscReal* shift_A, PetscInt* gradient,
-                            PetscReal* fs_threshold, PetscReal* fs_exit_threshold, PetscInt* operators) {
+                            PetscReal* fs_threshold, PetscReal* fs_exit_threshold, PetscInt* operators, PetscReal* particle_divergence_rate) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "ISPH projection solver (-solver isph)", "Solver");
   PetscCall(PetscOptionsReal("-cfl", "ISPH: advective Courant number, dt <= cfl h / U (the explicit schemes read -cfl as an acoustic one)", "", *cfl, cfl, nullptr));
@@ -43,6 +43,11 @@ PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscInt* shift
                               "Viscous and PPE Laplacian, PPE divergence: consistent (exact for quadratic / linear "
                               "fields on any particle distribution) or classic (Morris, Cummins & Rudman, plain)",
                               "", operator_set_names, 2, operator_set_names[*operators], operators, nullptr));
+  PetscCall(PetscOptionsReal("-ppe_particle_divergence_rate",
+                             "Rate, in U/h, at which the PPE removes the particle-scale divergence of the previous "
+                             "step's velocity, which the projection cannot remove (-1: all of it every step, whatever "
+                             "dt; 0: never; R: a fraction R U dt / (2 h) per step, at most all)",
+                             "", *particle_divergence_rate, particle_divergence_rate, nullptr));
   PetscCall(PetscOptionsReal("-free_surface_threshold",
                              "Free-surface particles: div r below this (0: 1.5 in 2D, 2.4 in 3D; Lind et al. 2012)", "",
                              *fs_threshold, fs_threshold, nullptr));
@@ -60,7 +65,7 @@ template <int D> void IsphSolver<D>::set_from_options() {
   PetscInt shift_rate = static_cast<PetscInt>(shifting_model_.rate), shift_scales = static_cast<PetscInt>(shifting_model_.scales);
   PetscInt gradient = static_cast<PetscInt>(gradient_), operators = static_cast<PetscInt>(operators_);
   SPH_PETSC(read_options(&cfl, &shifting_, &shift_rate, &shift_scales, &A, &gradient, &free_surface_threshold_, &free_surface_exit_threshold_,
-                         &operators));
+                         &operators, &particle_divergence_rate_));
   require(free_surface_threshold_ >= 0 && free_surface_threshold_ < D, "-free_surface_threshold",
           "in [0, dimension)", free_surface_threshold_);
   require(free_surface_exit_threshold_ >= 0 && free_surface_exit_threshold_ < D, "-free_surface_exit_threshold",
@@ -71,6 +76,8 @@ template <int D> void IsphSolver<D>::set_from_options() {
   shifting_model_.scales = static_cast<ShiftScales>(shift_scales);
   cfl_ = cfl, shifting_model_.A = A, gradient_ = static_cast<PressureGradient>(gradient);
   operators_ = static_cast<OperatorSet>(operators);
+  require(particle_divergence_rate_ >= 0 || particle_divergence_rate_ == -1, "-ppe_particle_divergence_rate",
+          "non-negative (or -1: all of it every step)", particle_divergence_rate_);
   ppe_.set_from_options();
 }
 
@@ -176,6 +183,19 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
       for (std::size_t i = 0; i < P.n_owned; ++i)
         if (near[i]) source[i] = plain[i];
     }
+  }
+  // The velocity u^n = P.v that the last projection made divergence-free has, at the particles' new
+  // positions, a particle-scale divergence (div u^n minus its kernel average) that the projection
+  // cannot remove: its Laplacian is not the divergence of its gradient on that scale. In the source
+  // div u* / tau all of it is divided by tau, every step, and becomes a pressure noise that grows as
+  // 1/dt (README, "ISPH's pressure as dt falls"). -ppe_particle_divergence_rate R keeps a fraction
+  // R U tau / h of it instead, so that below the step with R U tau = h it is removed at a rate per
+  // unit time; the step's own change of u keeps all of its divergence.
+  const double kept = particle_divergence_rate_ * phys.U * tau / K.h();  // the fraction kept; at least 1: all
+  if (particle_divergence_rate_ >= 0 && solves_ > 0 && kept < 1.0) {
+    std::vector<double> div_u = consistent ? divergence_corrected(P, nh.list(), K, P.v) : divergence(P, nh.list(), K, P.v);
+    const KernelAverage<double> resolved = kernel_average_in_fluid(P, nh, K, div_u, phys.free_surface ? &surface : nullptr);
+    for (std::size_t i = 0; i < P.n_owned; ++i) source[i] -= (1.0 - kept) * (div_u[i] - resolved.average[i]);
   }
   for (double& s : source) s /= tau;
   ppe_.assemble(P, nh, K, phys.gravity, phys.free_surface ? &surface : nullptr, consistent ? &corrections : nullptr);
@@ -294,7 +314,7 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
   nlohmann::json models = nlohmann::json::object();
   const bool consistent = operators_ == OperatorSet::Consistent;
   models["pressure_laplacian"] = consistent ? "ConsistentLaplacian" : "CumminsRudman";
-  models["ppe_source"] = consistent ? "corrected divergence" : "divergence";
+  models["ppe_source"] = {{"divergence", consistent ? "corrected" : "plain"}, {"particle_divergence_rate", particle_divergence_rate_}};
   models["time_integration"] = "kick-drift-kick, projection as the closing kick";
   if (walls_)
     models["walls"] = {{"model", "AdamiWall"},

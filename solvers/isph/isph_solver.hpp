@@ -27,6 +27,10 @@
 // the plain divergence: a symmetric PPE (CG), kept for comparison only (Taylor-Green nx 64, CFL 0.2:
 // 1.5e-2 against 1.0e-3; see README).
 //
+// The source div u* / tau also divides by tau the particle-scale divergence that u^n keeps at the new
+// positions and that no projection removes, a pressure noise growing as 1/dt;
+// -ppe_particle_divergence_rate removes it at a rate per unit time instead (isph_solver.cpp, project).
+//
 // Free surface (Lind et al. 2012): surface particles (div r below a threshold, with hysteresis) get
 // p = 0; next to them the PPE source is the plain divergence, since the corrected one extrapolates
 // into the cut half of the support (see src/sph/free_surface.hpp and the README's dam break).
@@ -37,6 +41,7 @@
 #include "src/run/solver.hpp"
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/energy_budget.hpp"
+#include "src/sph/kernel_average.hpp"
 #include "src/sph/shifting.hpp"
 
 namespace sph {
@@ -89,6 +94,7 @@ template <int D> class IsphSolver : public Solver<D> {
   LindShifting shifting_model_;
   PressureGradient gradient_ = PressureGradient::Corrected;
   OperatorSet operators_ = OperatorSet::Consistent;
+  PetscReal particle_divergence_rate_ = -1;  // in U/h; -1: all of it every step
   long solves_ = 0;
   std::vector<double> mean_pressure_;  // pm^{n-1/2} per particle
   bool walls_ = false;

@@ -24,6 +24,7 @@
 
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/core/log_events.hpp"
+#include "src/sph/kernel_average.hpp"
 #include "src/sph/operators.hpp"
 
 namespace sph {
@@ -101,36 +102,16 @@ struct LindShifting {
   }
 };
 
-// g_i minus its Shepard average over the kernel, sum_j V_j W_ij g_j / sum_j V_j W_ij (i included): the
-// part of a per-particle field that varies on the particle scale. Only where the kernel support is all
-// fluid: next to a wall or a free surface (a surface particle among the neighbours) the resolved part
-// of grad C is the boundary's own signal, which keeps particles off walls (without it the cavity at
-// Re 1000, nx 50, lost a particle through a wall at t = 7.5), and g_i is kept whole. g holds the owned
-// particles' values and grows to cover the ghosts.
+// g_i minus its kernel average (src/sph/kernel_average.hpp): the part of grad C that varies on the
+// particle scale. Only where the kernel support is all fluid: next to a wall or a free surface the
+// resolved part of grad C is the boundary's own signal, which keeps particles off walls (without it the
+// cavity at Re 1000, nx 50, lost a particle through a wall at t = 7.5), and g_i is kept whole.
 template <int D>
 void remove_kernel_average(const Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, std::vector<Vector<D>>& g,
                            const std::vector<char>* surface) {
-  g.resize(P.size(), Vector<D>::Zero());
-  nh.halo().update(g);
-  std::vector<double> boundary(P.size(), 0.0);  // 1: a wall or free-surface particle
-  for (std::size_t i = 0; i < P.n_owned; ++i) boundary[i] = P.kind[i] != kFluid || (surface && (*surface)[i]);
-  nh.halo().update(boundary);
-  std::vector<Vector<D>> average(P.n_owned, Vector<D>::Zero());
-  const double W0 = K.W(0.0);
-  for_each_particle_pairs(P, nh.list(), K, [&](std::size_t i, auto&& visit_pairs) {
-    if (boundary[i] != 0.0) return;
-    Vector<D> sum = (P.m[i] / P.rho[i] * W0) * g[i];
-    double weight = P.m[i] / P.rho[i] * W0;
-    bool interior = true;
-    visit_pairs([&](int, int j, const PairGeometry<D>& pg) {
-      interior = interior && boundary[j] == 0.0;
-      const double w = P.m[j] / P.rho[j] * pg.W;
-      sum += w * g[j], weight += w;
-    });
-    if (interior) average[i] = sum / weight;
-  });
-  g.resize(P.n_owned);
-  for (std::size_t i = 0; i < P.n_owned; ++i) g[i] -= average[i];
+  const KernelAverage<Vector<D>> average = kernel_average_in_fluid(P, nh, K, g, surface);
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (average.interior[i]) g[i] -= average.average[i];
 }
 
 // Shifts the owned particles by -D grad C, D = model.coefficient(h, U, dt), (on free-surface particles only along the surface: the

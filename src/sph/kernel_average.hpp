@@ -1,0 +1,49 @@
+#pragma once
+// The kernel (Shepard) average of a per-particle field, sum_j V_j W_ij f_j / sum_j V_j W_ij (i
+// included): the field's resolved-scale part, so that f - average is the part that varies on the
+// particle scale. Two schemes separate scales with it: particle-scale shifting (src/sph/shifting.hpp)
+// and ISPH's resolved PPE source (solvers/isph/isph_solver.cpp).
+#include <vector>
+
+#include "src/neighbours/neighbourhood.hpp"
+#include "src/sph/pair_loop.hpp"
+
+namespace sph {
+
+template <class T> struct KernelAverage {
+  std::vector<T> average;      // per owned particle; f_i itself where not interior
+  std::vector<char> interior;  // 1: the kernel support holds fluid particles only
+};
+
+// Averages only where the support is all fluid: next to a wall or a free surface (a surface particle
+// among the neighbours, `surface` the owned particles' flags, may be null) the support is cut and the
+// resolved part of a field is the boundary's own signal, so there the average is f_i and f - average
+// vanishes. f holds the owned particles' values and grows to cover the ghosts.
+template <int D, class T>
+KernelAverage<T> kernel_average_in_fluid(const Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K,
+                                         std::vector<T>& f, const std::vector<char>* surface) {
+  f.resize(P.size());
+  nh.halo().update(f);
+  std::vector<double> boundary(P.size(), 0.0);  // 1: a wall or free-surface particle
+  for (std::size_t i = 0; i < P.n_owned; ++i) boundary[i] = P.kind[i] != kFluid || (surface && (*surface)[i]);
+  nh.halo().update(boundary);
+  KernelAverage<T> result{std::vector<T>(f.begin(), f.begin() + P.n_owned), std::vector<char>(P.n_owned, 0)};
+  const double W0 = K.W(0.0);
+  for_each_particle_pairs(P, nh.list(), K, [&](std::size_t i, auto&& visit_pairs) {
+    if (boundary[i] != 0.0) return;
+    const double w_i = P.m[i] / P.rho[i] * W0;
+    T sum = w_i * f[i];
+    double weight = w_i;
+    bool interior = true;
+    visit_pairs([&](int, int j, const PairGeometry<D>& g) {
+      interior = interior && boundary[j] == 0.0;
+      const double w = P.m[j] / P.rho[j] * g.W;
+      sum += w * f[j], weight += w;
+    });
+    if (interior) result.average[i] = sum / weight, result.interior[i] = 1;
+  });
+  f.resize(P.n_owned);
+  return result;
+}
+
+}  // namespace sph
