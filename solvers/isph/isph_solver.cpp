@@ -272,7 +272,8 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   const std::vector<double> p_start(P.p.begin(), P.p.begin() + n);
   const double energy_before_projection = EnergyBudget::kinetic_energy(P, u_star);
   const StepReport report = project(u_star, have_pressure ? 0.5 * dt : dt, corrections);
-  energy_.add_change(EnergyCause::Pressure, energy_before_projection, EnergyBudget::kinetic_energy(P, P.v));
+  const double energy_after_projection = EnergyBudget::kinetic_energy(P, P.v);  // the shift starts from it
+  energy_.add_change(EnergyCause::Pressure, energy_before_projection, energy_after_projection);
   // P.p holds psi: turn it into the step's mean pressure and its extrapolation to t^{n+1}.
   mean_pressure_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -282,9 +283,8 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   }
   nh.halo().update(P.p);
   if (shifting_) {
-    const double energy_before_shift = EnergyBudget::kinetic_energy(P, P.v);
     shift(dt);
-    energy_.add_change(EnergyCause::Shifting, energy_before_shift, EnergyBudget::kinetic_energy(P, P.v));
+    energy_.add_change(EnergyCause::Shifting, energy_after_projection, EnergyBudget::kinetic_energy(P, P.v));
   }
   return report;
 }

@@ -2,7 +2,7 @@
 // The kernel (Shepard) average of a per-particle field, sum_j V_j W_ij f_j / sum_j V_j W_ij (i
 // included): the field's resolved-scale part, so that f - average is the part that varies on the
 // particle scale. Two schemes separate scales with it: particle-scale shifting (src/sph/shifting.hpp)
-// and ISPH's resolved PPE source (solvers/isph/isph_solver.cpp).
+// and ISPH's PPE source under -ppe_particle_divergence_rate (solvers/isph/isph_solver.cpp).
 #include <vector>
 
 #include "src/neighbours/neighbourhood.hpp"

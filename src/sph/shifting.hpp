@@ -59,7 +59,7 @@ inline const char* const shift_rate_help =
 // mass at the flow's scale by O(h), which fixed particle volumes do not account for. Measured on
 // Taylor-Green (ISPH, Re 100, t 1, CFL 0.05, nx 32 / 64 / 128): the shift's kinetic-energy input
 // 2.9e-3 / 1.8e-3 / 9.0e-4 (first order), which the projection takes back only in part (net
-// -6.9e-4 / +4.5e-5 / +1.5e-4 against the viscous term's own deficit of 2.3e-3 / 5.5e-4 / 1.3e-4, second
+// -7.8e-4 / +9e-7 / +1.3e-4 against the viscous term's own deficit of 2.4e-3 / 6.0e-4 / 1.5e-4, second
 // order), so the error converged at 1.75. particle: shift along grad C minus its kernel (Shepard)
 // average over the fluid, the particle-scale part that disorder makes and shifting is for; the resolved
 // part left is O(h^2) smaller. Its energy input is then 8.7e-4 / 9.3e-5 / 9.2e-6 (third order). Not the
