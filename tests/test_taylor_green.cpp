@@ -56,7 +56,7 @@ TEST(TaylorGreen, IsphMatchesAnalyticDecayAndConverges) {
 // against the exact dissipation of the computed field (a Taylor-Green mode has |grad u|^2 = 8 pi^2 |u|^2,
 // so dE/dt = -16 pi^2 nu E) falls short by the consistent Laplacian's kernel-smoothing error, second
 // order in h (measured 4.6e-2, 1.2e-2, 3.0e-3 of it at nx 16, 32, 64). With -shift_scales particle,
-// shifting's share falls faster than h (measured order 1.7 from nx 16 to 32, third order from nx 32 to
+// shifting's share falls faster than h (measured order 1.8 from nx 16 to 32, third order from nx 32 to
 // 128 at CFL 0.05, README); with the whole grad C it fell at 0.6.
 struct EnergyBudgetRun {
   double start, end, viscous, pressure, body_force, shifting, exact_viscous;

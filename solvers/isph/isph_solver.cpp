@@ -26,7 +26,8 @@ PetscLogEvent ppe_solve_event() {
 const char* const gradient_names[] = {"corrected", "difference", "symmetric"};
 
 PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscInt* shift_rate, PetscInt* shift_scales, PetscReal* shift_A, PetscInt* gradient,
-                            PetscReal* fs_threshold, PetscReal* fs_exit_threshold, PetscInt* operators, PetscReal* particle_divergence_rate) {
+                            PetscReal* fs_threshold, PetscReal* fs_exit_threshold, PetscInt* operators, PetscReal* particle_divergence_rate,
+                            PetscInt* projection_corrections) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "ISPH projection solver (-solver isph)", "Solver");
   PetscCall(PetscOptionsReal("-cfl", "ISPH: advective Courant number, dt <= cfl h / U (the explicit schemes read -cfl as an acoustic one)", "", *cfl, cfl, nullptr));
@@ -45,9 +46,15 @@ PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscInt* shift
                               "", operator_set_names, 2, operator_set_names[*operators], operators, nullptr));
   PetscCall(PetscOptionsReal("-ppe_particle_divergence_rate",
                              "Rate, in U/h, at which the PPE removes the particle-scale divergence of the previous "
-                             "step's velocity, which the projection cannot remove (-1: all of it every step, whatever "
-                             "dt; 0: never; R: a fraction R U dt / (2 h) per step, at most all)",
+                             "step's velocity, which the projection cannot remove (R: a fraction R U dt / (2 h) per "
+                             "step, at most all, so the default 10 removes all of it at CFL 0.2 and keeps that rate "
+                             "at smaller steps; -1: all of it every step, whatever dt; 0: never)",
                              "", *particle_divergence_rate, particle_divergence_rate, nullptr));
+  PetscCall(PetscOptionsInt("-projection_corrections",
+                            "Passes after the projection that remove the resolved-scale divergence it leaves (its "
+                            "Laplacian is not the divergence of its gradient): each solves the same matrix again; 0: "
+                            "one projection, first order in dt",
+                            "", *projection_corrections, projection_corrections, nullptr));
   PetscCall(PetscOptionsReal("-free_surface_threshold",
                              "Free-surface particles: div r below this (0: 1.5 in 2D, 2.4 in 3D; Lind et al. 2012)", "",
                              *fs_threshold, fs_threshold, nullptr));
@@ -65,7 +72,7 @@ template <int D> void IsphSolver<D>::set_from_options() {
   PetscInt shift_rate = static_cast<PetscInt>(shifting_model_.rate), shift_scales = static_cast<PetscInt>(shifting_model_.scales);
   PetscInt gradient = static_cast<PetscInt>(gradient_), operators = static_cast<PetscInt>(operators_);
   SPH_PETSC(read_options(&cfl, &shifting_, &shift_rate, &shift_scales, &A, &gradient, &free_surface_threshold_, &free_surface_exit_threshold_,
-                         &operators, &particle_divergence_rate_));
+                         &operators, &particle_divergence_rate_, &projection_corrections_));
   require(free_surface_threshold_ >= 0 && free_surface_threshold_ < D, "-free_surface_threshold",
           "in [0, dimension)", free_surface_threshold_);
   require(free_surface_exit_threshold_ >= 0 && free_surface_exit_threshold_ < D, "-free_surface_exit_threshold",
@@ -78,6 +85,7 @@ template <int D> void IsphSolver<D>::set_from_options() {
   operators_ = static_cast<OperatorSet>(operators);
   require(particle_divergence_rate_ >= 0 || particle_divergence_rate_ == -1, "-ppe_particle_divergence_rate",
           "non-negative (or -1: all of it every step)", particle_divergence_rate_);
+  require(projection_corrections_ >= 0, "-projection_corrections", "non-negative", projection_corrections_);
   ppe_.set_from_options();
 }
 
@@ -115,15 +123,15 @@ template <int D> double IsphSolver<D>::stable_dt() const {
   return dt;
 }
 
-template <int D> std::vector<Vector<D>> IsphSolver<D>::pressure_gradient() const {
+template <int D> std::vector<Vector<D>> IsphSolver<D>::pressure_gradient(const std::vector<double>& p) const {
   const Particles<D>& P = scene_->particles;
   const NeighbourList<D>& nl = scene_->neighbourhood.list();
   const Kernel<D>& K = scene_->kernel;
   switch (gradient_) {
     case PressureGradient::Corrected:
-      return gradient_corrected(P, nl, K, P.p);
-    case PressureGradient::Difference: return gradient_difference(P, nl, K, P.p);
-    case PressureGradient::Symmetric: return gradient_symmetric(P, nl, K, P.p);
+      return gradient_corrected(P, nl, K, p);
+    case PressureGradient::Difference: return gradient_difference(P, nl, K, p);
+    case PressureGradient::Symmetric: return gradient_symmetric(P, nl, K, p);
   }
   return {};
 }
@@ -156,6 +164,24 @@ std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vec
 }
 
 template <int D>
+std::vector<double> IsphSolver<D>::ppe_divergence(const std::vector<Vector<D>>& u, const std::vector<char>& near_surface) const {
+  const Particles<D>& P = scene_->particles;
+  const NeighbourList<D>& nl = scene_->neighbourhood.list();
+  const Kernel<D>& K = scene_->kernel;
+  if (operators_ != OperatorSet::Consistent) return divergence(P, nl, K, u);
+  std::vector<double> div = divergence_corrected(P, nl, K, u);
+  // Next to a free surface the kernel support is cut, and the corrected divergence extrapolates u
+  // into the empty half: it amplifies the noise of the unconstrained surface particles, and the dam
+  // break blew up with it (nx 40, t = 1.44). The plain divergence is used there.
+  if (!near_surface.empty()) {
+    const std::vector<double> plain = divergence(P, nl, K, u);
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      if (near_surface[i]) div[i] = plain[i];
+  }
+  return div;
+}
+
+template <int D>
 StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double tau,
                                   const std::vector<LaplacianCorrection<D>>& corrections) {
   Particles<D>& P = scene_->particles;
@@ -166,24 +192,18 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
 
   // div(grad p / rho) = div(u*) / tau.
   LogEventScope log_assembly(ppe_assembly_event());
-  std::vector<double> source =
-      consistent ? divergence_corrected(P, nh.list(), K, u_star) : divergence(P, nh.list(), K, u_star);
   // Free surface (Lind et al. 2012): surface particles get p = 0.
-  std::vector<char> surface;
+  std::vector<char> surface, near_surface;
   if (phys.free_surface) {
     surface = free_surface(true);
-    // Next to the surface the kernel support is cut, and the corrected divergence extrapolates u*
-    // into the empty half: it amplifies the noise of the unconstrained surface particles, and the
-    // dam break blew up with it (nx 40, t = 1.44). The plain divergence is used there.
     if (consistent) {
       std::vector<double> flags = surface_state_;
       nh.halo().update(flags);
-      const std::vector<char> near = near_free_surface(P, nh.list(), K, flags);
-      const std::vector<double> plain = divergence(P, nh.list(), K, u_star);
-      for (std::size_t i = 0; i < P.n_owned; ++i)
-        if (near[i]) source[i] = plain[i];
+      near_surface = near_free_surface(P, nh.list(), K, flags);
     }
   }
+  const std::vector<char>* surface_flags = phys.free_surface ? &surface : nullptr;
+  std::vector<double> source = ppe_divergence(u_star, near_surface);
   // The velocity u^n = P.v that the last projection made divergence-free has, at the particles' new
   // positions, a particle-scale divergence (div u^n minus its kernel average) that the projection
   // cannot remove: its Laplacian is not the divergence of its gradient on that scale. In the source
@@ -193,24 +213,52 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
   // unit time; the step's own change of u keeps all of its divergence.
   const double kept = particle_divergence_rate_ * phys.U * tau / K.h();  // the fraction kept; at least 1: all
   if (particle_divergence_rate_ >= 0 && solves_ > 0 && kept < 1.0) {
-    std::vector<double> div_u = consistent ? divergence_corrected(P, nh.list(), K, P.v) : divergence(P, nh.list(), K, P.v);
-    const KernelAverage<double> resolved = kernel_average_in_fluid(P, nh, K, div_u, phys.free_surface ? &surface : nullptr);
+    std::vector<double> div_u = ppe_divergence(P.v, near_surface);
+    const KernelAverage<double> resolved = kernel_average_in_fluid(P, nh, K, div_u, surface_flags);
     for (std::size_t i = 0; i < P.n_owned; ++i) source[i] -= (1.0 - kept) * (div_u[i] - resolved.average[i]);
   }
   for (double& s : source) s /= tau;
-  ppe_.assemble(P, nh, K, phys.gravity, phys.free_surface ? &surface : nullptr, consistent ? &corrections : nullptr);
+  ppe_.assemble(P, nh, K, phys.gravity, surface_flags, consistent ? &corrections : nullptr);
   log_assembly.end();
   LogEventScope log_solve(ppe_solve_event());
   // The first solve starts from zero: the case's initial pressure is not the projection's.
-  const StepReport report = ppe_.solve(source, P.m, P.p, solves_ > 0);
+  StepReport report = ppe_.solve(source, P.m, P.p, solves_ > 0);
   ++solves_;
   log_solve.end();
   nh.halo().update(P.p);
 
-  const LogEventScope log_correction(LogEvent::Forces);
-  const std::vector<Vector<D>> grad_p = pressure_gradient();
+  LogEventScope log_correction(LogEvent::Forces);
+  const std::vector<Vector<D>> grad_p = pressure_gradient(P.p);
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (P.kind[i] == kFluid) P.v[i] = u_star[i] - (tau / P.rho[i]) * grad_p[i];
+  log_correction.end();
+
+  // Correction passes: u^{n+1} keeps the divergence tau (L - D G) psi (isph_solver.hpp). Its kernel
+  // average is the resolved part, which a second solve with the same matrix (the preconditioner is
+  // reused) removes up to the relative size of L - D G again; the particle-scale rest is what no
+  // projection removes, and dividing it by tau once more would add the 1/dt pressure noise.
+  for (PetscInt pass = 0; pass < projection_corrections_; ++pass) {
+    LogEventScope log_pass_source(ppe_assembly_event());
+    nh.halo().update(P.v);
+    std::vector<double> remaining = ppe_divergence(P.v, near_surface);
+    std::vector<double> increment_source = kernel_average_in_fluid(P, nh, K, remaining, surface_flags).average;
+    for (double& s : increment_source) s /= tau;
+    log_pass_source.end();
+    LogEventScope log_pass_solve(ppe_solve_event());
+    std::vector<double> increment(P.n_owned, 0.0);
+    const StepReport pass_report = ppe_.solve(increment_source, P.m, increment, false, true);
+    report.linear_iterations += pass_report.linear_iterations;
+    log_pass_solve.end();
+    const LogEventScope log_pass_correction(LogEvent::Forces);
+    increment.resize(P.size());
+    nh.halo().update(increment);
+    const std::vector<Vector<D>> grad_increment = pressure_gradient(increment);
+    for (std::size_t i = 0; i < P.n_owned; ++i) {
+      if (P.kind[i] == kFluid) P.v[i] -= (tau / P.rho[i]) * grad_increment[i];
+      P.p[i] += increment[i];
+    }
+    nh.halo().update(P.p);
+  }
   return report;
 }
 
@@ -232,7 +280,7 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   if (phys.viscous()) acc = viscous_acceleration(P.v, laplacian_corrections_if_used());
   const std::vector<Vector<D>> viscous_acc = acc, gravity(n, phys.gravity);
   if (have_pressure) {
-    const std::vector<Vector<D>> grad_p = pressure_gradient();
+    const std::vector<Vector<D>> grad_p = pressure_gradient(P.p);
     for (std::size_t i = 0; i < n; ++i) pressure_acc[i] = -grad_p[i] / P.rho[i], acc[i] += pressure_acc[i];
   }
   energy_.add_update(P, P.v, {{EnergyCause::Viscous, 0.5 * dt, &viscous_acc}, {EnergyCause::Pressure, 0.5 * dt, &pressure_acc},
@@ -315,6 +363,7 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
   const bool consistent = operators_ == OperatorSet::Consistent;
   models["pressure_laplacian"] = consistent ? "ConsistentLaplacian" : "CumminsRudman";
   models["ppe_source"] = {{"divergence", consistent ? "corrected" : "plain"}, {"particle_divergence_rate", particle_divergence_rate_}};
+  models["projection_corrections"] = projection_corrections_;
   models["time_integration"] = "kick-drift-kick, projection as the closing kick";
   if (walls_)
     models["walls"] = {{"model", "AdamiWall"},

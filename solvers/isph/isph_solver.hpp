@@ -6,6 +6,8 @@
 //   u*        = u^{n+1/2} + dt/2 (nu lap u~ + g)            at x^{n+1}, u~ = u^{n+1/2} + dt/2 a^n
 //   div(grad p^{n+1} / rho) = div(u*) / (dt/2)              PressurePoisson (PETSc + hypre)
 //   u^{n+1}   = u* - dt/2 psi / rho                         divergence-free at x^{n+1}
+//   correction pass: div(grad dpsi / rho) = <div u^{n+1}> / (dt/2),  u^{n+1} -= dt/2 grad dpsi / rho,
+//                    psi += dpsi    (<.>: kernel average; the same matrix; -projection_corrections)
 //   p^{n+1}   = pm^{n+1/2} + (pm^{n+1/2} - pm^{n-1/2}) / 2,  pm^{n+1/2} = (p^n + psi) / 2
 //   shifting (LindShifting) with Taylor corrections of u, p and pm to the shifted positions.
 // The projection fixes only the step's mean pressure pm (the impulse dt pm that makes u^{n+1}
@@ -27,6 +29,14 @@
 // the plain divergence: a symmetric PPE (CG), kept for comparison only (Taylor-Green nx 64, CFL 0.2:
 // 1.5e-2 against 1.0e-3; see README).
 //
+// The projection is approximate: the consistent Laplacian L is not the corrected divergence of the
+// corrected gradient D G. On the resolved scales they differ at second order in h, and one projection
+// leaves the divergence tau (L - D G) psi in u^{n+1}, which the next step removes again: an error of
+// order dt h^2 in u, first order in dt (Taylor-Green nx 32: the vortex's amplitude error -1.4e-3 at
+// CFL 0.2 against +7.0e-3 as dt -> 0, halving with dt). -projection_corrections K solves the same
+// matrix K more times with the kernel average of the remaining divergence (its resolved part) and
+// corrects again: each pass shrinks that divergence by the relative size of L - D G (~7 % on the
+// Taylor-Green pressure mode at nx 32), so the time error is second order again (project()).
 // The source div u* / tau also divides by tau the particle-scale divergence that u^n keeps at the new
 // positions and that no projection removes, a pressure noise growing as 1/dt;
 // -ppe_particle_divergence_rate removes it at a rate per unit time instead (isph_solver.cpp, project).
@@ -73,7 +83,10 @@ template <int D> class IsphSolver : public Solver<D> {
   }
 
  private:
-  std::vector<Vector<D>> pressure_gradient() const;
+  std::vector<Vector<D>> pressure_gradient(const std::vector<double>& p) const;  // p has ghost values
+  // The PPE's divergence of u (with ghost values): the corrected one, or the plain one with classic
+  // operators and, under the consistent ones, at the particles flagged in near_surface.
+  std::vector<double> ppe_divergence(const std::vector<Vector<D>>& u, const std::vector<char>& near_surface) const;
   // nu lap u at the current positions (walls: Adami's mirrored velocity); u has ghost values.
   std::vector<Vector<D>> viscous_acceleration(const std::vector<Vector<D>>& u,
                                               const std::vector<LaplacianCorrection<D>>& corrections) const;
@@ -94,7 +107,8 @@ template <int D> class IsphSolver : public Solver<D> {
   LindShifting shifting_model_;
   PressureGradient gradient_ = PressureGradient::Corrected;
   OperatorSet operators_ = OperatorSet::Consistent;
-  PetscReal particle_divergence_rate_ = -1;  // in U/h; -1: all of it every step
+  PetscReal particle_divergence_rate_ = 10;  // in U/h; -1: all of it every step; 10: all of it at CFL 0.2
+  PetscInt projection_corrections_ = 1;      // correction passes after the projection
   long solves_ = 0;
   std::vector<double> mean_pressure_;  // pm^{n-1/2} per particle
   bool walls_ = false;

@@ -223,7 +223,7 @@ void PressurePoisson<D>::remove_net_source(const std::vector<double>& source, co
 
 template <int D>
 StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const std::vector<double>& mass,
-                                     std::vector<double>& p, bool use_guess) {
+                                     std::vector<double>& p, bool use_guess, bool correction) {
   PetscScalar *b, *x;
   PetscInt n;
   SPH_PETSC(VecGetLocalSize(b_, &n));
@@ -231,7 +231,7 @@ StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const st
   SPH_PETSC(VecGetArray(x_, &x));
   for (PetscInt i = 0; i < n; ++i) {
     const bool fluid_row = kind_[i] == kFluid && i != pinned_ && !dirichlet_[i];
-    b[i] = fluid_row ? -mass[i] * source[i] : rows_.rhs[i];
+    b[i] = fluid_row ? -mass[i] * source[i] : correction ? 0.0 : rows_.rhs[i];
     x[i] = use_guess ? p[i] : 0.0;
   }
   if (closed_) remove_net_source(source, mass, b, n);

@@ -66,9 +66,10 @@ template <int D> class PressurePoisson {
   // Solves div(grad p / rho) = source (one value per owned particle). With use_guess, p holds the
   // initial guess on entry (the previous step's pressure: a good one); otherwise the KSP starts from
   // zero. On exit p holds the solution, with zero mean. Throws sph::Error when the KSP does not
-  // converge.
+  // converge. A `correction` solve (a second one with the same matrix, for a pressure increment) gives
+  // the wall rows a zero right-hand side: their body-force head is already in the first pressure.
   StepReport solve(const std::vector<double>& source, const std::vector<double>& mass, std::vector<double>& p,
-                   bool use_guess = true);
+                   bool use_guess = true, bool correction = false);
 
   ::Mat matrix() const { return A_; }
   nlohmann::json describe() const;

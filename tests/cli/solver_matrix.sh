@@ -13,15 +13,16 @@ source "$(dirname "$0")/lib/compare_runs.sh"
 steps=2
 views="-ksp_view -ksp_converged_reason -ksp_view_final_residual -ksp_monitor_true_residual -pc_view -mat_view ::ascii_info"
 
-# viewed <label>: each viewer printed once per solve (top-level objects start a line; sub-solvers' are indented).
+# viewed <label>: each viewer printed once per solve (top-level objects start a line; sub-solvers' are indented),
+# two solves a step: the projection and its correction pass (-projection_corrections 1, the default).
 viewed() {
   local log="$tmp/$1.log" n k
-  n=$(python3 -c "import csv,sys; print(sum(1 for _ in csv.DictReader(open(sys.argv[1]))))" "$tmp/$1/timeseries.csv" 2>/dev/null || echo 0)
+  n=$(python3 -c "import csv,sys; print(2 * sum(1 for _ in csv.DictReader(open(sys.argv[1]))))" "$tmp/$1/timeseries.csv" 2>/dev/null || echo 0)
   local -a want=("^KSP Object:" "$n" "^PC Object:" $((2 * n)) "^Mat Object:" "$n" "^Linear solve converged" "$n"
                  "^KSP final norm of residual" "$n" "^ *0 KSP .*true resid norm" "$n")
   for ((k = 0; k < ${#want[@]}; k += 2)); do
     local got; got=$(grep -cE -- "${want[k]}" "$log")
-    if [ "$n" -ne "$steps" ] || [ "$got" -ne "${want[k + 1]}" ]; then
+    if [ "$n" -ne $((2 * steps)) ] || [ "$got" -ne "${want[k + 1]}" ]; then
       echo "FAIL: $1: '${want[k]}' printed $got times in $n solves (want ${want[k + 1]})"; fail=1
     fi
   done
