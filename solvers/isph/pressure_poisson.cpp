@@ -246,7 +246,18 @@ StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const st
   // The discrete divergence of u* need not sum to zero exactly: project out the part of the
   // right-hand side that no pressure can produce.
   if (nullspace_) SPH_PETSC(MatNullSpaceRemove(nullspace_, b_));
+  // A correction solve (a pressure increment, smaller than the pressure by the relative size of the
+  // divergence it removes) needs the first solve's accuracy in absolute terms, not relative to its
+  // own right-hand side: its residual is held to rtol times the first solve's right-hand side.
+  PetscReal rtol, atol, dtol;
+  PetscInt max_it;
+  SPH_PETSC(KSPGetTolerances(ksp_, &rtol, &atol, &dtol, &max_it));
+  if (correction)
+    SPH_PETSC(KSPSetTolerances(ksp_, rtol, std::max(atol, rtol * first_rhs_norm_), dtol, max_it));
+  else
+    SPH_PETSC(VecNorm(b_, NORM_2, &first_rhs_norm_));
   SPH_PETSC(KSPSolve(ksp_, b_, x_));
+  if (correction) SPH_PETSC(KSPSetTolerances(ksp_, rtol, atol, dtol, max_it));
   // PETSc prints -ksp_view and the like itself; -pc_view is left to whoever drives the PC.
   PC pc;
   SPH_PETSC(KSPGetPC(ksp_, &pc));

@@ -67,7 +67,8 @@ template <int D> class PressurePoisson {
   // initial guess on entry (the previous step's pressure: a good one); otherwise the KSP starts from
   // zero. On exit p holds the solution, with zero mean. Throws sph::Error when the KSP does not
   // converge. A `correction` solve (a second one with the same matrix, for a pressure increment) gives
-  // the wall rows a zero right-hand side: their body-force head is already in the first pressure.
+  // the wall rows a zero right-hand side (their body-force head is already in the first pressure) and
+  // stops at the first solve's absolute accuracy (rtol times that solve's right-hand-side norm).
   StepReport solve(const std::vector<double>& source, const std::vector<double>& mass, std::vector<double>& p,
                    bool use_guess = true, bool correction = false);
 
@@ -89,6 +90,7 @@ template <int D> class PressurePoisson {
   ::Vec b_ = nullptr, x_ = nullptr;
   MatNullSpace nullspace_ = nullptr;
   bool nonsymmetric_ = false;    // wall rows or the consistent Laplacian
+  PetscReal first_rhs_norm_ = 0.0;  // |b| of the last solve that was not a correction
   PetscViewer mat_viewer_ = nullptr;  // -mat_view (see set_from_options)
   PetscViewerFormat mat_format_ = PETSC_VIEWER_DEFAULT;
   long pinned_ = -1;             // local row pinned to p = 0 (closed domains), -1: none
