@@ -208,7 +208,7 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
   // positions, a particle-scale divergence (div u^n minus its kernel average) that the projection
   // cannot remove: its Laplacian is not the divergence of its gradient on that scale. In the source
   // div u* / tau all of it is divided by tau, every step, and becomes a pressure noise that grows as
-  // 1/dt (README, "ISPH's pressure as dt falls"). -ppe_particle_divergence_rate R keeps a fraction
+  // 1/dt (README, "ISPH's time error"). -ppe_particle_divergence_rate R keeps a fraction
   // R U tau / h of it instead, so that below the step with R U tau = h it is removed at a rate per
   // unit time; the step's own change of u keeps all of its divergence.
   const double kept = particle_divergence_rate_ * phys.U * tau / K.h();  // the fraction kept; at least 1: all
