@@ -24,8 +24,8 @@
 // Operators (-operators): by default the consistent Laplacian (src/sph/consistent_laplacian.hpp) for
 // the viscous term and the PPE, the corrected divergence for the PPE source and the corrected
 // gradient for the pressure force: all exact for linear (the Laplacian: quadratic) fields on any
-// particle distribution, so the projection leaves no divergence of its own making that the next step
-// must remove again. `-operators classic` keeps the Morris viscous term, the Cummins & Rudman PPE and
+// particle distribution, so the projection leaves no first-order divergence of its own making that
+// the next step must remove again (a second-order one it does: below). `-operators classic` keeps the Morris viscous term, the Cummins & Rudman PPE and
 // the plain divergence: a symmetric PPE (CG), kept for comparison only (Taylor-Green nx 64, CFL 0.2:
 // 1.5e-2 against 1.0e-3; see README).
 //
@@ -39,7 +39,8 @@
 // Taylor-Green pressure mode at nx 32), so the time error is second order again (project()).
 // The source div u* / tau also divides by tau the particle-scale divergence that u^n keeps at the new
 // positions and that no projection removes, a pressure noise growing as 1/dt;
-// -ppe_particle_divergence_rate removes it at a rate per unit time instead (isph_solver.cpp, project).
+// -ppe_particle_divergence_rate removes it at a rate per unit time instead (default 10 U/h: all of it
+// at CFL 0.2, the same rate at smaller steps; isph_solver.cpp, project).
 //
 // Free surface (Lind et al. 2012): surface particles (div r below a threshold, with hysteresis) get
 // p = 0; next to them the PPE source is the plain divergence, since the corrected one extrapolates
