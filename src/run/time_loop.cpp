@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "src/core/log_events.hpp"
@@ -29,254 +30,371 @@ namespace sph {
 namespace {
 // A run has blown up when the kinetic energy exceeds this many times 1/2 M U^2 (README, Outputs).
 constexpr double kBlowUpKineticEnergy = 1e3;
-}  // namespace
 
-template <int D> void run_time_loop(const RunParts<D>& run) {
-  const RunControl& opt = run.control;
-  Case<D>& scene_case = run.scene_case;
-  Solver<D>& solver = run.solver;
-  const std::string& output_dir = run.output_dir;
-  const auto wall_start = std::chrono::steady_clock::now();
-  // A restart must continue the run that wrote the checkpoint: refused before any work if the
-  // checkpoint is damaged or was written with other options.
-  const bool restarting = opt.restarting();
-  const nlohmann::json identity = run_identity(run.case_name, run.solver_name, D, scene_case.parameters());
-  nlohmann::json resumed_run = nlohmann::json::object();
-  if (restarting) {
-    resumed_run = read_checkpoint_header(opt.restart).value("run", nlohmann::json::object());
-    check_same_run(resumed_run.value("identity", nlohmann::json()), identity, opt.restart);
-  }
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// The particles of a run, spread along the space-filling curve, and what the solver sees of them.
+template <int D> struct RunScene {
   Particles<D> P;
   Domain<D> domain;
-  scene_case.create(P, domain);
-  assign_global_indices(P);
-  double imbalance = partition_along_curve(P, domain);
-  long partitions = 1;
+  double imbalance;  // of the last partition
+  Kernel<D> kernel;
+  Neighbourhood<D> nh;
+  Scene<D> scene;
 
-  const double dx = scene_case.spacing();
-  const Kernel<D> kernel = run.kernel.template make<D>(dx);
-  if (scene_case.wall_thickness() > 0 && scene_case.wall_thickness() < kernel.support_radius() * (1 - 1e-12))
-    throw Error(scene_case.thin_walls(scene_case.wall_thickness() / dx, kernel.support_radius() / dx));
-  Neighbourhood<D> nh(domain, kernel.support_radius(), opt.skin * kernel.support_radius());
-  Scene<D> scene{P, nh, kernel, scene_case.physics(), dx};
-  solver.setup(scene);
+  RunScene(Case<D>& scene_case, const KernelChoice& choice, double skin)
+      : imbalance(create(scene_case)),
+        kernel(choice.template make<D>(scene_case.spacing())),
+        nh(domain, kernel.support_radius(), skin * kernel.support_radius()),
+        scene{P, nh, kernel, scene_case.physics(), scene_case.spacing()} {}
 
-  // Re-orders and re-balances the particles (with the solver's per-particle state) along the curve
-  // and rebuilds the neighbourhood: the canonical state, which depends only on the particles.
-  auto repartition = [&] {
-    imbalance = partition_along_curve(P, domain, [&] { return solver.checkpoint_fields(); });
-    ++partitions;
-    nh.update(P, true);
-  };
-
-  // A restart overwrites the freshly set-up state with the checkpoint's, then brings it into the
-  // canonical state, as the writing run did before writing it.
-  CheckpointState<D> resumed;
-  if (restarting) {
-    resumed = read_checkpoint(opt.restart, P, solver.checkpoint_fields());
-    solver.restore_scalars(resumed.scalars);
-    repartition();
+ private:
+  double create(Case<D>& scene_case) {
+    scene_case.create(P, domain);
+    assign_global_indices(P);
+    return partition_along_curve(P, domain);
   }
-  check_initial_state(P, resumed.t);
-  const std::string checkpoint_path = output_dir + "/checkpoint.bin";
-  auto dt_above_limit = [&](double stable, double t_now) {
-    std::ostringstream msg;
-    msg << "-dt " << opt.dt << " exceeds the scheme's stability limit " << stable << " at t = " << t_now;
-    return msg.str();
-  };
-  if (opt.dt > 0 && !opt.dt_force && opt.dt > solver.stable_dt())
-    throw Error(dt_above_limit(solver.stable_dt(), resumed.t) +
+};
+
+// One run, from the case's particles to summary.json. The constructor takes every input and refuses
+// bad input before anything in the output directory is touched; run() then advances and writes.
+template <int D> class TimeLoop {
+ public:
+  explicit TimeLoop(const RunParts<D>& run);
+  void run();
+
+ private:
+  nlohmann::json resumed_run_header() const;
+  void resume();
+  std::string dt_above_limit(double stable, double t_now) const;
+  void open_outputs();
+  void describe_run();
+  void set_start_state();
+  void advance();
+  void write_due_outputs();
+  void warn_dt(double stable);
+  std::vector<ScalarField> frame_fields(bool derived = true);
+  void repartition();
+  void write_state(const std::string& why = "checkpointed");
+  nlohmann::json this_segment(const std::string& status) const;
+  void finish(const std::string& status, const std::string& failure);
+  [[noreturn]] void fail(const Error& e);
+  [[noreturn]] void stop_interrupted();
+
+  const RunParts<D>& run_;
+  const RunControl& opt_;
+  Case<D>& case_;
+  Solver<D>& solver_;
+  const Clock::time_point wall_start_ = Clock::now();
+  // A restart must continue the run that wrote the checkpoint: refused before any work if the
+  // checkpoint is damaged or was written with other options.
+  const nlohmann::json identity_;
+  const nlohmann::json resumed_run_;
+  RunScene<D> s_;
+  long partitions_ = 1;
+  CheckpointState<D> resumed_;
+  const std::string checkpoint_path_;
+
+  // Outputs, opened once the input is accepted.
+  std::optional<ParticleWriter<D>> writer_;
+  std::optional<CsvWriter> series_;
+  std::vector<std::vector<double>> vorticity_;
+  nlohmann::json summary_;
+  int ranks_ = 1;
+
+  // The run's state beyond the particles.
+  double t_ = 0.0;
+  long step_ = 0;
+  StepStats stats_;
+  SteadyState steady_;
+  nlohmann::json history_;  // the runs that led to the checkpoint this one resumes
+  std::optional<Totals<D>> initial_;
+  long last_checkpoint_step_ = -1, failing_step_ = 0;
+  int interrupted_ = 0;  // the signal that stopped the run
+  bool warned_dt_ = false;
+  double last_frame_t_ = 0.0, ke_bound_ = 0.0;
+  std::optional<Progress> progress_;
+  std::optional<Cadence> frames_, checkpoints_;
+  NeighbourCountCheck<D> check_neighbours_;
+  Clock::time_point loop_start_;
+};
+
+template <int D>
+TimeLoop<D>::TimeLoop(const RunParts<D>& run)
+    : run_(run),
+      opt_(run.control),
+      case_(run.scene_case),
+      solver_(run.solver),
+      identity_(run_identity(run.case_name, run.solver_name, D, run.scene_case.parameters())),
+      resumed_run_(resumed_run_header()),
+      s_(run.scene_case, run.kernel, run.control.skin),
+      checkpoint_path_(run.output_dir + "/checkpoint.bin"),
+      steady_(run.control.steady_tol),
+      check_neighbours_(s_.scene.physics.free_surface) {
+  const double wall = case_.wall_thickness(), support = s_.kernel.support_radius();
+  if (wall > 0 && wall < support * (1 - 1e-12))
+    throw Error(case_.thin_walls(wall / case_.spacing(), support / case_.spacing()));
+  solver_.setup(s_.scene);
+  if (opt_.restarting()) resume();
+  check_initial_state(s_.P, resumed_.t);
+  if (opt_.dt > 0 && !opt_.dt_force && opt_.dt > solver_.stable_dt())
+    throw Error(dt_above_limit(solver_.stable_dt(), resumed_.t) +
                 "; lower -dt (-dt 0 follows the limit) or pass -dt_force 1 to run it anyway");
-  // Only now, with the input accepted, may an earlier run in output_dir go (-overwrite).
-  const bool in_place = restarting && is_in_directory(opt.restart, output_dir);
-  prepare_output_dir(output_dir, opt.overwrite, in_place);
+}
 
-  ParticleWriter<D> writer(output_dir);
-  if (restarting) writer.resume(resumed.t);
-  // The solver's own fields and the optional ones, for every frame.
-  std::vector<std::vector<double>> vorticity;
-  auto frame_fields = [&](bool derived = true) {
-    std::vector<ScalarField> fields = solver.output_fields();
-    if (!opt.vorticity_output || !derived) return fields;
-    nh.update(P);  // ghost velocities as the step left the owned ones
-    vorticity = fluid_vorticity(P, nh.list(), kernel);
-    const char* names[3] = {"vorticity_x", "vorticity_y", "vorticity_z"};
-    for (std::size_t c = 0; c < vorticity.size(); ++c) fields.push_back({D == 2 ? "vorticity" : names[c], &vorticity[c]});
-    return fields;
-  };
-  if (in_place) remove_frames_from(output_dir, "particles", writer.frames_written());
-  const std::vector<std::string> error_names = [&] {
-    std::vector<std::string> v;
-    for (const auto& e : scene_case.errors(P, 0.0)) v.push_back(e.first);
-    return v;
-  }();
-  std::vector<std::string> columns = {"step", "t", "dt", "kinetic_energy"};
-  for (int a = 0; a < D; ++a) columns.push_back(std::string("momentum_") + "xyz"[a]);
-  columns.insert(columns.end(), {"ksp_iterations", "ksp_reason"});
-  columns.insert(columns.end(), error_names.begin(), error_names.end());
-  CsvWriter series = restarting ? CsvWriter(output_dir + "/timeseries.csv", columns, 1, resumed.t)
-                                : CsvWriter(output_dir + "/timeseries.csv", columns);
+template <int D> nlohmann::json TimeLoop<D>::resumed_run_header() const {
+  if (!opt_.restarting()) return nlohmann::json::object();
+  nlohmann::json resumed = read_checkpoint_header(opt_.restart).value("run", nlohmann::json::object());
+  check_same_run(resumed.value("identity", nlohmann::json()), identity_, opt_.restart);
+  return resumed;
+}
 
-  nlohmann::json summary;
-  summary["case"] = run.case_name;
-  summary["solver"] = run.solver_name;
-  summary["dim"] = D;
-  summary["n_particles"] = P.n_global;
-  summary["dx"] = dx;
-  summary["kernel"] = {{"type", kernel.name()}, {"h", kernel.h()}, {"h_over_dx", run.kernel.template resolved_h_over_dx<D>()}};
-  summary["t_end"] = opt.t_end;
-  summary["parameters"] = scene_case.parameters();
-  summary["physics"] = scene.physics.describe();
-  PetscMPIInt ranks;
-  MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
-  summary["mpi_ranks"] = ranks;
-  summary["threads_per_rank"] = opt.threads;
-  summary["provenance"] = provenance(static_cast<int>(opt.threads));
+// A restart overwrites the freshly set-up state with the checkpoint's, then brings it into the
+// canonical state, as the writing run did before writing it.
+template <int D> void TimeLoop<D>::resume() {
+  resumed_ = read_checkpoint(opt_.restart, s_.P, solver_.checkpoint_fields());
+  solver_.restore_scalars(resumed_.scalars);
+  repartition();
+}
 
-  const Totals<D> initial = totals(P);
-  SteadyState steady(opt.steady_tol);
-  double t = resumed.t;
-  long step = resumed.step;
-  StepStats stats;
-  stats.from_json(resumed_run.value("ksp_statistics", nlohmann::json()));
-  steady.from_json(resumed_run.value("steady_state_window", nlohmann::json()));
-  // The runs that led to the checkpoint this one resumes, then this one.
-  nlohmann::json history = resumed_run.value("history", nlohmann::json::array());
-  auto this_segment = [&](const std::string& status) {
-    return nlohmann::json{{"status", status}, {"steps", {resumed.step, step}}, {"t", {resumed.t, t}},
-                          {"wall_time_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count()},
-                          {"mpi_ranks", ranks}, {"threads_per_rank", opt.threads}, {"version", program_version()},
-                          {"command_line", summary["provenance"]["command_line"]}};
-  };
-  long last_checkpoint_step = -1, failing_step = step + 1;
-  int interrupted = 0;  // the signal that stopped the run
-  auto write_state = [&](double t_now, long step_now, const std::string& why = "checkpointed") {
-    last_checkpoint_step = step_now;
-    repartition();
-    const LogEventScope log_checkpoint(LogEvent::Checkpoint);
-    nlohmann::json run{{"identity", identity}, {"ksp_statistics", stats.to_json()},
-                       {"steady_state_window", steady.to_json()}, {"history", history}};
-    run["history"].push_back(this_segment(why));
-    write_checkpoint(checkpoint_path, P, solver.checkpoint_fields(),
-                     {t_now, step_now, solver.checkpoint_scalars(), run});
-  };
-  Progress progress(opt.progress, opt.t_end);
-  const double frame_interval = opt.output_interval > 0 ? opt.output_interval : opt.t_end;
-  Cadence frames(frame_interval, t);
-  Cadence checkpoints(opt.checkpoint_interval < 0 ? frame_interval : opt.checkpoint_interval, t);
-  if (!restarting) writer.write(P, t, frame_fields());
-  double last_frame_t = t;
-  const double ke_bound = kBlowUpKineticEnergy * 0.5 * fluid_mass(P) * scene.physics.U * scene.physics.U;
-  // A -dt above the stability limit is refused at the start unless -dt_force; a forced one, or the
-  // limit falling below -dt later, is a warning, printed once and kept in summary.json.
-  bool warned_dt = false;
-  auto warn_dt = [&](double stable) {
-    if (warned_dt) return;
-    const std::string w = dt_above_limit(stable, t) + "; the run may blow up";
-    PetscFPrintf(PETSC_COMM_WORLD, stderr, "sph: warning: %s\n", w.c_str());
-    summary["warnings"].push_back(w);
-    warned_dt = true;
-  };
-  NeighbourCountCheck<D> check_neighbours(scene.physics.free_surface);
-  check_neighbours(P, nh.list(), nh.support_radius());  // the reference counts
-  const auto loop_start = std::chrono::steady_clock::now();
-  auto finish = [&](const std::string& status, const std::string& failure) {
-    const double loop_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
-    summary["status"] = status;
-    if (!failure.empty()) summary["failure"] = failure;
-    summary["history"] = history;
-    summary["history"].push_back(this_segment(status));
-    summary["steps"] = step;
-    summary["t_final"] = t;
-    summary["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    summary["time_per_particle_step_s"] = step > 0 ? loop_s / (double(step) * double(P.n_global)) : 0.0;
-    summary["partition"] = {{"curve", "morton"}, {"interval", opt.partition_interval}, {"count", partitions},
-                            {"imbalance", imbalance}};
-    add_final_state(summary, solver, scene_case, P, t, stats, initial);
-    write_json_file(output_dir + "/summary.json", summary);
-  };
+template <int D> std::string TimeLoop<D>::dt_above_limit(double stable, double t_now) const {
+  std::ostringstream msg;
+  msg << "-dt " << opt_.dt << " exceeds the scheme's stability limit " << stable << " at t = " << t_now;
+  return msg.str();
+}
 
+// Re-orders and re-balances the particles (with the solver's per-particle state) along the curve and
+// rebuilds the neighbourhood: the canonical state, which depends only on the particles.
+template <int D> void TimeLoop<D>::repartition() {
+  s_.imbalance = partition_along_curve(s_.P, s_.domain, [&] { return solver_.checkpoint_fields(); });
+  ++partitions_;
+  s_.nh.update(s_.P, true);
+}
+
+template <int D> void TimeLoop<D>::run() {
+  open_outputs();
+  describe_run();
+  set_start_state();
   try {
     const TimeLoopLogStage log_stage;
-    while (!time_reached(t, opt.t_end) && (opt.max_steps < 0 || step < opt.max_steps) && !steady.reached()) {
-      const double stable = solver.stable_dt();
-      double dt = opt.dt > 0 ? opt.dt : stable;
-      if (opt.dt > stable) warn_dt(stable);
-      dt = step_to_end(t, opt.t_end, dt);
-      LogEventScope log_step(LogEvent::Step);
-      failing_step = step + 1;
-      const StepReport report = solver.step(dt);
-      log_step.end();
-      t += dt;
-      ++step;
-      failing_step = step;  // what fails from here on (checks, output) belongs to the step just made
-      stats.add(report);
-      if (step == resumed.step + 1 && run.after_first_step) run.after_first_step();
-      LogEventScope log_diagnostics(LogEvent::Diagnostics);
-      check_health(P, domain, ke_bound);
-      check_neighbours(P, nh.list(), nh.support_radius());
-      if (opt.partition_interval > 0 && step % opt.partition_interval == 0) repartition();
-
-      const Totals<D> tot = totals(P);
-      steady.add(t, tot.kinetic_energy);
-      std::vector<double> row = {double(step), t, dt, tot.kinetic_energy};
-      for (int a = 0; a < D; ++a) row.push_back(tot.momentum[a]);
-      row.push_back(report.linear_iterations);
-      row.push_back(report.linear_reason);
-      for (const auto& e : scene_case.errors(P, t)) row.push_back(e.second);
-      series.row(row);
-      log_diagnostics.end();
-      progress.update(step, t, dt, report.linear_iterations);
-      if (frames.due(t) || time_reached(t, opt.t_end)) {
-        const LogEventScope log_output(LogEvent::Output);
-        writer.write(P, t, frame_fields());
-        last_frame_t = t;
-        frames.advance(t);
-      }
-      if (checkpoints.due(t)) {
-        write_state(t, step);
-        checkpoints.advance(t);
-      }
-      if ((interrupted = interrupt_requested())) break;  // all ranks see the same answer
+    while (!time_reached(t_, opt_.t_end) && (opt_.max_steps < 0 || step_ < opt_.max_steps) && !steady_.reached()) {
+      advance();
+      write_due_outputs();
+      if ((interrupted_ = interrupt_requested())) break;  // all ranks see the same answer
     }
-    if (interrupted) {
+    if (interrupted_) {
       // Everything needed to look at the state reached and to resume it.
-      if (last_frame_t < t) writer.write(P, t, frame_fields()), last_frame_t = t;
-      if (last_checkpoint_step != step) write_state(t, step, "interrupted (" + signal_name(interrupted) + ")");
+      if (last_frame_t_ < t_) writer_->write(s_.P, t_, frame_fields()), last_frame_t_ = t_;
+      if (last_checkpoint_step_ != step_) write_state("interrupted (" + signal_name(interrupted_) + ")");
     }
   } catch (const OptionError&) {
     throw;  // a mistake in the command line, not a failed run
   } catch (const Error& e) {
-    std::ostringstream msg;
-    msg << "step " << failing_step << " (t = " << t << "): " << e.what();
-    // The first failure is the one to report: later ones (a full disk fails every write) are noted.
-    std::string also;
-    try {
-      finish("failed", msg.str());
-      scene_case.write_outputs(P, t, output_dir);
-      writer.write(P, t, frame_fields(false));  // the state that failed (no derived fields: it may hold NaN), for inspection (the .pvd lists it last)
-    } catch (const Error& later) {
-      also = "; writing the failed run's outputs failed too: " + std::string(later.what());
-    }
-    throw Error(msg.str() + also + " [earlier frames and the last checkpoint are kept in " + output_dir + "]");
+    fail(e);
   }
-  progress.done(step, t);
-  if (interrupted) {
-    summary["signal"] = signal_name(interrupted);
-    if (opt.steady_tol > 0) summary["steady_state_reached"] = steady.reached();
-    scene_case.write_outputs(P, t, output_dir);
-    finish("interrupted", "");
-    std::ostringstream msg;
-    msg << "interrupted by " << signal_name(interrupted) << " after step " << step << " (t = " << t
-        << "); frame, checkpoint and summary.json written; resume with -restart " << checkpoint_path;
-    throw Interrupted{interrupted, msg.str()};
-  }
+  progress_->done(step_, t_);
+  if (interrupted_) stop_interrupted();
   const LogEventScope log_output(LogEvent::Output);
-  if (opt.steady_tol > 0) summary["steady_state_reached"] = steady.reached();
-  scene_case.write_outputs(P, t, output_dir);
-  if (last_frame_t < t) writer.write(P, t, frame_fields());  // e.g. stopped at steady state between frames
+  if (opt_.steady_tol > 0) summary_["steady_state_reached"] = steady_.reached();
+  case_.write_outputs(s_.P, t_, run_.output_dir);
+  if (last_frame_t_ < t_) writer_->write(s_.P, t_, frame_fields());  // e.g. stopped at steady state between frames
   finish("completed", "");
 }
+
+// Only now, with the input accepted, may an earlier run in the output directory go (-overwrite).
+template <int D> void TimeLoop<D>::open_outputs() {
+  const std::string& dir = run_.output_dir;
+  const bool restarting = opt_.restarting();
+  const bool in_place = restarting && is_in_directory(opt_.restart, dir);
+  prepare_output_dir(dir, opt_.overwrite, in_place);
+  writer_.emplace(dir);
+  if (restarting) writer_->resume(resumed_.t);
+  if (in_place) remove_frames_from(dir, "particles", writer_->frames_written());
+  std::vector<std::string> columns = {"step", "t", "dt", "kinetic_energy"};
+  for (int a = 0; a < D; ++a) columns.push_back(std::string("momentum_") + "xyz"[a]);
+  columns.insert(columns.end(), {"ksp_iterations", "ksp_reason"});
+  for (const auto& e : case_.errors(s_.P, 0.0)) columns.push_back(e.first);
+  if (restarting) series_.emplace(dir + "/timeseries.csv", columns, 1, resumed_.t);
+  else series_.emplace(dir + "/timeseries.csv", columns);
+}
+
+// What summary.json says of the run before it starts.
+template <int D> void TimeLoop<D>::describe_run() {
+  nlohmann::json& j = summary_;
+  j["case"] = run_.case_name;
+  j["solver"] = run_.solver_name;
+  j["dim"] = D;
+  j["n_particles"] = s_.P.n_global;
+  j["dx"] = case_.spacing();
+  j["kernel"] = {{"type", s_.kernel.name()}, {"h", s_.kernel.h()},
+                 {"h_over_dx", run_.kernel.template resolved_h_over_dx<D>()}};
+  j["t_end"] = opt_.t_end;
+  j["parameters"] = case_.parameters();
+  j["physics"] = s_.scene.physics.describe();
+  PetscMPIInt ranks;
+  MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+  ranks_ = ranks;
+  j["mpi_ranks"] = ranks_;
+  j["threads_per_rank"] = opt_.threads;
+  j["provenance"] = provenance(static_cast<int>(opt_.threads));
+}
+
+// The state the loop starts from, its first frame, and the reference values the health checks compare with.
+template <int D> void TimeLoop<D>::set_start_state() {
+  initial_ = totals(s_.P);
+  t_ = resumed_.t;
+  step_ = resumed_.step;
+  failing_step_ = step_ + 1;
+  stats_.from_json(resumed_run_.value("ksp_statistics", nlohmann::json()));
+  steady_.from_json(resumed_run_.value("steady_state_window", nlohmann::json()));
+  history_ = resumed_run_.value("history", nlohmann::json::array());
+  progress_.emplace(opt_.progress, opt_.t_end);
+  const double frame_interval = opt_.output_interval > 0 ? opt_.output_interval : opt_.t_end;
+  frames_.emplace(frame_interval, t_);
+  checkpoints_.emplace(opt_.checkpoint_interval < 0 ? frame_interval : opt_.checkpoint_interval, t_);
+  if (!opt_.restarting()) writer_->write(s_.P, t_, frame_fields());
+  last_frame_t_ = t_;
+  const double U = s_.scene.physics.U;
+  ke_bound_ = kBlowUpKineticEnergy * 0.5 * fluid_mass(s_.P) * U * U;
+  check_neighbours_(s_.P, s_.nh.list(), s_.nh.support_radius());  // the reference counts
+  loop_start_ = Clock::now();
+}
+
+// One step, its health checks and its timeseries row.
+template <int D> void TimeLoop<D>::advance() {
+  const double stable = solver_.stable_dt();
+  double dt = opt_.dt > 0 ? opt_.dt : stable;
+  if (opt_.dt > stable) warn_dt(stable);
+  dt = step_to_end(t_, opt_.t_end, dt);
+  LogEventScope log_step(LogEvent::Step);
+  failing_step_ = step_ + 1;
+  const StepReport report = solver_.step(dt);
+  log_step.end();
+  t_ += dt;
+  ++step_;
+  failing_step_ = step_;  // what fails from here on (checks, output) belongs to the step just made
+  stats_.add(report);
+  if (step_ == resumed_.step + 1 && run_.after_first_step) run_.after_first_step();
+  LogEventScope log_diagnostics(LogEvent::Diagnostics);
+  check_health(s_.P, s_.domain, ke_bound_);
+  check_neighbours_(s_.P, s_.nh.list(), s_.nh.support_radius());
+  if (opt_.partition_interval > 0 && step_ % opt_.partition_interval == 0) repartition();
+
+  const Totals<D> tot = totals(s_.P);
+  steady_.add(t_, tot.kinetic_energy);
+  std::vector<double> row = {double(step_), t_, dt, tot.kinetic_energy};
+  for (int a = 0; a < D; ++a) row.push_back(tot.momentum[a]);
+  row.push_back(report.linear_iterations);
+  row.push_back(report.linear_reason);
+  for (const auto& e : case_.errors(s_.P, t_)) row.push_back(e.second);
+  series_->row(row);
+  log_diagnostics.end();
+  progress_->update(step_, t_, dt, report.linear_iterations);
+}
+
+template <int D> void TimeLoop<D>::write_due_outputs() {
+  if (frames_->due(t_) || time_reached(t_, opt_.t_end)) {
+    const LogEventScope log_output(LogEvent::Output);
+    writer_->write(s_.P, t_, frame_fields());
+    last_frame_t_ = t_;
+    frames_->advance(t_);
+  }
+  if (checkpoints_->due(t_)) {
+    write_state();
+    checkpoints_->advance(t_);
+  }
+}
+
+// A -dt above the stability limit is refused at the start unless -dt_force; a forced one, or the limit
+// falling below -dt later, is a warning, printed once and kept in summary.json.
+template <int D> void TimeLoop<D>::warn_dt(double stable) {
+  if (warned_dt_) return;
+  const std::string w = dt_above_limit(stable, t_) + "; the run may blow up";
+  PetscFPrintf(PETSC_COMM_WORLD, stderr, "sph: warning: %s\n", w.c_str());
+  summary_["warnings"].push_back(w);
+  warned_dt_ = true;
+}
+
+// The solver's own fields and the optional ones, for every frame.
+template <int D> std::vector<ScalarField> TimeLoop<D>::frame_fields(bool derived) {
+  std::vector<ScalarField> fields = solver_.output_fields();
+  if (!opt_.vorticity_output || !derived) return fields;
+  s_.nh.update(s_.P);  // ghost velocities as the step left the owned ones
+  vorticity_ = fluid_vorticity(s_.P, s_.nh.list(), s_.kernel);
+  const char* names[3] = {"vorticity_x", "vorticity_y", "vorticity_z"};
+  for (std::size_t c = 0; c < vorticity_.size(); ++c)
+    fields.push_back({D == 2 ? "vorticity" : names[c], &vorticity_[c]});
+  return fields;
+}
+
+template <int D> void TimeLoop<D>::write_state(const std::string& why) {
+  last_checkpoint_step_ = step_;
+  repartition();
+  const LogEventScope log_checkpoint(LogEvent::Checkpoint);
+  nlohmann::json run{{"identity", identity_}, {"ksp_statistics", stats_.to_json()},
+                     {"steady_state_window", steady_.to_json()}, {"history", history_}};
+  run["history"].push_back(this_segment(why));
+  write_checkpoint(checkpoint_path_, s_.P, solver_.checkpoint_fields(), {t_, step_, solver_.checkpoint_scalars(), run});
+}
+
+// This run's entry in the history of runs that led to its state.
+template <int D> nlohmann::json TimeLoop<D>::this_segment(const std::string& status) const {
+  return nlohmann::json{{"status", status}, {"steps", {resumed_.step, step_}}, {"t", {resumed_.t, t_}},
+                        {"wall_time_s", seconds_since(wall_start_)}, {"mpi_ranks", ranks_},
+                        {"threads_per_rank", opt_.threads}, {"version", program_version()},
+                        {"command_line", summary_.at("provenance").value("command_line", nlohmann::json())}};
+}
+
+template <int D> void TimeLoop<D>::finish(const std::string& status, const std::string& failure) {
+  const double loop_s = seconds_since(loop_start_);
+  nlohmann::json& j = summary_;
+  j["status"] = status;
+  if (!failure.empty()) j["failure"] = failure;
+  j["history"] = history_;
+  j["history"].push_back(this_segment(status));
+  j["steps"] = step_;
+  j["t_final"] = t_;
+  j["wall_time_s"] = seconds_since(wall_start_);
+  j["time_per_particle_step_s"] = step_ > 0 ? loop_s / (double(step_) * double(s_.P.n_global)) : 0.0;
+  j["partition"] = {{"curve", "morton"}, {"interval", opt_.partition_interval}, {"count", partitions_},
+                    {"imbalance", s_.imbalance}};
+  add_final_state(j, solver_, case_, s_.P, t_, stats_, *initial_);
+  write_json_file(run_.output_dir + "/summary.json", j);
+}
+
+// A failed run writes its summary and the state that failed, and keeps its earlier frames and checkpoint.
+template <int D> void TimeLoop<D>::fail(const Error& e) {
+  std::ostringstream msg;
+  msg << "step " << failing_step_ << " (t = " << t_ << "): " << e.what();
+  // The first failure is the one to report: later ones (a full disk fails every write) are noted.
+  std::string also;
+  try {
+    finish("failed", msg.str());
+    case_.write_outputs(s_.P, t_, run_.output_dir);
+    // No derived fields: the state may hold NaN. The .pvd lists it last, for inspection.
+    writer_->write(s_.P, t_, frame_fields(false));
+  } catch (const Error& later) {
+    also = "; writing the failed run's outputs failed too: " + std::string(later.what());
+  }
+  throw Error(msg.str() + also + " [earlier frames and the last checkpoint are kept in " + run_.output_dir + "]");
+}
+
+template <int D> void TimeLoop<D>::stop_interrupted() {
+  const std::string signal = signal_name(interrupted_);
+  summary_["signal"] = signal;
+  if (opt_.steady_tol > 0) summary_["steady_state_reached"] = steady_.reached();
+  case_.write_outputs(s_.P, t_, run_.output_dir);
+  finish("interrupted", "");
+  std::ostringstream msg;
+  msg << "interrupted by " << signal << " after step " << step_ << " (t = " << t_
+      << "); frame, checkpoint and summary.json written; resume with -restart " << checkpoint_path_;
+  throw Interrupted{interrupted_, msg.str()};
+}
+
+}  // namespace
+
+template <int D> void run_time_loop(const RunParts<D>& run) { TimeLoop<D>(run).run(); }
 
 template void run_time_loop<1>(const RunParts<1>&);
 template void run_time_loop<2>(const RunParts<2>&);
