@@ -1,5 +1,6 @@
 #include "cases/registry.hpp"
 
+#include "cases/beltrami/beltrami.hpp"
 #include "cases/dam_break/dam_break.hpp"
 #include "cases/lid_driven_cavity/lid_driven_cavity.hpp"
 #include "cases/poiseuille/poiseuille.hpp"
@@ -17,6 +18,8 @@ const std::vector<CaseEntry>& case_registry() {
   static const std::vector<CaseEntry> entries = {
       {"taylor_green", "decaying Taylor-Green vortex, periodic unit square, analytic reference", 2, nullptr,
        [] { return std::make_unique<TaylorGreen>(); }, nullptr},
+      {"beltrami", "decaying Arnold-Beltrami-Childress flow, periodic cube [0, 2 pi)^3, 3D, analytic reference", 3,
+       nullptr, nullptr, [] { return std::make_unique<Beltrami>(); }},
       {"lid_driven_cavity", "unit cavity with a sliding lid, Adami walls, to steady state; Ghia et al. (1982) reference",
        2, nullptr, [] { return std::make_unique<LidDrivenCavity>(); }, nullptr},
       {"dam_break", "collapsing water column (a x 2a) in a 4a tank, free surface; Martin & Moyce (1952) front", 2,

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include "cases/common/exact_flow_errors.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -75,39 +76,8 @@ void TaylorGreen::create(Particles<2>& P, Domain<2>& domain) const {
 }
 
 std::map<std::string, double> TaylorGreen::errors(const Particles<2>& P, double t) const {
-  const double amp = U_ * std::exp(decay_rate() * t);
-  // sums: |du|, count, p, p_exact, u . u_exact, |u_exact|^2 ; maxima: |du|, |u|
-  double sum[6] = {0, 0, 0, 0, 0, 0}, mx[2] = {0, 0};
-  std::vector<double> p_exact(P.n_owned);
-  std::vector<Vector<2>> u_exact(P.n_owned);
-  for (std::size_t i = 0; i < P.n_owned; ++i) {
-    u_exact[i] = velocity(P.x[i], t);
-    const double du = (P.v[i] - u_exact[i]).norm();
-    p_exact[i] = pressure(P.x[i], t);
-    sum[0] += du, sum[1] += 1.0, sum[2] += P.p[i], sum[3] += p_exact[i];
-    sum[4] += P.v[i].dot(u_exact[i]), sum[5] += u_exact[i].squaredNorm();
-    mx[0] = std::max(mx[0], du), mx[1] = std::max(mx[1], P.v[i].norm());
-  }
-  MPI_Allreduce(MPI_IN_PLACE, sum, 6, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-  MPI_Allreduce(MPI_IN_PLACE, mx, 2, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
-  const double mean_p = sum[2] / sum[1], mean_pe = sum[3] / sum[1];
-  // The vortex's amplitude relative to the exact one (least squares), and what is left of the error
-  // once the exact field is scaled by it: a decay rate that is off shows in the first, a distorted
-  // vortex in the second.
-  const double a = sum[5] > 0 ? sum[4] / sum[5] : 1.0;
-  double local[2] = {0, 0};  // |p - p_exact| after the means, |u - a u_exact|
-  for (std::size_t i = 0; i < P.n_owned; ++i) {
-    local[0] += std::abs((P.p[i] - mean_p) - (p_exact[i] - mean_pe));
-    local[1] += (P.v[i] - a * u_exact[i]).norm();
-  }
-  MPI_Allreduce(MPI_IN_PLACE, local, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-  const double p_scale = 0.5 * rho0_ * amp * amp;
-  return {{"l1_velocity", sum[0] / sum[1] / amp},
-          {"linf_velocity", mx[0] / amp},
-          {"decay_rel", std::abs(mx[1] - amp) / amp},
-          {"amplitude_rel", a - 1.0},
-          {"l1_velocity_shape", local[1] / sum[1] / amp},
-          {"l1_pressure", local[0] / sum[1] / p_scale}};
+  return exact_flow_errors(P, U_ * std::exp(decay_rate() * t), rho0_, [&](const Vector<2>& x) { return velocity(x, t); },
+                           [&](const Vector<2>& x) { return pressure(x, t); });
 }
 
 nlohmann::json TaylorGreen::parameters() const {
