@@ -26,7 +26,7 @@ PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* a, PetscR
 }
 }  // namespace
 
-void DamBreak::set_from_options() {
+template <int D> void DamBreak<D>::set_from_options() {
   SPH_PETSC(read_options(&nx_, &wall_layers_, &a_, &g_, &re_, &rho0_));
   require(nx_ >= 4, "-nx", "at least 4", nx_);
   require(a_ > 0, "-column_width", "positive", a_);
@@ -35,41 +35,50 @@ void DamBreak::set_from_options() {
   check_wall_scene_options(wall_layers_, rho0_);
 }
 
-double DamBreak::time_scale() const { return std::sqrt(a_ / (2.0 * g_)); }
-double DamBreak::default_t_end() const { return 3.0 * time_scale(); }
+template <int D> double DamBreak<D>::time_scale() const { return std::sqrt(a_ / (2.0 * g_)); }
+template <int D> double DamBreak<D>::default_t_end() const { return 3.0 * time_scale(); }
 
-Physics<2> DamBreak::physics() const {
-  Physics<2> phys;
+template <int D> Physics<D> DamBreak<D>::physics() const {
+  Physics<D> phys;
   phys.rho0 = rho0_;
   phys.nu = std::sqrt(g_ * a_ * a_ * a_) / re_;
   phys.U = std::sqrt(2.0 * g_ * 2.0 * a_);  // free fall from the column height
-  phys.gravity = Vector<2>(0.0, -g_);
+  phys.gravity = Vector<D>::Zero();
+  phys.gravity[1] = -g_;
   phys.free_surface = true;
   return phys;
 }
 
-void DamBreak::create(Particles<2>& P, Domain<2>& domain) const {
-  const double dx = spacing(), mass = rho0_ * dx * dx;
+template <int D> void DamBreak<D>::create(Particles<D>& P, Domain<D>& domain) const {
+  const double dx = spacing();
+  double mass = rho0_;
+  for (int d = 0; d < D; ++d) mass *= dx;
   const int L = static_cast<int>(wall_layers_), n = static_cast<int>(nx_);
-  const int tank = 4 * n, height = 3 * n;  // tank 4a long; side walls 3a high
-  domain.lo = Vector<2>(-L * dx, -L * dx);
-  domain.hi = Vector<2>((tank + L) * dx, 20.0 * a_);  // open top: splashes stay inside the box
-  domain.periodic = {false, false};
-  Particles<2> all;
-  for (int j = -L; j < height; ++j)
-    for (int i = -L; i < tank + L; ++i) {
-      const Vector<2> x((i + 0.5) * dx, (j + 0.5) * dx);
-      const bool wall = j < 0 || i < 0 || i >= tank;
-      const bool fluid = !wall && i < n && j < 2 * n;
-      if (!wall && !fluid) continue;
-      // Hydrostatic start (ISPH recomputes it; WCSPH takes its density from it).
-      const double p = fluid ? rho0_ * g_ * (2.0 * a_ - x[1]) : 0.0;
-      all.add(x, Vector<2>::Zero(), mass, rho0_, p, wall ? kWall : kFluid);
-    }
+  const int tank = 4 * n, height = 3 * n;  // tank 4a long (and a deep in 3D); side walls 3a high
+  domain.lo = Vector<D>::Constant(-L * dx);
+  domain.hi = Vector<D>::Constant((n + L) * dx);
+  domain.hi[0] = (tank + L) * dx;
+  domain.hi[1] = 20.0 * a_;  // open top: splashes stay inside the box
+  domain.periodic.fill(false);
+  Particles<D> all;
+  const int depth_lo = D == 3 ? -L : 0, depth_hi = D == 3 ? n + L : 1;
+  for (int k = depth_lo; k < depth_hi; ++k)
+    for (int j = -L; j < height; ++j)
+      for (int i = -L; i < tank + L; ++i) {
+        Vector<D> x;
+        x[0] = (i + 0.5) * dx, x[1] = (j + 0.5) * dx;
+        if constexpr (D == 3) x[2] = (k + 0.5) * dx;
+        const bool wall = j < 0 || i < 0 || i >= tank || k < 0 || (D == 3 && k >= n);
+        const bool fluid = !wall && i < n && j < 2 * n;
+        if (!wall && !fluid) continue;
+        // Hydrostatic start (ISPH recomputes it; WCSPH takes its density from it).
+        const double p = fluid ? rho0_ * g_ * (2.0 * a_ - x[1]) : 0.0;
+        all.add(x, Vector<D>::Zero(), mass, rho0_, p, wall ? kWall : kFluid);
+      }
   P = rank_share(all);
 }
 
-double DamBreak::front(const Particles<2>& P) const {
+template <int D> double DamBreak<D>::front(const Particles<D>& P) const {
   double xmax = -1e300;
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (P.kind[i] == kFluid) xmax = std::max(xmax, P.x[i][0]);
@@ -79,7 +88,7 @@ double DamBreak::front(const Particles<2>& P) const {
 
 // Mean fluid pressure in the square of side a/8 at the foot of the left wall: a fixed region, so
 // runs at any resolution measure the same thing (the walls' extrapolated pressure is left out).
-double DamBreak::foot_pressure(const Particles<2>& P) const {
+template <int D> double DamBreak<D>::foot_pressure(const Particles<D>& P) const {
   const double side = 0.125 * a_;
   double sums[2] = {0.0, 0.0};
   for (std::size_t i = 0; i < P.n_owned; ++i)
@@ -88,7 +97,7 @@ double DamBreak::foot_pressure(const Particles<2>& P) const {
   return sums[1] > 0 ? sums[0] / sums[1] : std::nan("");
 }
 
-std::map<std::string, double> DamBreak::errors(const Particles<2>& P, double t) const {
+template <int D> std::map<std::string, double> DamBreak<D>::errors(const Particles<D>& P, double t) const {
   const double T = t / time_scale(), Z = front(P) / a_;
   if (history_.empty() || T > history_.back().T) history_.push_back({T, Z, foot_pressure(P) / (rho0_ * g_ * a_)});
   // Mean relative error at the experimental points reached so far (linear interpolation in time).
@@ -112,7 +121,7 @@ std::map<std::string, double> DamBreak::errors(const Particles<2>& P, double t) 
   return {{"front_position", Z}, {"front_position_rel", count ? sum / count : std::nan("")}};
 }
 
-std::string DamBreak::unmeasured_reason(const std::string& name) const {
+template <int D> std::string DamBreak<D>::unmeasured_reason(const std::string& name) const {
   if (name != "front_position_rel") return "";
   std::ostringstream why;
   why << "the run ended at T = " << (history_.empty() ? 0.0 : history_.back().T)
@@ -121,7 +130,7 @@ std::string DamBreak::unmeasured_reason(const std::string& name) const {
   return why.str();
 }
 
-void DamBreak::write_outputs(const Particles<2>& P, double t, const std::string& dir) const {
+template <int D> void DamBreak<D>::write_outputs(const Particles<D>& P, double t, const std::string& dir) const {
   PetscMPIInt rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   if (rank != 0) return;
@@ -131,8 +140,11 @@ void DamBreak::write_outputs(const Particles<2>& P, double t, const std::string&
   for (const auto& [T, Z, P_foot] : history_) out << T << "," << Z << "," << P_foot << "\n";
 }
 
-nlohmann::json DamBreak::parameters() const {
+template <int D> nlohmann::json DamBreak<D>::parameters() const {
   return {{"nx", nx_}, {"column_width", a_}, {"g", g_}, {"re", re_}, {"rho0", rho0_}, {"wall_layers", wall_layers_}};
 }
+
+template class DamBreak<2>;
+template class DamBreak<3>;
 
 }  // namespace sph

@@ -5,30 +5,32 @@
 // T = t sqrt(2g/a) (cases/dam_break/data/); error front_position_rel = mean |Z - Z_exp| / Z_exp over
 // the experimental points reached so far, before the front meets the far wall (Z < 4). Also recorded:
 // the pressure at the foot of the left wall, the probe where ISPH and WCSPH differ most.
+// In 3D (-dim 3) the column is a x 2a x a in a tank 4a long and a deep, with walls in front and behind:
+// the same front, with the friction of those walls added.
 #include <vector>
 
 #include "src/run/case.hpp"
 
 namespace sph {
 
-class DamBreak : public Case<2> {
+template <int D> class DamBreak : public Case<D> {
  public:
   std::string name() const override { return "dam_break"; }
   void set_from_options() override;
-  void create(Particles<2>& P, Domain<2>& domain) const override;
+  void create(Particles<D>& P, Domain<D>& domain) const override;
   double spacing() const override { return a_ / nx_; }
   int resolution() const override { return nx_; }
-  Physics<2> physics() const override;
+  Physics<D> physics() const override;
   double default_t_end() const override;  // T = 3
   double wall_thickness() const override { return wall_layers_ * spacing(); }
-  std::map<std::string, double> errors(const Particles<2>& P, double t) const override;
+  std::map<std::string, double> errors(const Particles<D>& P, double t) const override;
   std::string unmeasured_reason(const std::string& name) const override;
-  void write_outputs(const Particles<2>& P, double t, const std::string& dir) const override;
+  void write_outputs(const Particles<D>& P, double t, const std::string& dir) const override;
   nlohmann::json parameters() const override;
 
  private:
-  double front(const Particles<2>& P) const;  // surge-front position x
-  double foot_pressure(const Particles<2>& P) const;
+  double front(const Particles<D>& P) const;  // surge-front position x
+  double foot_pressure(const Particles<D>& P) const;
   double time_scale() const;                  // sqrt(a / (2 g)): T = t / time_scale
 
   PetscInt nx_ = 20, wall_layers_ = 4;

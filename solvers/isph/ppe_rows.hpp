@@ -136,10 +136,12 @@ void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Ker
         double sumW = 0.0;
         for (PetscInt k = 1; k < dlen_[i]; ++k) sumW += d[k];
         for (PetscInt k = 0; k < olen_[i]; ++k) sumW += o[k];
-        for (PetscInt k = 1; k < dlen_[i]; ++k) d[k] *= -diag / sumW;
-        for (PetscInt k = 0; k < olen_[i]; ++k) o[k] *= -diag / sumW;
+        // No fluid in reach (or only at the support's edge, where W is 0): p_w = 0, seen by nobody.
+        const double scale = sumW > 0.0 ? -diag / sumW : 0.0;
+        for (PetscInt k = 1; k < dlen_[i]; ++k) d[k] *= scale;
+        for (PetscInt k = 0; k < olen_[i]; ++k) o[k] *= scale;
         if (sumW > 0.0) rhs[i] = diag * head_[i] / sumW;
-        else d[0] = 1.0;  // no fluid in reach: p_w = 0, seen by nobody
+        else d[0] = 1.0;
       } else if (static_cast<long>(i) == pinned || dirichlet[i]) {
         d[0] = diag > 0.0 ? diag : 1.0;
       }

@@ -32,7 +32,10 @@ template <int D> struct AdamiWall {
     std::vector<double> sum(P.n_owned, 0.0);
     std::size_t current = 0;
     for_each_pair_in_order(P, nl, K, [&](int w, int f, const PairGeometry<D>& g) {
-      if (P.kind[w] != kWall || P.kind[f] != kFluid) return;
+      // A neighbour at the edge of the support can weigh exactly 0 (r / h rounds to the support): it
+      // adds nothing, and a wall whose only fluid neighbours were such would divide 0 by 0 (3D dam break,
+      // nx 10: NaN velocities at step 1).
+      if (P.kind[w] != kWall || P.kind[f] != kFluid || g.W == 0.0) return;
       while (current < static_cast<std::size_t>(w)) s.offset[++current] = s.fluid.size();
       s.fluid.push_back(f);
       s.weight.push_back(g.W);
