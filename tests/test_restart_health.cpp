@@ -19,7 +19,9 @@ void expect_restart_is_exact(const std::string& solver, double dt, const std::st
   const std::string common = "-case " + scene + " -solver " + solver + " -t_end " + std::to_string(40 * dt) +
                              " -dt " + std::to_string(dt) + " -output_interval " + std::to_string(10 * dt) +
                              " -checkpoint_interval " + std::to_string(20 * dt);
-  const std::string tag = solver + "_" + scene.substr(0, scene.find(' '));
+  std::string tag = solver + "_" + scene;  // one folder per scene: ctest runs these side by side
+  for (char& ch : tag)
+    if (ch == ' ' || ch == '-') ch = '_';
   const auto a = run_sph("restart_a_" + tag, common);
   const auto b = run_sph("restart_b_" + tag, common + " -max_steps 20");
   ASSERT_EQ(a.exit_code, 0);
@@ -43,6 +45,11 @@ TEST(Restart, IsphMatchesUninterruptedRunExactly) { expect_restart_is_exact("isp
 TEST(Restart, WcsphMatchesUninterruptedRunExactly) { expect_restart_is_exact("wcsph", 0.001); }
 // The free-surface flags carry over a restart (the hysteresis of -free_surface_exit_threshold).
 TEST(Restart, IsphFreeSurfaceMatchesUninterruptedRunExactly) { expect_restart_is_exact("isph", 0.01, "dam_break -nx 12"); }
+// 3D: the periodic cube, and the free surface between walls.
+TEST(Restart, Isph3DMatchesUninterruptedRunExactly) { expect_restart_is_exact("isph", 0.02, "beltrami -nx 8"); }
+TEST(Restart, Isph3DFreeSurfaceMatchesUninterruptedRunExactly) {
+  expect_restart_is_exact("isph", 0.01, "dam_break -dim 3 -nx 6");
+}
 
 TEST(Restart, MismatchedCheckpointIsRefused) {
   const auto b = run_sph("restart_src", "-case taylor_green -nx 16 -t_end 0.02");
