@@ -36,10 +36,13 @@ LAUNCH = []
 CORES_USED = 1
 
 # name, solver label, dim, steps, arguments, when: False (always), True (with --large), "explicit" (only
-# when --only names it: gas3d-1e6 needs about 9 GB and a quarter of an hour on 2 cores). Sizes: nx^2 in 2D; the 3D Sod tube holds about
-# nx ny^2 (1 + 1/8) particles. Taylor-Green has no 3D form: the 3D workloads use the compressible
-# solver on Sod, the one 3D-capable case.
+# when --only names it: gas3d-1e6 needs about 9 GB and a quarter of an hour on 2 cores; a 3D ISPH step at
+# 1e6 particles takes minutes). Sizes: nx^2 in 2D, nx^3 for the Beltrami cube; the 3D Sod tube holds
+# about nx ny^2 (1 + 1/8) particles. The 3D incompressible workloads are the Beltrami flow, the 3D
+# counterpart of Taylor-Green (periodic, no walls); a 3D step costs about 15x a 2D one per particle (about
+# 110 neighbours instead of 20), so they take fewer steps.
 TGV = ["-case", "taylor_green"]
+BELTRAMI = ["-case", "beltrami"]
 SOD3 = ["-options_file", "cases/sod.opts", "-dim", "3"]
 WORKLOADS = [
     ("isph2d-1e4", "isph", 2, 10, TGV + ["-solver", "isph", "-nx", "100"], False),
@@ -48,6 +51,10 @@ WORKLOADS = [
     ("wcsph2d-1e4", "wcsph", 2, 20, TGV + ["-solver", "wcsph", "-nx", "100"], False),
     ("wcsph2d-1e5", "wcsph", 2, 20, TGV + ["-solver", "wcsph", "-nx", "316"], False),
     ("wcsph2d-1e6", "wcsph", 2, 20, TGV + ["-solver", "wcsph", "-nx", "1000"], True),
+    ("isph3d-1e5", "isph", 3, 3, BELTRAMI + ["-solver", "isph", "-nx", "46"], False),
+    ("isph3d-1e6", "isph", 3, 2, BELTRAMI + ["-solver", "isph", "-nx", "100"], "explicit"),
+    ("wcsph3d-1e5", "wcsph", 3, 10, BELTRAMI + ["-solver", "wcsph", "-nx", "46"], False),
+    ("wcsph3d-1e6", "wcsph", 3, 5, BELTRAMI + ["-solver", "wcsph", "-nx", "100"], True),
     ("gas3d-1e5", "compressible", 3, 10, SOD3 + ["-nx", "96", "-ny", "32"], False),
     ("gas3d-1e6", "compressible", 3, 10, SOD3 + ["-nx", "200", "-ny", "64"], "explicit"),
 ]
@@ -61,6 +68,7 @@ AMG_CASES = [
     ("tgv128-disordered", 10, TGV + ["-solver", "isph", "-nx", "128", "-perturbation", "0.2"]),
     ("tgv256", 10, TGV + ["-solver", "isph", "-nx", "256"]),
     ("cavity50", 20, ["-case", "lid_driven_cavity", "-solver", "isph", "-nx", "50"]),
+    ("beltrami40", 5, BELTRAMI + ["-solver", "isph", "-nx", "40"]),
     ("tgv512", 5, TGV + ["-solver", "isph", "-nx", "512"]),
 ]
 HMIS = ["-pc_hypre_boomeramg_coarsen_type", "HMIS", "-pc_hypre_boomeramg_interp_type", "ext+i"]
