@@ -83,6 +83,7 @@ template <int D> class PressurePoisson {
   void create_ksp();
   void right_preconditioning();
   void symmetric_coarse_solve();
+  void aggressive_coarsening_in_3d();
   static constexpr const char* coarse_relax_option = "-pc_hypre_boomeramg_relax_type_coarse";
 
   KSP ksp_ = nullptr;
