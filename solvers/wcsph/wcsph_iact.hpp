@@ -67,22 +67,23 @@ template <int D> struct RateSums {
   Vector<D> acc = Vector<D>::Zero(), grad_p = Vector<D>::Zero();
   Tensor<D> M = Tensor<D>::Zero(), grad_u = Tensor<D>::Zero();
   double drho = 0.0;
+  FusedConsistentLaplacian<D> viscous;  // the consistent viscous Laplacian's moments and factors
+  explicit RateSums(std::vector<Vector<D>>& directions) : viscous(directions) {}
 };
 
 // The fields and settings of one rates evaluation that the pair physics reads.
 template <int D> struct RatesInputs {
   const Particles<D>& P;
   const std::vector<Vector<D>>& uv;                        // velocities the viscous term sees (walls mirrored)
-  const std::vector<LaplacianCorrection<D>>& laplacian;    // consistent viscous Laplacian's factors
   const std::vector<Vector<D>>& grad_rho;                  // Antuono's density gradients (empty: Molteni)
   const TaitEos& eos;
   const MonaghanAV& av;
-  double h, nu, delta_h_c0;
+  double h, inv_R, nu, delta_h_c0;
   bool viscous, consistent, corrected_gradient, continuity, corrected_continuity, diffuse;
 };
 
 // Adds pair (i, j) to i's sums: pressure (corrected sums or the symmetric force) with artificial
-// viscosity, viscosity (consistent or Morris), continuity (corrected sums or the plain form) and
+// viscosity, viscosity (the consistent Laplacian's moments, finished after the loop, or Morris), continuity (corrected sums or the plain form) and
 // delta-SPH density diffusion. Always inlined into the pair loop, so that the sums stay in registers
 // (not inlined, the 2D WCSPH forces took 1.03x the time of the loop-body version; inlined, 0.97x).
 template <int D>
@@ -100,10 +101,10 @@ template <int D>
     s.acc += pressure_acceleration_pair(P.m[j], P.p[i], P.p[j], P.rho[i], P.rho[j], Pi, g);
   }
   const double F = morris_factor(g, in.h);
-  if (in.viscous)
-    s.acc += in.consistent
-                 ? Vector<D>(in.nu * consistent_laplacian_coefficient(in.laplacian[i], Vj, g) * (in.uv[j] - in.uv[i]))
-                 : morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], in.nu, in.nu, F, Vector<D>(in.uv[i] - in.uv[j]));
+  if (in.viscous) {
+    if (in.consistent) s.viscous.add(Vj, g, in.inv_R, Vector<D>(in.uv[j] - in.uv[i]));
+    else s.acc += morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], in.nu, in.nu, F, Vector<D>(in.uv[i] - in.uv[j]));
+  }
   if (in.continuity) {
     // Walls count as at rest here: every wall is fixed or slides along itself (the cavity lid), so
     // no mass crosses it, and the sliding velocity must stay out of the density. Where the lid ends

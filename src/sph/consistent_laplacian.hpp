@@ -28,6 +28,7 @@
 //
 // Rows sum to zero (constants are in the null space) but w_ij != w_ji: a PPE built on it is not
 // symmetric.
+#include <array>
 #include <vector>
 
 #include "src/sph/operators.hpp"
@@ -92,7 +93,29 @@ template <int D> struct LaplacianSystem {
     return true;
   }
 };
+
+// One particle's factors from its system and the directions e_ij of its pairs; Morris' (A = I, c = 0)
+// where the system is degenerate or a weight would be negative.
+template <int D>
+LaplacianCorrection<D> solve_laplacian_factors(const LaplacianSystem<D>& system,
+                                               const std::vector<Vector<D>>& directions, double inv_R) {
+  LaplacianCorrection<D> f;
+  if (!system.solve(f)) return {};
+  // Keep the weights positive, as Morris' are: a negative weight (a one-sided neighbourhood, at a
+  // free surface) makes the PPE row lose its diagonal dominance, and the dam break blew up.
+  for (const Vector<D>& e : directions)
+    if (!(e.dot(f.A * e) + f.c.dot(e) > 0.0)) return {};
+  return {f.A * (inv_R * inv_R), f.c * (inv_R * inv_R)};
+}
 }  // namespace detail
+
+// The directions e_ij of one particle's pairs, kept for the sign check (one pass over the pairs, not
+// two); one buffer per thread, so that a particle's pairs allocate nothing.
+template <int D> std::vector<Vector<D>>& laplacian_direction_buffer() {
+  thread_local std::vector<Vector<D>> buffer;
+  buffer.clear();
+  return buffer;
+}
 
 // The factors of every owned particle, from one pass over each particle's pairs.
 template <int D>
@@ -101,27 +124,55 @@ std::vector<LaplacianCorrection<D>> laplacian_corrections(const Particles<D>& P,
   std::vector<LaplacianCorrection<D>> out(P.n_owned);
   const double inv_R = 1.0 / K.support_radius();
   for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
-    // The directions e_ij, kept for the sign check below (one pass over the pairs, not two).
-    thread_local std::vector<Vector<D>> buffer;
-    std::vector<Vector<D>>& directions = buffer;  // a reference captures; the thread-local name would be looked up per pair
-    directions.clear();
+    std::vector<Vector<D>>& directions = laplacian_direction_buffer<D>();
     detail::LaplacianSystem<D> system;
     // Moments of g_ij (the factor 2 of w and of the condition cancel); r scaled by 1 / R, so the
-    // solution is A R^2 and c R: scaled back below.
+    // solution is A R^2 and c R: scaled back in solve_laplacian_factors.
     visit_pairs([&](int, int j, const PairGeometry<D>& g) {
       directions.push_back(-g.rij / g.r);
       system.add(P.m[j] / P.rho[j] * (-g.dWdr_r), directions.back(), g.r * inv_R);
     });
-    LaplacianCorrection<D> f;
-    if (!system.solve(f)) return;
-    // Keep the weights positive, as Morris' are: a negative weight (a one-sided neighbourhood, at a
-    // free surface) makes the PPE row lose its diagonal dominance, and the dam break blew up.
-    for (const Vector<D>& e : directions)
-      if (!(e.dot(f.A * e) + f.c.dot(e) > 0.0)) return;
-    out[i] = {f.A * (inv_R * inv_R), f.c * (inv_R * inv_R)};
+    out[i] = detail::solve_laplacian_factors(system, directions, inv_R);
   });
   return out;
 }
+
+// The consistent Laplacian of a vector field at one particle, gathered in a pair loop that does other
+// work too (WCSPH's rates), without the factors computed beforehand: lap f_i = sum_j w_ij (f_j - f_i) is
+// linear in (A, c), so the loop sums the moments sum_j 2 g_ij e_a e_b (f_j - f_i) (a <= b) and
+// sum_j 2 g_ij e_a (f_j - f_i) beside the factors' system, and the factors are applied once after it.
+// The same operator as laplacian_corrections + consistent_laplacian_coefficient, to round-off, in one
+// pass over the pairs instead of two.
+template <int D> struct FusedConsistentLaplacian {
+  static constexpr int m = D * (D + 1) / 2;
+  detail::LaplacianSystem<D> system;
+  std::array<Vector<D>, m> second{};
+  Tensor<D> first = Tensor<D>::Zero();  // row a: sum_j 2 g_ij e_a (f_j - f_i)^T
+  std::vector<Vector<D>>* directions = nullptr;
+
+  explicit FusedConsistentLaplacian(std::vector<Vector<D>>& buffer) : directions(&buffer) {
+    for (auto& v : second) v.setZero();
+  }
+  void add(double Vj, const PairGeometry<D>& g, double inv_R, const Vector<D>& df) {
+    const Vector<D> e = -g.rij / g.r;
+    directions->push_back(e);
+    const double gij = Vj * (-g.dWdr_r);
+    system.add(gij, e, g.r * inv_R);
+    const Vector<D> w_df = (2.0 * gij) * df;
+    int q = 0;
+    for (int a = 0; a < D; ++a)
+      for (int b = a; b < D; ++b, ++q) second[q] += (e(a) * e(b)) * w_df;
+    first.noalias() += e * w_df.transpose();
+  }
+  Vector<D> finish(double inv_R) const {
+    const LaplacianCorrection<D> f = detail::solve_laplacian_factors(system, *directions, inv_R);
+    Vector<D> lap = first.transpose() * f.c;
+    int q = 0;
+    for (int a = 0; a < D; ++a)
+      for (int b = a; b < D; ++b, ++q) lap += ((a == b ? 1.0 : 2.0) * f.A(a, b)) * second[q];
+    return lap;
+  }
+};
 
 // lap f_i = sum_j w_ij (f_j - f_i) for scalar or vector fields.
 template <int D, class T>
