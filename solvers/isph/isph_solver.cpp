@@ -145,7 +145,7 @@ std::vector<LaplacianCorrection<D>> IsphSolver<D>::laplacian_corrections_if_used
 
 template <int D>
 std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vector<D>>& u,
-                                                           const std::vector<LaplacianCorrection<D>>& corrections) const {
+                                                           const std::vector<LaplacianCorrection<D>>* corrections) const {
   const Particles<D>& P = scene_->particles;
   const Neighbourhood<D>& nh = scene_->neighbourhood;
   const Kernel<D>& K = scene_->kernel;
@@ -156,9 +156,9 @@ std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vec
     nh.halo().update(u_wall);
   }
   const std::vector<Vector<D>>& uv = walls_ ? u_wall : u;
-  std::vector<Vector<D>> lap = operators_ == OperatorSet::Consistent
-                                   ? laplacian_consistent(P, nh.list(), K, corrections, uv)
-                                   : laplacian_morris(P, nh.list(), K, uv);
+  std::vector<Vector<D>> lap = operators_ != OperatorSet::Consistent ? laplacian_morris(P, nh.list(), K, uv)
+                               : corrections ? laplacian_consistent(P, nh.list(), K, *corrections, uv)
+                                             : laplacian_consistent_one_pass(P, nh.list(), K, uv);
   for (auto& a : lap) a *= scene_->physics.nu;
   return lap;
 }
@@ -277,7 +277,8 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   LogEventScope log_forces(LogEvent::Forces);
   const bool have_pressure = solves_ > 0;
   std::vector<Vector<D>> acc(n, Vector<D>::Zero()), pressure_acc(n, Vector<D>::Zero());
-  if (phys.viscous()) acc = viscous_acceleration(P.v, laplacian_corrections_if_used());
+  // The factors at x^n serve this one operator: gathered in its pass (one pass over the pairs, not two).
+  if (phys.viscous()) acc = viscous_acceleration(P.v, nullptr);
   const std::vector<Vector<D>> viscous_acc = acc, gravity(n, phys.gravity);
   if (have_pressure) {
     const std::vector<Vector<D>> grad_p = pressure_gradient(P.p);
@@ -306,7 +307,7 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
     for (std::size_t i = 0; i < n; ++i)
       if (fluid(i)) u_pred[i] += (0.5 * dt) * acc[i];
     nh.halo().update(u_pred);
-    const std::vector<Vector<D>> visc = viscous_acceleration(u_pred, corrections);
+    const std::vector<Vector<D>> visc = viscous_acceleration(u_pred, &corrections);
     energy_.add_update(P, u_star, {{EnergyCause::Viscous, 0.5 * dt, &visc}, {EnergyCause::BodyForce, 0.5 * dt, &gravity}});
     for (std::size_t i = 0; i < n; ++i)
       if (fluid(i)) u_star[i] += (0.5 * dt) * visc[i];

@@ -88,9 +88,10 @@ template <int D> class IsphSolver : public Solver<D> {
   // The PPE's divergence of u (with ghost values): the corrected one, or the plain one with classic
   // operators and, under the consistent ones, at the particles flagged in near_surface.
   std::vector<double> ppe_divergence(const std::vector<Vector<D>>& u, const std::vector<char>& near_surface) const;
-  // nu lap u at the current positions (walls: Adami's mirrored velocity); u has ghost values.
+  // nu lap u at the current positions (walls: Adami's mirrored velocity); u has ghost values. The
+  // consistent Laplacian's factors, if the caller has them; else they are gathered in the same pass.
   std::vector<Vector<D>> viscous_acceleration(const std::vector<Vector<D>>& u,
-                                              const std::vector<LaplacianCorrection<D>>& corrections) const;
+                                              const std::vector<LaplacianCorrection<D>>* corrections) const;
   std::vector<LaplacianCorrection<D>> laplacian_corrections_if_used() const;
   // Makes P.v = u_star - tau grad p / rho divergence-free at the current positions; returns the solve.
   StepReport project(const std::vector<Vector<D>>& u_star, double tau,
