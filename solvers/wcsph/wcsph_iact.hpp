@@ -83,9 +83,10 @@ template <int D> struct RatesInputs {
 };
 
 // Adds pair (i, j) to i's sums: pressure (corrected sums or the symmetric force) with artificial
-// viscosity, viscosity (the consistent Laplacian's moments, finished after the loop, or Morris), continuity (corrected sums or the plain form) and
-// delta-SPH density diffusion. Always inlined into the pair loop, so that the sums stay in registers
-// (not inlined, the 2D WCSPH forces took 1.03x the time of the loop-body version; inlined, 0.97x).
+// viscosity, viscosity (the consistent Laplacian's moments, finished after the loop, or Morris),
+// continuity (corrected sums or the plain form) and delta-SPH density diffusion. Always inlined into
+// the pair loop, so that the sums stay in registers (not inlined, the 2D WCSPH forces took 1.03x the
+// time of the loop-body version; inlined, 0.97x).
 template <int D>
 [[gnu::always_inline]] inline void add_rates_pair(const RatesInputs<D>& in, RateSums<D>& s, int i, int j, const PairGeometry<D>& g) {
   const Particles<D>& P = in.P;
