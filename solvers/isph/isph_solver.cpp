@@ -123,13 +123,16 @@ template <int D> double IsphSolver<D>::stable_dt() const {
   return dt;
 }
 
+// The operators below are evaluated at fluid particles only (Rows::Fluid): walls keep their
+// prescribed velocity, their PPE rows extrapolate the fluid pressure, and nothing reads an operator's
+// value at a wall.
 template <int D> std::vector<Vector<D>> IsphSolver<D>::pressure_gradient(const std::vector<double>& p) const {
   const Particles<D>& P = scene_->particles;
   const NeighbourList<D>& nl = scene_->neighbourhood.list();
   const Kernel<D>& K = scene_->kernel;
   switch (gradient_) {
     case PressureGradient::Corrected:
-      return gradient_corrected(P, nl, K, p);
+      return gradient_corrected(P, nl, K, p, Rows::Fluid);
     case PressureGradient::Difference: return gradient_difference(P, nl, K, p);
     case PressureGradient::Symmetric: return gradient_symmetric(P, nl, K, p);
   }
@@ -140,7 +143,7 @@ template <int D>
 std::vector<LaplacianCorrection<D>> IsphSolver<D>::laplacian_corrections_if_used() const {
   if (operators_ != OperatorSet::Consistent) return {};
   const Neighbourhood<D>& nh = scene_->neighbourhood;
-  return laplacian_corrections(scene_->particles, nh.list(), scene_->kernel);
+  return laplacian_corrections(scene_->particles, nh.list(), scene_->kernel, Rows::Fluid);
 }
 
 template <int D>
@@ -157,8 +160,8 @@ std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vec
   }
   const std::vector<Vector<D>>& uv = walls_ ? u_wall : u;
   std::vector<Vector<D>> lap = operators_ != OperatorSet::Consistent ? laplacian_morris(P, nh.list(), K, uv)
-                               : corrections ? laplacian_consistent(P, nh.list(), K, *corrections, uv)
-                                             : laplacian_consistent_one_pass(P, nh.list(), K, uv);
+                               : corrections ? laplacian_consistent(P, nh.list(), K, *corrections, uv, Rows::Fluid)
+                                             : laplacian_consistent_one_pass(P, nh.list(), K, uv, Rows::Fluid);
   for (auto& a : lap) a *= scene_->physics.nu;
   return lap;
 }
@@ -169,7 +172,7 @@ std::vector<double> IsphSolver<D>::ppe_divergence(const std::vector<Vector<D>>& 
   const NeighbourList<D>& nl = scene_->neighbourhood.list();
   const Kernel<D>& K = scene_->kernel;
   if (operators_ != OperatorSet::Consistent) return divergence(P, nl, K, u);
-  std::vector<double> div = divergence_corrected(P, nl, K, u);
+  std::vector<double> div = divergence_corrected(P, nl, K, u, Rows::Fluid);
   // Next to a free surface the kernel support is cut, and the corrected divergence extrapolates u
   // into the empty half: it amplifies the noise of the unconstrained surface particles, and the dam
   // break blew up with it (nx 40, t = 1.44). The plain divergence is used there.

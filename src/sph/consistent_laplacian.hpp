@@ -120,7 +120,7 @@ template <int D> std::vector<Vector<D>>& laplacian_direction_buffer() {
 // The factors of every owned particle, from one pass over each particle's pairs.
 template <int D>
 std::vector<LaplacianCorrection<D>> laplacian_corrections(const Particles<D>& P, const NeighbourList<D>& nl,
-                                                          const Kernel<D>& K) {
+                                                          const Kernel<D>& K, Rows rows = Rows::All) {
   std::vector<LaplacianCorrection<D>> out(P.n_owned);
   const double inv_R = 1.0 / K.support_radius();
   for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
@@ -133,7 +133,7 @@ std::vector<LaplacianCorrection<D>> laplacian_corrections(const Particles<D>& P,
       system.add(P.m[j] / P.rho[j] * (-g.dWdr_r), directions.back(), g.r * inv_R);
     });
     out[i] = detail::solve_laplacian_factors(system, directions, inv_R);
-  });
+  }, rows);
   return out;
 }
 
@@ -177,10 +177,11 @@ template <int D> struct FusedConsistentLaplacian {
 // lap f_i = sum_j w_ij (f_j - f_i) for scalar or vector fields.
 template <int D, class T>
 std::vector<T> laplacian_consistent(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                    const std::vector<LaplacianCorrection<D>>& c, const std::vector<T>& f) {
+                                    const std::vector<LaplacianCorrection<D>>& c, const std::vector<T>& f,
+                                    Rows rows = Rows::All) {
   return sum_over_pairs(P, nl, K, T(f.empty() ? T() : f[0] * 0.0), [&](T& lap, int i, int j, const PairGeometry<D>& g) {
     lap += consistent_laplacian_coefficient(c[i], P.m[j] / P.rho[j], g) * (f[j] - f[i]);
-  });
+  }, rows);
 }
 
 // The consistent Laplacian of a vector field with each particle's factors gathered in the same pass
@@ -189,14 +190,15 @@ std::vector<T> laplacian_consistent(const Particles<D>& P, const NeighbourList<D
 // nothing else.
 template <int D>
 std::vector<Vector<D>> laplacian_consistent_one_pass(const Particles<D>& P, const NeighbourList<D>& nl,
-                                                     const Kernel<D>& K, const std::vector<Vector<D>>& f) {
+                                                     const Kernel<D>& K, const std::vector<Vector<D>>& f,
+                                                     Rows rows = Rows::All) {
   std::vector<Vector<D>> out(P.n_owned, Vector<D>::Zero());
   const double inv_R = 1.0 / K.support_radius();
   for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
     FusedConsistentLaplacian<D> lap(laplacian_direction_buffer<D>());
     visit_pairs([&](int, int j, const PairGeometry<D>& g) { lap.add(P.m[j] / P.rho[j], g, inv_R, Vector<D>(f[j] - f[i])); });
     out[i] = lap.finish(inv_R);
-  });
+  }, rows);
   return out;
 }
 
@@ -205,7 +207,7 @@ std::vector<Vector<D>> laplacian_consistent_one_pass(const Particles<D>& P, cons
 // error is O(1) in the particle disorder.
 template <int D>
 std::vector<double> divergence_corrected(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                         const std::vector<Vector<D>>& u) {
+                                         const std::vector<Vector<D>>& u, Rows rows = Rows::All) {
   struct Sums {
     Tensor<D> M, G;
   };
@@ -214,7 +216,7 @@ std::vector<double> divergence_corrected(const Particles<D>& P, const NeighbourL
     const double Vj = P.m[j] / P.rho[j];
     s.M += correction_moment_term(Vj, g);
     s.G += difference_vector_gradient_term(Vj, u[i], u[j], g);
-  });
+  }, rows);
   std::vector<double> div(P.n_owned);
   for (std::size_t i = 0; i < P.n_owned; ++i) div[i] = (correction_from_moments(sums[i].M) * sums[i].G).trace();
   return div;

@@ -98,7 +98,7 @@ std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const Neighbour
 // pair loop instead of two) for callers that need no other corrected quantity.
 template <int D>
 std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                       const std::vector<double>& f) {
+                                       const std::vector<double>& f, Rows rows = Rows::All) {
   struct Sums {
     Tensor<D> M;
     Vector<D> grad;
@@ -108,7 +108,7 @@ std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const Neighbour
     const double Vj = P.m[j] / P.rho[j];
     s.M += correction_moment_term(Vj, g);
     s.grad += difference_gradient_term(Vj, f[i], f[j], g);
-  });
+  }, rows);
   std::vector<Vector<D>> grad(P.n_owned);
   for (std::size_t i = 0; i < P.n_owned; ++i) grad[i] = correction_from_moments(sums[i].M) * sums[i].grad;
   return grad;

@@ -156,7 +156,7 @@ void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, 
     });
     dr[i] = dr_i, L[i] = L_i, grad_u[i] = grad_u_i;
     for (std::size_t k = 0; k < ns; ++k) grad_f[k][i] = grad_f_i[k];
-  });
+  }, Rows::Fluid);  // walls do not shift
   // A free-surface particle's outward normal is along grad C itself, before any filtering.
   std::vector<Vector<D>> normal;
   if (surface)
