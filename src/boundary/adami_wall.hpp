@@ -35,13 +35,13 @@ template <int D> struct AdamiWall {
       // A neighbour at the edge of the support can weigh exactly 0 (r / h rounds to the support): it
       // adds nothing, and a wall whose only fluid neighbours were such would divide 0 by 0 (3D dam break,
       // nx 10: NaN velocities at step 1).
-      if (P.kind[w] != kWall || P.kind[f] != kFluid || g.W == 0.0) return;
+      if (P.kind[f] != kFluid || g.W == 0.0) return;
       while (current < static_cast<std::size_t>(w)) s.offset[++current] = s.fluid.size();
       s.fluid.push_back(f);
       s.weight.push_back(g.W);
       s.r_wf.push_back(g.rij);
       sum[w] += g.W;
-    });
+    }, Rows::Walls);
     while (current < P.n_owned) s.offset[++current] = s.fluid.size();
     for (std::size_t w = 0; w < P.n_owned; ++w)
       for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) s.weight[k] /= sum[w];

@@ -28,10 +28,13 @@ inline bool in_support(double r2, double rc2) { return r2 < rc2 && r2 != 0.0; }
 // Which owned particles a loop visits. A wall particle's own values are extrapolated from the fluid
 // (Adami et al. 2012) or prescribed, never computed from an operator, so a loop whose results only
 // fluid particles read can skip the walls' pairs: in a 3D cavity with four wall layers the walls are
-// two thirds of the particles. Skipped particles keep the loop's zero.
-enum class Rows { All, Fluid };
+// two thirds of the particles. Skipped particles keep the loop's zero. Rows::Walls: the walls' own
+// loops (their extrapolation stencils).
+enum class Rows { All, Fluid, Walls };
 
-inline bool visited(Rows rows, int kind) { return rows == Rows::All || kind == kFluid; }
+inline bool visited(Rows rows, int kind) {
+  return rows == Rows::All || (rows == Rows::Fluid ? kind == kFluid : kind == kWall);
+}
 
 namespace detail {
 // f(i, j, geometry) for the neighbours j of one particle i, in list order.
@@ -119,9 +122,11 @@ void for_each_pair_index(const Particles<D>& P, const NeighbourList<D>& nl, cons
 // The same pairs on one thread, i ascending: for callers that build output in order (matrix rows,
 // compressed stencils) or write to shared state.
 template <int D, class PairFn>
-void for_each_pair_in_order(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, PairFn&& f) {
+void for_each_pair_in_order(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, PairFn&& f,
+                            Rows rows = Rows::All) {
   const double rc2 = K.support_radius() * K.support_radius();
-  for (std::size_t i = 0; i < P.n_owned; ++i) detail::pairs_of(i, P, nl, K, rc2, f);
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (visited(rows, P.kind[i])) detail::pairs_of(i, P, nl, K, rc2, f);
 }
 
 // ---------------------------------------------------------------------------------------------------
