@@ -20,8 +20,9 @@ const std::vector<CaseEntry>& case_registry() {
        [] { return std::make_unique<TaylorGreen>(); }, nullptr},
       {"beltrami", "decaying Arnold-Beltrami-Childress flow, periodic cube [0, 2 pi)^3, 3D, analytic reference", 3,
        nullptr, nullptr, [] { return std::make_unique<Beltrami>(); }},
-      {"lid_driven_cavity", "unit cavity with a sliding lid, Adami walls, to steady state; Ghia et al. (1982) reference",
-       2, nullptr, [] { return std::make_unique<LidDrivenCavity>(); }, nullptr},
+      {"lid_driven_cavity", "unit cavity (cube in 3D) with a sliding lid, Adami walls, to steady state; Ghia et al. (1982), "
+       "3D Albensoeder & Kuhlmann (2005) and a finite-difference reference", 2, nullptr,
+       [] { return std::make_unique<LidDrivenCavity<2>>(); }, [] { return std::make_unique<LidDrivenCavity<3>>(); }},
       {"dam_break", "collapsing water column (a x 2a, x a in 3D) in a 4a tank, free surface; Martin & Moyce (1952) front", 2,
        nullptr, [] { return std::make_unique<DamBreak<2>>(); }, [] { return std::make_unique<DamBreak<3>>(); }},
       {"square_patch", "rotating square of fluid in vacuum, free surface; invariants of inviscid flow", 2, nullptr,

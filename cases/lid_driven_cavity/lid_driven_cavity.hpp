@@ -1,34 +1,47 @@
 #pragma once
-// Lid-driven cavity: unit square of fluid inside layers of fixed wall particles (Adami et al. 2012
-// walls); the top layers slide at the lid speed U. Re = U L / nu. Runs to steady state. Reference:
-// Ghia, Ghia & Shin (1982, JCP 48:387) centreline tables for Re = 100, 400, 1000 (compiled in from
-// cases/lid_driven_cavity/data/).
+// Lid-driven cavity: unit square (unit cube in 3D) of fluid inside layers of fixed wall particles
+// (Adami et al. 2012 walls); the top layers (y = 1) slide at the lid speed U in x. Re = U L / nu.
+// Runs to steady state. References, compiled in from cases/lid_driven_cavity/data/ (sources in its
+// README): 2D, Ghia, Ghia & Shin (1982, JCP 48:387) centreline tables for Re = 100, 400, 1000; 3D,
+// Albensoeder & Kuhlmann (2005, JCP 206:536) for Re = 1000, and for Re = 100 and 400 a grid-converged
+// finite-difference solution (scripts/cavity3d_reference.py), for want of a published table.
+// Centreline profiles: u(1/2, y[, 1/2]) and v(x, 1/2[, 1/2]).
+#include <string>
+#include <vector>
+
 #include "src/run/case.hpp"
 
 namespace sph {
 
-class LidDrivenCavity : public Case<2> {
+template <int D> class LidDrivenCavity : public Case<D> {
  public:
   std::string name() const override { return "lid_driven_cavity"; }
   void set_from_options() override;
-  void create(Particles<2>& P, Domain<2>& domain) const override;
+  void create(Particles<D>& P, Domain<D>& domain) const override;
   double spacing() const override { return 1.0 / nx_; }
   int resolution() const override { return nx_; }
-  Physics<2> physics() const override;
+  Physics<D> physics() const override;
   double default_t_end() const override { return 40.0; }
   double wall_thickness() const override { return wall_layers_ * spacing(); }
   double steady_tolerance() const override { return 1e-3; }
-  std::map<std::string, double> errors(const Particles<2>& P, double t) const override;
-  void write_outputs(const Particles<2>& P, double t, const std::string& dir) const override;
+  std::map<std::string, double> errors(const Particles<D>& P, double t) const override;
+  void write_outputs(const Particles<D>& P, double t, const std::string& dir) const override;
   nlohmann::json parameters() const override;
 
  private:
-  struct Profiles {
-    std::vector<double> y_u, u_ref, u_sph;  // u(0.5, y) at Ghia's points
-    std::vector<double> x_v, v_ref, v_sph;  // v(x, 0.5)
+  // The reference for this dimension and Re: its two files and the column holding this Re.
+  struct Reference {
+    std::string u_file, v_file, u_column, v_column;
+    std::string file_tag, source;  // centreline_<file_tag>.csv, its column <source>
   };
-  Profiles centreline_profiles(const Particles<2>& P) const;
   bool has_reference() const;
+  Reference reference() const;
+  struct Profiles {
+    std::vector<double> y_u, u_ref, u_sph;  // u along the vertical centreline, at the reference's points
+    std::vector<double> x_v, v_ref, v_sph;  // v along the horizontal centreline
+  };
+  Profiles centreline_profiles(const Particles<D>& P) const;
+  Vector<D> centreline_point(double along, int axis) const;  // axis 1: (1/2, along, 1/2); axis 0: (along, 1/2, 1/2)
 
   PetscInt nx_ = 50, wall_layers_ = 4;
   PetscReal re_ = 100.0, U_ = 1.0, rho0_ = 1.0;
