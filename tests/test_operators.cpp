@@ -30,6 +30,7 @@
 #include "src/kernels/kernel.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/particles/particles.hpp"
+#include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/operators.hpp"
 #include "src/sph/shifting.hpp"
 #include "src/sph/vorticity.hpp"
@@ -463,6 +464,38 @@ TEST(OperatorDisordered, FusedCorrectedGradientEqualsTheSeparateLoops) {
   const std::vector<V2> separate = gradient_corrected(S.P, S.nl(), S.K, correction_matrices(S.P, S.nl(), S.K), f);
   ASSERT_EQ(fused.size(), separate.size());
   for (std::size_t i = 0; i < fused.size(); ++i) ASSERT_EQ(fused[i], separate[i]) << i;
+}
+
+// Rows::Fluid: the operators that ISPH evaluates at fluid particles only give, at every fluid
+// particle, bitwise what the all-rows loop gives (walls still enter as neighbours), and leave the
+// walls' entries at zero.
+TEST(OperatorDisordered, FluidRowsEqualAllRowsAtTheFluid) {
+  Patch S(16, kCases[0]);
+  std::vector<double> f(S.P.size());
+  std::vector<V2> u(S.P.size());
+  for (std::size_t i = 0; i < S.P.size(); ++i) {
+    S.P.kind[i] = i % 5 == 2 ? kWall : kFluid;
+    f[i] = f_s(S.P.x[i]);
+    u[i] = V2(f_s(S.P.x[i]), -0.5 * f_s(V2(S.P.x[i][1], S.P.x[i][0])));
+  }
+  const auto g_all = gradient_corrected(S.P, S.nl(), S.K, f), g_fluid = gradient_corrected(S.P, S.nl(), S.K, f, Rows::Fluid);
+  const auto d_all = divergence_corrected(S.P, S.nl(), S.K, u), d_fluid = divergence_corrected(S.P, S.nl(), S.K, u, Rows::Fluid);
+  const auto l_all = laplacian_consistent_one_pass(S.P, S.nl(), S.K, u);
+  const auto l_fluid = laplacian_consistent_one_pass(S.P, S.nl(), S.K, u, Rows::Fluid);
+  int walls = 0;
+  for (std::size_t i = 0; i < S.P.n_owned; ++i) {
+    if (S.P.kind[i] == kWall) {
+      ++walls;
+      EXPECT_EQ(g_fluid[i], V2::Zero()) << i;
+      EXPECT_EQ(d_fluid[i], 0.0) << i;
+      EXPECT_EQ(l_fluid[i], V2::Zero()) << i;
+      continue;
+    }
+    ASSERT_EQ(g_fluid[i], g_all[i]) << i;
+    ASSERT_EQ(d_fluid[i], d_all[i]) << i;
+    ASSERT_EQ(l_fluid[i], l_all[i]) << i;
+  }
+  EXPECT_GT(walls, 0);
 }
 
 TEST(Shifting, FusedPairLoopEqualsTheSeparateOperators) {

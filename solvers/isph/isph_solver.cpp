@@ -123,9 +123,9 @@ template <int D> double IsphSolver<D>::stable_dt() const {
   return dt;
 }
 
-// The operators below are evaluated at fluid particles only (Rows::Fluid): walls keep their
-// prescribed velocity, their PPE rows extrapolate the fluid pressure, and nothing reads an operator's
-// value at a wall.
+// The corrected and consistent operators are evaluated at fluid particles only (Rows::Fluid): walls
+// keep their prescribed velocity, their PPE rows extrapolate the fluid pressure, and nothing reads an
+// operator's value at a wall.
 template <int D> std::vector<Vector<D>> IsphSolver<D>::pressure_gradient(const std::vector<double>& p) const {
   const Particles<D>& P = scene_->particles;
   const NeighbourList<D>& nl = scene_->neighbourhood.list();
