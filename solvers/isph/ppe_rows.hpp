@@ -29,6 +29,9 @@ struct PpeRows {
   std::vector<PetscInt> di, dj, oi, oj;
   std::vector<PetscScalar> da, oa;
   std::vector<double> rhs;  // right-hand side of wall rows (the body-force head), 0 elsewhere
+  // The continuity equation that the pinned row replaces, as (global column, value) entries, repeated
+  // columns not merged; empty where this rank does not own the pinned row.
+  std::vector<std::pair<PetscInt, PetscScalar>> pinned_equation;
 
   // Rows of the owned particles of P. Fluid rows hold the consistent Laplacian when `consistent`
   // holds its factors, else Cummins & Rudman's; wall rows hold the Adami extrapolation; rows flagged
@@ -88,6 +91,7 @@ void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Ker
     if (P.kind[i] == kWall) return P.kind[j] == kFluid;
     return static_cast<long>(i) != pinned && !dirichlet[i];
   };
+  pinned_equation.clear();
 
   // Count, then lay the rows out: the diagonal comes first in its row until the rows are sorted.
   dlen_.assign(n, 1), olen_.assign(n, 0);
@@ -113,6 +117,7 @@ void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Ker
             ? -P.m[i] / P.rho[i] * consistent_laplacian_coefficient((*consistent)[i], P.m[j] / P.rho[j], g)
             : P.m[i] * ppe_pair_coefficient(P.m[j], P.rho[i], P.rho[j], morris_factor(g, K.h()));
     da[di[i]] -= c;
+    if (static_cast<long>(i) == pinned) pinned_equation.emplace_back(P.gid[j], c);
     if (!has_entry(i, j)) return;
     const double value = P.kind[i] == kWall ? g.W : c;
     if (owned_column(j)) dj[di[i] + dlen_[i]] = P.gid[j] - first, da[di[i] + dlen_[i]++] = value;
@@ -143,6 +148,7 @@ void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Ker
         if (sumW > 0.0) rhs[i] = diag * head_[i] / sumW;
         else d[0] = 1.0;
       } else if (static_cast<long>(i) == pinned || dirichlet[i]) {
+        if (static_cast<long>(i) == pinned) pinned_equation.emplace_back(P.gid[i], diag);
         d[0] = diag > 0.0 ? diag : 1.0;
       }
       const PetscInt dn = detail::sort_and_merge(&dj[di[i]], d, dlen_[i], scratch);

@@ -23,7 +23,9 @@
 // gradient balance the body force (the homogeneous Neumann condition without one). These rows are
 // not symmetric: the default KSP becomes GMRES (BoomerAMG still preconditions it well: the matrix
 // stays an M-matrix with zero row sums), and a closed domain pins one fluid pressure instead of a
-// null space (see assemble).
+// null space (see assemble), then restores the pinned particle's continuity equation with one more
+// solve per matrix, so that what no pressure can balance is spread evenly over the fluid rather
+// than left at the pinned particle (see prepare_spread).
 //
 // Free surface: particles flagged as on the surface get the Dirichlet row p = 0 (Lind et al. 2012);
 // the pressure level is then fixed and neither a null space nor a pin is needed.
@@ -76,9 +78,13 @@ template <int D> class PressurePoisson {
   nlohmann::json describe() const;
 
  private:
-  // Closed domains: spreads the net mass source over the fluid rows of b (see the .cpp).
-  void remove_net_source(const std::vector<double>& source, const std::vector<double>& mass, PetscScalar* b,
-                         PetscInt n) const;
+  // Closed domains: spreads the net mass source over the fluid rows of b and returns what each row
+  // lost (see the .cpp).
+  double remove_net_source(const std::vector<double>& source, const std::vector<double>& mass, PetscScalar* b,
+                           PetscInt n) const;
+  // Closed domains: the pinned equation and the response to an even source (see the .cpp).
+  void prepare_spread();
+  void spread_pinned_residual(double pinned_rhs);
   void destroy_system();
   void create_ksp();
   void right_preconditioning();
@@ -96,6 +102,10 @@ template <int D> class PressurePoisson {
   PetscViewerFormat mat_format_ = PETSC_VIEWER_DEFAULT;
   long pinned_ = -1;             // local row pinned to p = 0 (closed domains), -1: none
   bool closed_ = false;          // walls, no Dirichlet rows: one fluid pressure is pinned on some rank
+  ::Vec pinned_equation_ = nullptr;  // closed domains: the pinned row's continuity equation, a_k
+  ::Vec spread_ = nullptr;           // z with A z = 1 on the fluid rows but the pinned one, 0 elsewhere
+  PetscScalar spread_denominator_ = 0.0;  // a_k . z - 1
+  PetscInt spread_iterations_ = 0;   // the KSP iterations z took, counted with the next solve
   bool regularised_ = false;     // periodic and non-symmetric: the diagonal is shifted (see assemble)
   static constexpr double regularisation = 1e-8;  // eps: the shift over the mean diagonal
   std::vector<int> kind_;        // particle kind of each owned row
