@@ -300,6 +300,7 @@ template <int D> void PressurePoisson<D>::prepare_spread() {
   for (PetscInt i = 0; i < n; ++i) e[i] = kind_[i] == kFluid && i != pinned_ ? 1.0 : 0.0;
   SPH_PETSC(VecRestoreArray(b_, &e));
   SPH_PETSC(KSPSolve(ksp_, b_, spread_));
+  view_solve();
   KSPConvergedReason reason;
   SPH_PETSC(KSPGetConvergedReason(ksp_, &reason));
   SPH_PETSC(KSPGetIterationNumber(ksp_, &spread_iterations_));
@@ -308,6 +309,19 @@ template <int D> void PressurePoisson<D>::prepare_spread() {
                 KSPConvergedReasons[reason] + "); try -ksp_max_it, another -ksp_type/-pc_type, or a smaller -cfl");
   SPH_PETSC(VecDot(pinned_equation_, spread_, &spread_denominator_));
   spread_denominator_ -= 1.0;
+}
+
+// PETSc prints -ksp_view and the like itself; -pc_view is left to whoever drives the PC, and the
+// matrix is shown by -mat_view once per solve (see set_from_options).
+template <int D> void PressurePoisson<D>::view_solve() const {
+  PC pc;
+  SPH_PETSC(KSPGetPC(ksp_, &pc));
+  SPH_PETSC(PCViewFromOptions(pc, reinterpret_cast<PetscObject>(ksp_), "-pc_view"));
+  if (mat_viewer_) {
+    SPH_PETSC(PetscViewerPushFormat(mat_viewer_, mat_format_));
+    SPH_PETSC(MatView(A_, mat_viewer_));
+    SPH_PETSC(PetscViewerPopFormat(mat_viewer_));
+  }
 }
 
 // x holds the pinned system's solution; b_k, the pinned row's own right-hand side, is `pinned_rhs`.
@@ -384,15 +398,7 @@ StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const st
     SPH_PETSC(VecNorm(b_, NORM_2, &first_rhs_norm_));
   SPH_PETSC(KSPSolve(ksp_, b_, x_));
   if (correction) SPH_PETSC(KSPSetTolerances(ksp_, rtol, atol, dtol, max_it));
-  // PETSc prints -ksp_view and the like itself; -pc_view is left to whoever drives the PC.
-  PC pc;
-  SPH_PETSC(KSPGetPC(ksp_, &pc));
-  SPH_PETSC(PCViewFromOptions(pc, reinterpret_cast<PetscObject>(ksp_), "-pc_view"));
-  if (mat_viewer_) {
-    SPH_PETSC(PetscViewerPushFormat(mat_viewer_, mat_format_));
-    SPH_PETSC(MatView(A_, mat_viewer_));
-    SPH_PETSC(PetscViewerPopFormat(mat_viewer_));
-  }
+  view_solve();
   if (nullspace_) SPH_PETSC(MatNullSpaceRemove(nullspace_, x_));
   if (closed_) spread_pinned_residual(pinned_rhs);
   if (regularised_) {  // the constant part c (see assemble) carries no physics

@@ -84,6 +84,7 @@ template <int D> class PressurePoisson {
                            PetscInt n) const;
   // Closed domains: the pinned equation and the response to an even source (see the .cpp).
   void prepare_spread();
+  void view_solve() const;
   void spread_pinned_residual(double pinned_rhs);
   void destroy_system();
   void create_ksp();
