@@ -278,8 +278,8 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
 // make A non-symmetric). The mean removed by remove_net_source is most of it, not all. With one
 // equation dropped for the pin, the rest lands on the pinned particle as a point source: measured on
 // the cavity (Re 100, nx 50), a pressure spike of 0.013 rho U^2 above its neighbours (5 times their
-// spread), which moved the centreline profiles by up to 2e-3 U and the RMS errors by 0.1 points
-// depending on where the pin was. So the pinned equation is restored instead: p' = p - lambda z,
+// spread), which moved the centreline profiles by up to 2e-3 U and the RMS errors by up to 0.2
+// points depending on where the pin was. So the pinned equation is restored instead: p' = p - lambda z,
 // where A z = e (1 on the fluid rows but the pinned one), satisfies every fluid row up to the same
 // even source lambda, the pinned one included, when lambda = (a_k . p - b_k) / (a_k . z - 1).
 // z costs one solve per matrix, shared by the step's solves.
@@ -340,8 +340,8 @@ template <int D> void PressurePoisson<D>::spread_pinned_residual(double pinned_r
 template <int D>
 double PressurePoisson<D>::remove_net_source(const std::vector<double>& source, const std::vector<double>& mass,
                                              PetscScalar* b, PetscInt n) const {
-  // The pinned particle's continuity equation is dropped from the system but still counts here: once
-  // the sources of all fluid particles sum to zero, the dropped equation holds by itself.
+  // The pinned particle's continuity equation is dropped from the system but still counts here, and
+  // its share of the mean is part of the right-hand side that spread_pinned_residual restores.
   double sums[2] = {0.0, 0.0};  // sum of -m s over the fluid particles, their number
   for (PetscInt i = 0; i < n; ++i) {
     if (kind_[i] != kFluid || dirichlet_[i]) continue;
