@@ -79,7 +79,7 @@ TEST(Walls, IsphCavityRe1000StaysInsideAndApproachesGhia) { expect_steady_cavity
 // (cases/lid_driven_cavity/data/README.md: grid-converged, uncertain by 5e-4 U). Its interior centreline
 // values have RMS 0.22 (u) and 0.14 (v), so a stagnant or wrongly driven cavity fails by far. nx = 16
 // (4 096 fluid and 9 728 wall particles, about 370 steps) and not nx = 20, which takes 6-7 minutes on one
-// core; measured 2.5-2.6 % and 1.3 % (nx 20: 1.5 % and 1.0 %, the README's 3D cavity table).
+// core; measured 2.5 % and 1.3 % (nx 20: 1.5 % and 0.9 %, the README's 3D cavity table).
 TEST(Walls, IsphCubicCavityRe100MatchesTheReference) {
   const auto r = run_sph("cavity3d_isph_16", "-case lid_driven_cavity -dim 3 -nx 16 -re 100 -output_interval 0 "
                                              "-checkpoint_interval 0");
