@@ -37,22 +37,29 @@ interrupt INT "$tmp/int" 130
 # so there a lost piece of state could not be told from round-off.
 expect_ok $run -output_dir "$tmp/whole"
 expect_ok $run -output_dir "$tmp/int" -restart "$tmp/int/checkpoint.bin"
-python3 - "$tmp/whole/summary.json" "$tmp/int/summary.json" <<'PY' || fail=1
-import json, sys
-a, b = (json.load(open(p)) for p in sys.argv[1:])
+python3 - "$tmp/whole" "$tmp/int" <<'PY' || fail=1
+import csv, json, sys
+a, b = (json.load(open(d + "/summary.json")) for d in sys.argv[1:])
 rel = {k: abs(a["errors"][k] - b["errors"][k]) / abs(a["errors"][k]) for k in a["errors"]}
 worst = max(rel.values())
 ok = all(r < 1e-8 for r in rel.values())
 ok &= a["steps"] == b["steps"] and len(b["history"]) == 2 and b["history"][0]["status"].startswith("interrupted")
-# Same solver set-up; iteration counts equal up to one per solve, since at -ksp_rtol 1e-12 a solve's
-# count can flip by one with that round-off (measured: 9 against 10 in one resumed run of ten). The
-# mean over the steps may move by two flips for each of a step's three solves (the closed channel's
-# restoring solve, the projection, its correction pass; measured: 4 flips in 143 steps).
+# Same solver set-up: the first resumed step takes the iterations the uninterrupted run took at that
+# step, up to one flip for each of the step's three solves (the closed channel's restoring solve, the
+# projection, its correction pass). Later steps are not compared one by one, nor their mean: near
+# steady state each solve works at round-off, and the 1e-15 differences of the re-ordered particles
+# flip counts by up to 3 a step in a dozen of the 143 steps (measured over five resumed runs; the mean
+# moved by up to 0.056). The checkpointed pressure as initial guess is not what this detects: a zero
+# guess changes a step's count by at most 1 at this tolerance.
 ka, kb = a["ksp"], b["ksp"]
 ok &= all(ka[k] == kb[k] for k in ("type", "pc_type", "rtol", "max_it"))
-ok &= abs(kb["iterations_max"] - ka["iterations_max"]) <= 3
-ok &= abs(kb["iterations_mean"] - ka["iterations_mean"]) <= 3 * 2.0 / a["steps"]
-print(("ok" if ok else "FAIL") + f": resumed run: steps {b['steps']} / {a['steps']}, largest relative error difference {worst:.1e}")
+def iterations(d):
+    return {int(r["step"]): int(r["ksp_iterations"]) for r in csv.DictReader(open(d + "/timeseries.csv"))}
+ia, ib = (iterations(d) for d in sys.argv[1:])
+first = b["history"][0]["steps"][1] + 1
+ok &= abs(ib[first] - ia[first]) <= 3
+print(("ok" if ok else "FAIL") + f": resumed run: steps {b['steps']} / {a['steps']}, largest relative error"
+      f" difference {worst:.1e}, iterations at the first resumed step {first}: {ib[first]} / {ia[first]}")
 sys.exit(0 if ok else 1)
 PY
 exit $fail
