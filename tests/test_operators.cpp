@@ -18,7 +18,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <map>
 #include <memory>
@@ -27,6 +29,7 @@
 #include <vector>
 
 #include "src/core/domain.hpp"
+#include "src/core/small_inverse.hpp"
 #include "src/kernels/kernel.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/particles/particles.hpp"
@@ -443,11 +446,17 @@ TEST(OperatorDisordered, ConstantFieldsMomentumAndSingularMoments) {
   singular_moment_matrix_falls_back_to_identity();
 }
 
-// The shifting term's power, by repeated squaring, agrees with std::pow to round-off.
+// The shifting term's and the Tait equation's powers, by repeated squaring, agree with std::pow to
+// round-off; other exponents go to std::pow itself.
 TEST(Shifting, IntegerPowerMatchesStdPow) {
   for (double x : {0.0, 0.37, 1.0, 1.9, -2.5})
-    for (int n = 0; n <= 9; ++n)
-      EXPECT_NEAR(integer_power(x, n), std::pow(x, n), 4e-16 * std::max(1.0, std::abs(std::pow(x, n)))) << x << "^" << n;
+    for (int n = 0; n <= 9; ++n) {
+      const double tolerance = 4e-16 * std::max(1.0, std::abs(std::pow(x, n)));
+      EXPECT_NEAR(integer_power(x, n), std::pow(x, n), tolerance) << x << "^" << n;
+      EXPECT_NEAR(power(x, n), std::pow(x, n), tolerance) << x << "^" << n;
+    }
+  for (double x : {0.37, 1.0, 1.01})
+    for (double e : {0.5, 1.0 / 7.0, 3.5, 40.0}) EXPECT_EQ(power(x, e), std::pow(x, e)) << x << "^" << e;
 }
 
 // Shifting gathers all its sums in one fused pair loop: it must move particles and correct fields
@@ -652,6 +661,40 @@ TEST(Shifting, ParticleScalesKeepTheShiftOfParticleScaleDisorder) {
   // The kernel average of uncorrelated noise keeps about 1/sqrt(N_eff) of it, N_eff = (sum W)^2 / sum W^2
   // ~ 10 neighbours here: 0.32.
   EXPECT_LT(mean_norm(difference), 0.35 * mean_norm(all));
+}
+
+}  // namespace
+
+namespace {
+
+// The consistent Laplacian's small inverse against Eigen's LU: a times its inverse is the identity to
+// round-off, including matrices that need row exchanges (a zero leading diagonal); a singular matrix
+// or one holding NaN is refused.
+template <int n> void check_small_inverse(std::uint32_t seed) {
+  using Mat = Eigen::Matrix<double, n, n, Eigen::RowMajor>;
+  std::srand(seed);
+  for (int trial = 0; trial < 20; ++trial) {
+    Mat a = Mat::Random();
+    if (trial % 2) a(0, 0) = 0.0;  // the first pivot must come from another row
+    Mat inv;
+    ASSERT_TRUE(invert_partial_pivot<n>(a, inv));
+    const Mat lu_inverse = Eigen::PartialPivLU<Mat>(a).inverse();
+    const double scale = a.norm() * inv.norm();
+    EXPECT_LT((a * inv - Mat::Identity()).norm(), 1e-13 * scale) << "n " << n << " trial " << trial;
+    EXPECT_LT((inv - lu_inverse).norm(), 1e-12 * inv.norm() * scale) << "n " << n << " trial " << trial;
+  }
+  Mat singular = Mat::Random(), inv;
+  singular.row(n - 1) = 2.0 * singular.row(0);
+  singular.col(n - 1).setZero();
+  EXPECT_FALSE(invert_partial_pivot<n>(singular, inv));
+  Mat with_nan = Mat::Identity();
+  with_nan(1, 1) = std::nan("");
+  EXPECT_FALSE(invert_partial_pivot<n>(with_nan, inv));
+}
+
+TEST(SmallInverse, MatchesEigensLuAndRefusesSingularMatrices) {
+  check_small_inverse<5>(3);
+  check_small_inverse<9>(7);
 }
 
 }  // namespace

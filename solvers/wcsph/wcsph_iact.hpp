@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "src/core/integer_power.hpp"
 #include "src/particles/particles.hpp"
 #include "src/sph/artificial_viscosity.hpp"
 #include "src/sph/consistent_laplacian.hpp"
@@ -17,9 +18,9 @@ namespace sph::wcsph {
 struct TaitEos {
   double rho0 = 1.0, c0 = 10.0, gamma = 7.0;
   double B() const { return c0 * c0 * rho0 / gamma; }
-  double pressure(double rho) const { return B() * (std::pow(rho / rho0, gamma) - 1.0); }
+  double pressure(double rho) const { return B() * (power(rho / rho0, gamma) - 1.0); }
   double density(double p) const { return rho0 * std::pow(1.0 + p / B(), 1.0 / gamma); }
-  double sound_speed(double rho) const { return c0 * std::pow(rho / rho0, 0.5 * (gamma - 1.0)); }
+  double sound_speed(double rho) const { return c0 * power(rho / rho0, 0.5 * (gamma - 1.0)); }
 };
 
 // Continuity: d rho_i/dt += rho_i V_j u_ij . grad_i W_ij.

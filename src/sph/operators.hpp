@@ -3,6 +3,7 @@
 // Every operator is the shared pair loop with a small pair formula; V_j = m_j / rho_j.
 #include <vector>
 
+#include "src/core/integer_power.hpp"
 #include "src/sph/pair_terms.hpp"
 
 namespace sph {
@@ -72,7 +73,7 @@ std::vector<Vector<D>> gradient_symmetric(const Particles<D>& P, const Neighbour
 // Where the moment matrix is singular (isolated particles) the identity is used.
 template <int D> Tensor<D> correction_from_moments(const Tensor<D>& M) {
   const double det = M.determinant();
-  return std::abs(det) > 1e-8 * std::pow(M.norm(), D) ? Tensor<D>(M.inverse()) : Tensor<D>(Tensor<D>::Identity());
+  return std::abs(det) > 1e-8 * integer_power(M.norm(), D) ? Tensor<D>(M.inverse()) : Tensor<D>(Tensor<D>::Identity());
 }
 
 // The moment matrices sum_j V_j grad_i W_ij (x_j - x_i)^T, inverted.

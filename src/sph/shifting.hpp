@@ -22,20 +22,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "src/core/integer_power.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/core/log_events.hpp"
 #include "src/sph/kernel_average.hpp"
 #include "src/sph/operators.hpp"
 
 namespace sph {
-
-// x^n for a small exponent n >= 0 by repeated squaring: std::pow cost 5% of an ISPH step here.
-inline double integer_power(double x, int n) {
-  double result = 1.0;
-  for (; n > 0; n >>= 1, x *= x)
-    if (n & 1) result *= x;
-  return result;
-}
 
 // How fast particles are shifted (-shift_rate). D = A h U dt (speed, Lind et al. 2012) restores a
 // particle-scale disorder at the rate A U / h, which grows as h falls, while the flow disorders
