@@ -25,12 +25,13 @@ bool invert_partial_pivot(Eigen::Matrix<double, n, n, Eigen::RowMajor> a,
     if (!(largest > 0.0)) return false;
     if (pivot != k) a.row(pivot).swap(a.row(k)), inv.row(pivot).swap(inv.row(k));
     const double scale = 1.0 / a(k, k);
-    a.row(k) *= scale;
+    // Columns left of k are zero in a's rows but k's, and a's column k is not read again.
+    for (int c = k + 1; c < n; ++c) a(k, c) *= scale;
     inv.row(k) *= scale;
     for (int r = 0; r < n; ++r) {
       if (r == k) continue;
       const double factor = a(r, k);
-      a.row(r) -= factor * a.row(k);
+      for (int c = k + 1; c < n; ++c) a(r, c) -= factor * a(k, c);
       inv.row(r) -= factor * inv.row(k);
     }
   }
