@@ -8,8 +8,12 @@ the discrete equations (max |u^{n+1} - u^n| / dt < 1e-6). Prints the RMS and lar
 u(0.5, y) and v(x, 0.5) from Ghia's tables at their interior points, and v point by point: the SPH
 cavity's errors are measured against Ghia, so this tells how much of them is the table's.
 
-usage: cavity2d_reference.py --n 64 [--re 100] [--cfl 0.1]   (--cfl 0.05 from n 128: AB2 and the lid
-       corner are unstable at 0.1 there)
+With --runs, the SPH runs' profiles at Ghia's points (each run folder's centreline_ghia.csv) are
+compared with this solution as well as with Ghia's table: the SPH error without the table's own
+(about 0.5 % of U in v at Re 100), for convergence studies in h.
+
+usage: cavity2d_reference.py --n 64 [--re 100] [--cfl 0.1] [--runs RUN_DIR...]   (--cfl 0.05 from
+       n 128: AB2 and the lid corner are unstable at 0.1 there)
 """
 import argparse
 import os
@@ -74,6 +78,8 @@ def main():
     ap.add_argument("--n", type=int, default=64, help="cells per side (even)")
     ap.add_argument("--re", type=int, default=100, choices=[100, 400, 1000])
     ap.add_argument("--cfl", type=float, default=0.1, help="advective dt = cfl h (lid speed 1)")
+    ap.add_argument("--runs", nargs="*", default=[], metavar="RUN_DIR",
+                    help="SPH cavity runs at the same Re: their RMS against this solution and against Ghia")
     a = ap.parse_args()
     u, v, t = steady_state(a.n, a.re, a.cfl)
     centres = np.concatenate([[0.0], (np.arange(a.n) + 0.5) / a.n, [1.0]])
@@ -91,6 +97,22 @@ def main():
         if name == "v":
             print("  x:        " + " ".join(f"{x:7.4f}" for x in table[inner, 0]))
             print("  fd-Ghia:  " + " ".join(f"{d:+7.4f}" for d in diff))
+        for run in a.runs:
+            compare_run(run, name, centres, line, table[inner, 0], table[inner, column])
+
+
+def compare_run(run, name, centres, line, points, ghia):
+    """RMS of one SPH run's profile against this solution and against Ghia, at Ghia's interior points."""
+    path = os.path.join(run, "centreline_ghia.csv")
+    rows = [r.split(",") for r in open(path).read().split("\n")[1:] if r.startswith(name + ",")]
+    sph = {round(float(r[1]), 6): float(r[2]) for r in rows}
+    missing = [p for p in points if round(p, 6) not in sph]
+    if missing:
+        sys.exit(f"{path}: no {name} at {missing}: is it a cavity run at this Re?")
+    values = np.array([sph[round(p, 6)] for p in points])
+    rms = lambda d: 100.0 * np.sqrt((d**2).mean())
+    print(f"  {run}: {name} RMS against this solution {rms(values - at(centres, line, points)):.3f} %, "
+          f"against Ghia {rms(values - ghia):.3f} % of U")
 
 
 if __name__ == "__main__":
