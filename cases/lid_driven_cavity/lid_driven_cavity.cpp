@@ -7,17 +7,23 @@
 #include "cases/common/reference_data.hpp"
 #include "cases/common/wall_options.hpp"
 #include "src/core/options.hpp"
-#include "src/sph/interpolation.hpp"
 
 namespace sph {
 
 namespace {
-PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* re, PetscReal* U, PetscReal* rho0) {
+PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* re, PetscReal* U, PetscReal* rho0,
+                            PetscInt* interpolation) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Lid-driven cavity (-case lid_driven_cavity)", "Case");
   PetscCall(PetscOptionsInt("-nx", "Fluid particles per side of the unit cavity", "", *nx, nx, nullptr));
   PetscCall(PetscOptionsReal("-re", "Reynolds number U L / nu (references: 100, 400, 1000)", "", *re, re, nullptr));
   PetscCall(PetscOptionsReal("-U", "Lid speed", "", *U, U, nullptr));
+  PetscCall(PetscOptionsEList("-profile_interpolation",
+                              "How the centreline profiles are read off the particles: linear (moving least squares, "
+                              "second order next to walls too) or shepard (kernel average, the metric before; O(h) "
+                              "biased where the support is cut)",
+                              "", probe_interpolation_names, 2, probe_interpolation_names[*interpolation],
+                              interpolation, nullptr));
   PetscCall(read_wall_scene_options(PetscOptionsObject, layers, rho0));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
@@ -32,7 +38,9 @@ bool compared(int dim, double coord, double re, double x_v_point) {
 }  // namespace
 
 template <int D> void LidDrivenCavity<D>::set_from_options() {
-  SPH_PETSC(read_options(&nx_, &wall_layers_, &re_, &U_, &rho0_));
+  PetscInt interpolation = static_cast<PetscInt>(interpolation_);
+  SPH_PETSC(read_options(&nx_, &wall_layers_, &re_, &U_, &rho0_, &interpolation));
+  interpolation_ = static_cast<ProbeInterpolation>(interpolation);
   require(nx_ >= 8, "-nx", "at least 8", nx_);
   require(re_ > 0, "-re", "positive", re_);
   require(U_ > 0, "-U", "positive", U_);
@@ -115,9 +123,9 @@ template <int D> typename LidDrivenCavity<D>::Profiles LidDrivenCavity<D>::centr
   std::vector<Vector<D>> pts;
   for (double y : pr.y_u) pts.push_back(centreline_point(y, 1));
   for (double x : pr.x_v) pts.push_back(centreline_point(x, 0));
-  // The interpolation kernel is part of the metric: Wendland C2 with h = 1.5 dx.
+  // The interpolation is part of the metric: Wendland C2 weights with h = 1.5 dx, fit by -profile_interpolation.
   const Kernel<D> K(KernelType::WendlandC2, 1.5 * spacing());
-  const std::vector<Vector<D>> u = shepard_velocity(P, K, pts);
+  const std::vector<Vector<D>> u = probe_velocity(P, K, pts, interpolation_);
   for (std::size_t k = 0; k < pr.y_u.size(); ++k) pr.u_sph.push_back(u[k][0] / U_);
   for (std::size_t k = 0; k < pr.x_v.size(); ++k) pr.v_sph.push_back(u[pr.y_u.size() + k][1] / U_);
   return pr;
@@ -146,7 +154,7 @@ template <int D> void LidDrivenCavity<D>::write_outputs(const Particles<D>& P, d
   for (int k = 0; k < m; ++k) pts.push_back(centreline_point(k / double(m - 1), 1));
   for (int k = 0; k < m; ++k) pts.push_back(centreline_point(k / double(m - 1), 0));
   const Kernel<D> K(KernelType::WendlandC2, 1.5 * spacing());
-  const std::vector<Vector<D>> u = shepard_velocity(P, K, pts);
+  const std::vector<Vector<D>> u = probe_velocity(P, K, pts, interpolation_);
   const Profiles pr = has_reference() ? centreline_profiles(P) : Profiles{};  // collective: every rank
   PetscMPIInt rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -167,7 +175,8 @@ template <int D> void LidDrivenCavity<D>::write_outputs(const Particles<D>& P, d
 }
 
 template <int D> nlohmann::json LidDrivenCavity<D>::parameters() const {
-  return {{"nx", nx_}, {"re", re_}, {"U", U_}, {"rho0", rho0_}, {"wall_layers", wall_layers_}};
+  return {{"nx", nx_}, {"re", re_}, {"U", U_}, {"rho0", rho0_}, {"wall_layers", wall_layers_},
+          {"profile_interpolation", probe_interpolation_names[static_cast<int>(interpolation_)]}};
 }
 
 template class LidDrivenCavity<2>;

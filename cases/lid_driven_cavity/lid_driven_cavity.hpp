@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "src/run/case.hpp"
+#include "src/sph/interpolation.hpp"
 
 namespace sph {
 
@@ -44,6 +45,7 @@ template <int D> class LidDrivenCavity : public Case<D> {
   Vector<D> centreline_point(double along, int axis) const;  // axis 1: (1/2, along, 1/2); axis 0: (along, 1/2, 1/2)
 
   PetscInt nx_ = 50, wall_layers_ = 4;
+  ProbeInterpolation interpolation_ = ProbeInterpolation::Linear;
   PetscReal re_ = 100.0, U_ = 1.0, rho0_ = 1.0;
 };
 
