@@ -46,6 +46,7 @@ template <int D> class LidDrivenCavity : public Case<D> {
 
   PetscInt nx_ = 50, wall_layers_ = 4;
   ProbeInterpolation interpolation_ = ProbeInterpolation::Linear;
+  bool symmetric_corners_ = false;  // -lid_corners: both corner blocks at U/2, not upstream at U, downstream 0
   PetscReal re_ = 100.0, U_ = 1.0, rho0_ = 1.0;
 };
 

@@ -25,6 +25,8 @@ expect_error "option -ksp_type is read by -solver isph, not by this run's -case 
 expect_error "option -ksp_converged_reason is read by -solver isph" $small -solver wcsph -ksp_converged_reason
 expect_error "option -c0 is read by -solver wcsph, not by this run's -case taylor_green and -solver isph" $small -c0 10
 expect_error "option -wall_layers is read by -case lid_driven_cavity.*-case poiseuille" $small -wall_layers 4
+expect_error "-lid_corners symmetric is 2D only" -case lid_driven_cavity -dim 3 -nx 8 -lid_corners symmetric -progress 0 -output_dir $tmp/out -overwrite
+expect_error "Unknown option foo for -profile_interpolation" -case lid_driven_cavity -nx 8 -profile_interpolation foo -progress 0 -output_dir $tmp/out -overwrite
 expect_error "-mat_type seqsbaij stores half of a symmetric matrix" $small -mat_type sbaij
 expect_error "-nx must be" $small -nx -3
 expect_error "-re must be positive" $small -re 0
