@@ -12,7 +12,7 @@ With --runs, the SPH runs' profiles at Ghia's points (each run folder's centreli
 compared with this solution as well as with Ghia's table: the SPH error without the table's own
 (about 0.5 % of U in v at Re 100), for convergence studies in h.
 
-usage: cavity2d_reference.py --n 64 [--re 100] [--cfl 0.1] [--runs RUN_DIR...]   (--cfl 0.05 from
+usage: cavity2d_reference.py --n 64 [--re 100] [--cfl 0.1] [--runs RUN_DIR... [--averaged]]   (--cfl 0.05 from
        n 128: AB2 and the lid corner are unstable at 0.1 there)
 """
 import argparse
@@ -80,6 +80,8 @@ def main():
     ap.add_argument("--cfl", type=float, default=0.1, help="advective dt = cfl h (lid speed 1)")
     ap.add_argument("--runs", nargs="*", default=[], metavar="RUN_DIR",
                     help="SPH cavity runs at the same Re: their RMS against this solution and against Ghia")
+    ap.add_argument("--averaged", action="store_true",
+                    help="compare the runs' time-averaged profiles (-profile_average_from) instead of their last ones")
     a = ap.parse_args()
     u, v, t = steady_state(a.n, a.re, a.cfl)
     centres = np.concatenate([[0.0], (np.arange(a.n) + 0.5) / a.n, [1.0]])
@@ -98,14 +100,21 @@ def main():
             print("  x:        " + " ".join(f"{x:7.4f}" for x in table[inner, 0]))
             print("  fd-Ghia:  " + " ".join(f"{d:+7.4f}" for d in diff))
         for run in a.runs:
-            compare_run(run, name, centres, line, table[inner, 0], table[inner, column])
+            compare_run(run, name, centres, line, table[inner, 0], table[inner, column], a.averaged)
 
 
-def compare_run(run, name, centres, line, points, ghia):
+def compare_run(run, name, centres, line, points, ghia, averaged):
     """RMS of one SPH run's profile against this solution and against Ghia, at Ghia's interior points."""
     path = os.path.join(run, "centreline_ghia.csv")
-    rows = [r.split(",") for r in open(path).read().split("\n")[1:] if r.startswith(name + ",")]
-    sph = {round(float(r[1]), 6): float(r[2]) for r in rows}
+    lines = open(path).read().split("\n")
+    header = lines[0].split(",")
+    value = header.index("sph_averaged") if averaged and "sph_averaged" in header else None
+    if averaged and value is None:
+        sys.exit(f"{path}: no time-averaged profile: was the run made with -profile_average_from?")
+    rows = [r.split(",") for r in lines[1:] if r.startswith(name + ",")]
+    if averaged and any(not r[value] for r in rows):
+        sys.exit(f"{path}: the run ended before its profile average began")
+    sph = {round(float(r[1]), 6): float(r[value if averaged else 2]) for r in rows}
     missing = [p for p in points if round(p, 6) not in sph]
     if missing:
         sys.exit(f"{path}: no {name} at {missing}: is it a cavity run at this Re?")

@@ -1,7 +1,10 @@
 #include "cases/lid_driven_cavity/lid_driven_cavity.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
+#include <sstream>
 
 #include "cases/common/lattice.hpp"
 #include "cases/common/reference_data.hpp"
@@ -14,7 +17,7 @@ namespace {
 const char* const lid_corners_names[] = {"upstream", "symmetric"};
 
 PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* re, PetscReal* U, PetscReal* rho0,
-                            PetscInt* interpolation, PetscInt* corners) {
+                            PetscInt* interpolation, PetscInt* corners, PetscReal* average_from) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Lid-driven cavity (-case lid_driven_cavity)", "Case");
   PetscCall(PetscOptionsInt("-nx", "Fluid particles per side of the unit cavity", "", *nx, nx, nullptr));
@@ -31,6 +34,11 @@ PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* re, Petsc
                               "biased where the support is cut)",
                               "", probe_interpolation_names, 2, probe_interpolation_names[*interpolation],
                               interpolation, nullptr));
+  PetscCall(PetscOptionsReal("-profile_average_from",
+                             "Average the centreline profiles over t >= this time and report their errors as "
+                             "centreline_rms_u_averaged / _v_averaged (default -1: no average; use with "
+                             "-steady_tol 0 and a -t_end past it)",
+                             "", *average_from, average_from, nullptr));
   PetscCall(read_wall_scene_options(PetscOptionsObject, layers, rho0));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
@@ -46,7 +54,7 @@ bool compared(int dim, double coord, double re, double x_v_point) {
 
 template <int D> void LidDrivenCavity<D>::set_from_options() {
   PetscInt interpolation = static_cast<PetscInt>(interpolation_), corners = symmetric_corners_ ? 1 : 0;
-  SPH_PETSC(read_options(&nx_, &wall_layers_, &re_, &U_, &rho0_, &interpolation, &corners));
+  SPH_PETSC(read_options(&nx_, &wall_layers_, &re_, &U_, &rho0_, &interpolation, &corners, &average_from_));
   interpolation_ = static_cast<ProbeInterpolation>(interpolation);
   symmetric_corners_ = corners == 1;
   if (D == 3 && symmetric_corners_)
@@ -54,6 +62,10 @@ template <int D> void LidDrivenCavity<D>::set_from_options() {
   require(nx_ >= 8, "-nx", "at least 8", nx_);
   require(re_ > 0, "-re", "positive", re_);
   require(U_ > 0, "-U", "positive", U_);
+  require(average_from_ >= 0 || average_from_ == -1, "-profile_average_from", "a time >= 0 (or -1: no average)",
+          average_from_);
+  if (averaging() && !has_reference())
+    throw Error("-profile_average_from needs a reference to compare the averaged profiles with: -re 100, 400 or 1000");
   check_wall_scene_options(wall_layers_, rho0_);
 }
 
@@ -132,12 +144,17 @@ template <int D> Vector<D> LidDrivenCavity<D>::centreline_point(double along, in
   return x;
 }
 
-template <int D> typename LidDrivenCavity<D>::Profiles LidDrivenCavity<D>::centreline_profiles(const Particles<D>& P) const {
+template <int D> typename LidDrivenCavity<D>::Profiles LidDrivenCavity<D>::reference_profiles() const {
   Profiles pr;
   const Reference ref = reference();
   const Table tu = reference_table(ref.u_file), tv = reference_table(ref.v_file);
   pr.y_u = tu.column("y"), pr.u_ref = tu.column(ref.u_column);
   pr.x_v = tv.column("x"), pr.v_ref = tv.column(ref.v_column);
+  return pr;
+}
+
+template <int D> typename LidDrivenCavity<D>::Profiles LidDrivenCavity<D>::centreline_profiles(const Particles<D>& P) const {
+  Profiles pr = reference_profiles();
   std::vector<Vector<D>> pts;
   for (double y : pr.y_u) pts.push_back(centreline_point(y, 1));
   for (double x : pr.x_v) pts.push_back(centreline_point(x, 0));
@@ -149,20 +166,83 @@ template <int D> typename LidDrivenCavity<D>::Profiles LidDrivenCavity<D>::centr
   return pr;
 }
 
-template <int D> std::map<std::string, double> LidDrivenCavity<D>::errors(const Particles<D>& P, double t) const {
-  if (!has_reference()) return {};
-  const Profiles pr = centreline_profiles(P);
-  auto rms = [&](const std::vector<double>& c, const std::vector<double>& ref, const std::vector<double>& sph) {
+template <int D> std::pair<double, double> LidDrivenCavity<D>::rms_errors(const Profiles& pr) const {
+  auto rms = [&](const std::vector<double>& c, const std::vector<double>& ref, const std::vector<double>& sph,
+                 bool horizontal) {
     double sum = 0.0;
     int count = 0;
     for (std::size_t k = 0; k < c.size(); ++k) {
-      if (!compared(D, c[k], re_, &c == &pr.x_v ? c[k] : -1.0)) continue;
+      if (!compared(D, c[k], re_, horizontal ? c[k] : -1.0)) continue;
       sum += (sph[k] - ref[k]) * (sph[k] - ref[k]);
       ++count;
     }
     return std::sqrt(sum / count);
   };
-  return {{"centreline_rms_u", rms(pr.y_u, pr.u_ref, pr.u_sph)}, {"centreline_rms_v", rms(pr.x_v, pr.v_ref, pr.v_sph)}};
+  return {rms(pr.y_u, pr.u_ref, pr.u_sph, false), rms(pr.x_v, pr.v_ref, pr.v_sph, true)};
+}
+
+template <int D>
+const typename LidDrivenCavity<D>::Profiles& LidDrivenCavity<D>::profiles_at(const Particles<D>& P, double t,
+                                                                            Profiles& scratch) const {
+  if (t == last_t_ && !last_.y_u.empty()) return last_;  // accumulate() read them at this step already
+  scratch = centreline_profiles(P);
+  return scratch;
+}
+
+template <int D> void LidDrivenCavity<D>::accumulate(const Particles<D>& P, double t, double dt) {
+  if (!has_reference()) return;
+  last_ = centreline_profiles(P);
+  last_t_ = t;
+  if (!averaging() || t - dt < average_from_ - 1e-12 * std::max(1.0, average_from_)) return;
+  if (average_.weight == 0.0) {
+    average_.t_first = t - dt;
+    average_.u.assign(last_.u_sph.size(), 0.0);
+    average_.v.assign(last_.v_sph.size(), 0.0);
+  }
+  average_.weight += dt;
+  for (std::size_t k = 0; k < average_.u.size(); ++k) average_.u[k] += dt * last_.u_sph[k];
+  for (std::size_t k = 0; k < average_.v.size(); ++k) average_.v[k] += dt * last_.v_sph[k];
+}
+
+template <int D> typename LidDrivenCavity<D>::Profiles LidDrivenCavity<D>::averaged_profiles() const {
+  Profiles pr = reference_profiles();
+  for (double s : average_.u) pr.u_sph.push_back(s / average_.weight);
+  for (double s : average_.v) pr.v_sph.push_back(s / average_.weight);
+  return pr;
+}
+
+template <int D> std::map<std::string, double> LidDrivenCavity<D>::errors(const Particles<D>& P, double t) const {
+  if (!has_reference()) return {};
+  Profiles scratch;
+  const auto [u, v] = rms_errors(profiles_at(P, t, scratch));
+  std::map<std::string, double> e{{"centreline_rms_u", u}, {"centreline_rms_v", v}};
+  if (!averaging()) return e;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto [ua, va] = average_.weight > 0.0 ? rms_errors(averaged_profiles()) : std::make_pair(nan, nan);
+  e["centreline_rms_u_averaged"] = ua, e["centreline_rms_v_averaged"] = va;
+  return e;
+}
+
+template <int D> std::string LidDrivenCavity<D>::unmeasured_reason(const std::string& name) const {
+  if (name.find("_averaged") == std::string::npos || average_.weight > 0.0) return "";
+  std::ostringstream msg;
+  msg << "the run ended before the profile average began (-profile_average_from " << average_from_
+      << "): set -steady_tol 0 and a -t_end past it";
+  return msg.str();
+}
+
+template <int D> nlohmann::json LidDrivenCavity<D>::accumulated_state() const {
+  if (!averaging()) return nullptr;
+  return {{"weight", average_.weight}, {"t_first", average_.t_first}, {"u", average_.u}, {"v", average_.v}};
+}
+
+template <int D> void LidDrivenCavity<D>::restore_accumulated_state(const nlohmann::json& state) {
+  // The run identity has already checked that the checkpoint was written with the same window.
+  if (!averaging() || !state.is_object()) return;
+  average_.weight = state.at("weight").get<double>();
+  average_.t_first = state.at("t_first").get<double>();
+  average_.u = state.at("u").get<std::vector<double>>();
+  average_.v = state.at("v").get<std::vector<double>>();
 }
 
 template <int D> void LidDrivenCavity<D>::write_outputs(const Particles<D>& P, double t, const std::string& dir) const {
@@ -187,15 +267,24 @@ template <int D> void LidDrivenCavity<D>::write_outputs(const Particles<D>& P, d
   const Reference ref = reference();
   std::ofstream cr(dir + "/centreline_" + ref.file_tag + ".csv");
   cr.precision(10);
-  cr << "profile,coordinate,sph," << ref.source << "\n";
-  for (std::size_t k = 0; k < pr.y_u.size(); ++k) cr << "u," << pr.y_u[k] << "," << pr.u_sph[k] << "," << pr.u_ref[k] << "\n";
-  for (std::size_t k = 0; k < pr.x_v.size(); ++k) cr << "v," << pr.x_v[k] << "," << pr.v_sph[k] << "," << pr.v_ref[k] << "\n";
+  // With -profile_average_from, the time-averaged profile beside the last one (empty before the window).
+  const bool averaged = averaging() && average_.weight > 0.0;
+  const Profiles avg = averaged ? averaged_profiles() : Profiles{};
+  cr << "profile,coordinate,sph," << ref.source << (averaging() ? ",sph_averaged" : "") << "\n";
+  auto row = [&](const char* name, double c, double sph, double ref, const std::vector<double>& avg_sph, std::size_t k) {
+    cr << name << "," << c << "," << sph << "," << ref;
+    if (averaging()) cr << ",";
+    if (averaged) cr << avg_sph[k];
+    cr << "\n";
+  };
+  for (std::size_t k = 0; k < pr.y_u.size(); ++k) row("u", pr.y_u[k], pr.u_sph[k], pr.u_ref[k], avg.u_sph, k);
+  for (std::size_t k = 0; k < pr.x_v.size(); ++k) row("v", pr.x_v[k], pr.v_sph[k], pr.v_ref[k], avg.v_sph, k);
 }
 
 template <int D> nlohmann::json LidDrivenCavity<D>::parameters() const {
   return {{"nx", nx_}, {"re", re_}, {"U", U_}, {"rho0", rho0_}, {"wall_layers", wall_layers_},
           {"profile_interpolation", probe_interpolation_names[static_cast<int>(interpolation_)]},
-          {"lid_corners", lid_corners_names[symmetric_corners_ ? 1 : 0]}};
+          {"lid_corners", lid_corners_names[symmetric_corners_ ? 1 : 0]}, {"profile_average_from", average_from_}};
 }
 
 template class LidDrivenCavity<2>;

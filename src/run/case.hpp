@@ -46,6 +46,12 @@ template <int D> class Case {
   // Relative kinetic-energy change per unit time below which the flow counts as steady and the run
   // stops (0: run to t_end). The -steady_tol option overrides it.
   virtual double steady_tolerance() const { return 0.0; }
+  // Time averages a case accumulates over a run (the cavity's centreline profiles): called after every
+  // step, before errors(), with the step's end time and length. Their state travels in the checkpoint
+  // (accumulated_state() is written, restore_accumulated_state() reads it back on -restart).
+  virtual void accumulate(const Particles<D>& P, double t, double dt) {}
+  virtual nlohmann::json accumulated_state() const { return nullptr; }
+  virtual void restore_accumulated_state(const nlohmann::json& state) {}
   // Case-specific files written at the end of a run (e.g. centreline profiles).
   virtual void write_outputs(const Particles<D>& P, double t, const std::string& dir) const {}
   virtual nlohmann::json parameters() const = 0;

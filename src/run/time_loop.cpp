@@ -249,6 +249,7 @@ template <int D> void TimeLoop<D>::set_start_state() {
   stats_.from_json(resumed_run_.value("ksp_statistics", nlohmann::json()));
   steady_.from_json(resumed_run_.value("steady_state_window", nlohmann::json()));
   history_ = resumed_run_.value("history", nlohmann::json::array());
+  if (opt_.restarting()) case_.restore_accumulated_state(resumed_run_.value("case_state", nlohmann::json()));
   progress_.emplace(opt_.progress, opt_.t_end);
   const double frame_interval = opt_.output_interval > 0 ? opt_.output_interval : opt_.t_end;
   frames_.emplace(frame_interval, t_);
@@ -287,6 +288,7 @@ template <int D> void TimeLoop<D>::advance() {
   for (int a = 0; a < D; ++a) row.push_back(tot.momentum[a]);
   row.push_back(report.linear_iterations);
   row.push_back(report.linear_reason);
+  case_.accumulate(s_.P, t_, dt);
   for (const auto& e : case_.errors(s_.P, t_)) row.push_back(e.second);
   series_->row(row);
   log_diagnostics.end();
@@ -333,7 +335,8 @@ template <int D> void TimeLoop<D>::write_state(const std::string& why) {
   repartition();
   const LogEventScope log_checkpoint(LogEvent::Checkpoint);
   nlohmann::json run{{"identity", identity_}, {"ksp_statistics", stats_.to_json()},
-                     {"steady_state_window", steady_.to_json()}, {"history", history_}};
+                     {"steady_state_window", steady_.to_json()}, {"history", history_},
+                     {"case_state", case_.accumulated_state()}};
   run["history"].push_back(this_segment(why));
   write_checkpoint(checkpoint_path_, s_.P, solver_.checkpoint_fields(), {t_, step_, solver_.checkpoint_scalars(), run});
 }

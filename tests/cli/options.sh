@@ -27,6 +27,8 @@ expect_error "option -c0 is read by -solver wcsph, not by this run's -case taylo
 expect_error "option -wall_layers is read by -case lid_driven_cavity.*-case poiseuille" $small -wall_layers 4
 expect_error "-lid_corners symmetric is 2D only" -case lid_driven_cavity -dim 3 -nx 8 -lid_corners symmetric -progress 0 -output_dir $tmp/out -overwrite
 expect_error "Unknown option foo for -profile_interpolation" -case lid_driven_cavity -nx 8 -profile_interpolation foo -progress 0 -output_dir $tmp/out -overwrite
+expect_error "-profile_average_from must be a time >= 0" -case lid_driven_cavity -nx 8 -profile_average_from -2 -progress 0 -output_dir $tmp/out -overwrite
+expect_error "-profile_average_from needs a reference" -case lid_driven_cavity -nx 8 -re 200 -profile_average_from 1 -progress 0 -output_dir $tmp/out -overwrite
 expect_error "-mat_type seqsbaij stores half of a symmetric matrix" $small -mat_type sbaij
 expect_error "-nx must be" $small -nx -3
 expect_error "-re must be positive" $small -re 0
