@@ -10,9 +10,11 @@ cavity's errors are measured against Ghia, so this tells how much of them is the
 
 With --runs, the SPH runs' profiles at Ghia's points (each run folder's centreline_ghia.csv) are
 compared with this solution as well as with Ghia's table: the SPH error without the table's own
-(about 0.5 % of U in v at Re 100), for convergence studies in h.
+(about 0.5 % of U in v at Re 100), for convergence studies in h; and each profile's strength s, the
+least-squares fit sph ~ (1 + s) fd (s < 0: the vortex too weak), with the RMS left once it is scaled.
 
-usage: cavity2d_reference.py --n 64 [--re 100] [--cfl 0.1] [--runs RUN_DIR... [--averaged]]   (--cfl 0.05 from
+usage: cavity2d_reference.py --n 64 [--re 100] [--cfl 0.1] [--save|--load F.npz] [--runs RUN_DIR... [--averaged]]
+       (--cfl 0.05 from
        n 128: AB2 and the lid corner are unstable at 0.1 there)
 """
 import argparse
@@ -82,8 +84,18 @@ def main():
                     help="SPH cavity runs at the same Re: their RMS against this solution and against Ghia")
     ap.add_argument("--averaged", action="store_true",
                     help="compare the runs' time-averaged profiles (-profile_average_from) instead of their last ones")
+    ap.add_argument("--save", metavar="FILE.npz", help="keep the steady solution in FILE.npz (n 128 at Re 1000 takes 25 minutes)")
+    ap.add_argument("--load", metavar="FILE.npz", help="read a solution kept by --save instead of solving")
     a = ap.parse_args()
-    u, v, t = steady_state(a.n, a.re, a.cfl)
+    if a.load:
+        kept = np.load(a.load)
+        if int(kept["n"]) != a.n or int(kept["re"]) != a.re:
+            sys.exit(f"{a.load} holds n {int(kept['n'])} Re {int(kept['re'])}, not n {a.n} Re {a.re}: give the same --n and --re")
+        u, v, t = kept["u"], kept["v"], float(kept["t"])
+    else:
+        u, v, t = steady_state(a.n, a.re, a.cfl)
+    if a.save:
+        np.savez(a.save, u=u, v=v, t=t, n=a.n, re=a.re)
     centres = np.concatenate([[0.0], (np.arange(a.n) + 0.5) / a.n, [1.0]])
     u_line = np.concatenate([[0.0], u[a.n // 2, :], [1.0]])  # u(0.5, y) with the wall values
     v_line = np.concatenate([[0.0], v[:, a.n // 2], [0.0]])  # v(x, 0.5)
@@ -119,9 +131,13 @@ def compare_run(run, name, centres, line, points, ghia, averaged):
     if missing:
         sys.exit(f"{path}: no {name} at {missing}: is it a cavity run at this Re?")
     values = np.array([sph[round(p, 6)] for p in points])
+    fd = at(centres, line, points)
     rms = lambda d: 100.0 * np.sqrt((d**2).mean())
-    print(f"  {run}: {name} RMS against this solution {rms(values - at(centres, line, points)):.3f} %, "
-          f"against Ghia {rms(values - ghia):.3f} % of U")
+    # The profile's strength against this solution, values ~ (1 + s) fd by least squares: s < 0 is a
+    # vortex too weak (under-resolved boundary layers), s > 0 one driven too hard.
+    s = (values - fd) @ fd / (fd @ fd)
+    print(f"  {run}: {name} RMS against this solution {rms(values - fd):.3f} %, against Ghia {rms(values - ghia):.3f} % "
+          f"of U; strength {100 * s:+.2f} %, RMS after scaling by it {rms(values - (1 + s) * fd):.3f} %")
 
 
 if __name__ == "__main__":
