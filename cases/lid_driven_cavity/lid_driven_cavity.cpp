@@ -195,7 +195,6 @@ template <int D> void LidDrivenCavity<D>::accumulate(const Particles<D>& P, doub
   last_t_ = t;
   if (!averaging() || t - dt < average_from_ - 1e-12 * std::max(1.0, average_from_)) return;
   if (average_.weight == 0.0) {
-    average_.t_first = t - dt;
     average_.u.assign(last_.u_sph.size(), 0.0);
     average_.v.assign(last_.v_sph.size(), 0.0);
   }
@@ -233,14 +232,13 @@ template <int D> std::string LidDrivenCavity<D>::unmeasured_reason(const std::st
 
 template <int D> nlohmann::json LidDrivenCavity<D>::accumulated_state() const {
   if (!averaging()) return nullptr;
-  return {{"weight", average_.weight}, {"t_first", average_.t_first}, {"u", average_.u}, {"v", average_.v}};
+  return {{"weight", average_.weight}, {"u", average_.u}, {"v", average_.v}};
 }
 
 template <int D> void LidDrivenCavity<D>::restore_accumulated_state(const nlohmann::json& state) {
   // The run identity has already checked that the checkpoint was written with the same window.
   if (!averaging() || !state.is_object()) return;
   average_.weight = state.at("weight").get<double>();
-  average_.t_first = state.at("t_first").get<double>();
   average_.u = state.at("u").get<std::vector<double>>();
   average_.v = state.at("v").get<std::vector<double>>();
 }

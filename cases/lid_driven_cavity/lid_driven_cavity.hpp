@@ -57,8 +57,8 @@ template <int D> class LidDrivenCavity : public Case<D> {
   // at t >= T, each weighted by its dt. A steady cavity's particles keep circulating, so its instantaneous
   // profile carries particle-scale noise (0.2 % of U step to step at nx 50); the average does not.
   struct ProfileAverage {
-    double weight = 0.0, t_first = 0.0;  // time averaged over, and where the first averaged step began
-    std::vector<double> u, v;            // sums of dt times the profile
+    double weight = 0.0;       // the time averaged over
+    std::vector<double> u, v;  // sums of dt times the profile
   };
   ProfileAverage average_;
   // The profiles of the last accumulate() call, so that errors() at the same time reuses them.
