@@ -105,7 +105,9 @@ template <int D> void LidDrivenCavity<D>::create(Particles<D>& P, Domain<D>& dom
         // Re = 100 within 75 steps: the moving downstream corner block dragged a particle out along
         // y = 1. In 3D the lid stops at the end walls z = 0, 1: the jump there lies across z, a shear
         // that has no divergence. WCSPH's continuity equation sees walls at rest (see solvers/wcsph),
-        // so none of this changes its density.
+        // so none of this changes its density, and so does ISPH's source by default now
+        // (-ppe_wall_velocity zero): the blocks then enter only the viscous term. The choices here were
+        // made, and measured, with the source seeing the walls' velocities (-ppe_wall_velocity prescribed).
         const bool lid = j >= n && i < n && inside_depth;
         Vector<D> v = Vector<D>::Zero();
         if (lid) v[0] = U_;
@@ -115,7 +117,8 @@ template <int D> void LidDrivenCavity<D>::create(Particles<D>& P, Domain<D>& dom
         // against a finite-difference solution): u 0.15 % at nx 50 against 0.46 % (upstream), v 0.09 %
         // against 0.42 %, and 0.08 / 0.06 % at nx 100: the upstream block had been the cavity's largest
         // error. Not the default: the jump U -> U/2 inside the lid's wall layer is a divergence that
-        // ISPH's pressure source reads, and at Re 1000 (nx 50) it drew a particle out at the upstream corner.
+        // ISPH's pressure source read (prescribed), and at Re 1000 (nx 50) it drew a particle out at the
+        // upstream corner; with the walls at rest in the source its gain is gone (nx 30: 0.49 / 0.68 %).
         if (symmetric_corners_ && j >= n && (i < 0 || i >= n)) v[0] = 0.5 * U_;
         all.add(x, v, mass, rho0_, 0.0, fluid ? kFluid : kWall);
       }

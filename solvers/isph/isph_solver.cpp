@@ -57,10 +57,10 @@ PetscErrorCode read_options(PetscReal* cfl, PetscBool* shifting, PetscInt* shift
                             "one projection, first order in dt",
                             "", *projection_corrections, projection_corrections, nullptr));
   PetscCall(PetscOptionsEList("-ppe_wall_velocity",
-                              "Wall velocity the PPE source's divergence sees: prescribed (the walls' own) or zero "
-                              "(walls at rest, as in WCSPH's continuity equation: right for fixed walls and walls "
-                              "sliding along themselves such as the cavity's lid, wrong for walls moving into the "
-                              "fluid)",
+                              "Wall velocity the PPE source's divergence sees: zero (walls at rest, as in WCSPH's "
+                              "continuity equation; wall particles keep their place, so every wall here is fixed or "
+                              "slides along itself) or prescribed (the walls' own: a sliding wall's velocity jump "
+                              "where it ends reads as a compression, a first-order error)",
                               "", wall_velocity_names, 2, wall_velocity_names[*wall_velocity], wall_velocity, nullptr));
   PetscCall(PetscOptionsReal("-free_surface_threshold",
                              "Free-surface particles: div r below this (0: 1.5 in 2D, 2.4 in 3D; Lind et al. 2012)", "",
@@ -180,7 +180,9 @@ std::vector<double> IsphSolver<D>::ppe_divergence(const std::vector<Vector<D>>& 
   const Particles<D>& P = scene_->particles;
   const NeighbourList<D>& nl = scene_->neighbourhood.list();
   const Kernel<D>& K = scene_->kernel;
-  // -ppe_wall_velocity zero: the walls count as at rest. With the prescribed velocities, the cavity's
+  // The walls count as at rest (-ppe_wall_velocity zero, the default), as in WCSPH's continuity
+  // equation: wall particles keep their place, so a wall's velocity is tangential and its normal
+  // component, the only part the constraint needs, is zero. With the prescribed velocities the cavity's
   // lid beside the fixed downstream corner block is a jump U -> 0 that the divergence reads as a
   // compression of order U/dx there: it raises that corner's stagnation pressure and drives the vortex
   // harder, a first-order error (Re 100: 0.45 / 0.43 % against a finite-difference solution at nx 50,

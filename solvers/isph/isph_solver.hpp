@@ -111,7 +111,7 @@ template <int D> class IsphSolver : public Solver<D> {
   OperatorSet operators_ = OperatorSet::Consistent;
   PetscReal particle_divergence_rate_ = 10;  // in U/h; -1: all of it every step; 10: all of it at CFL 0.2
   PetscInt projection_corrections_ = 1;      // correction passes after the projection
-  bool source_walls_at_rest_ = false;        // -ppe_wall_velocity zero: the PPE source sees the walls at rest
+  bool source_walls_at_rest_ = true;         // -ppe_wall_velocity zero: the PPE source sees the walls at rest
   long solves_ = 0;
   std::vector<double> mean_pressure_;  // pm^{n-1/2} per particle
   bool walls_ = false;
