@@ -19,10 +19,13 @@ compare isph1 isph2 1e-8 2
 run wcsph1 1 $tgv -solver wcsph -t_end 0.03
 run wcsph2 2 $tgv -solver wcsph -t_end 0.03
 compare wcsph1 wcsph2 1e-10
+# The cavity solves three times a step (about 31 iterations together); BoomerAMG's partition-dependent
+# coarsening (below) moves that by up to 3 (measured: 34 / 31 at one of 16 steps, at most 2 at the
+# others, for the same solution to 2e-13).
 cavity="-case lid_driven_cavity -solver isph -nx 16 -t_end 0.3 -ksp_rtol 1e-10"
 run cavity1 1 $cavity
 run cavity2 2 $cavity
-compare cavity1 cavity2 1e-8 2
+compare cavity1 cavity2 1e-8 4
 # 3D: the periodic cube, and walls with a free surface. BoomerAMG's coarsening depends on the partition
 # (Falgout's treats the rank boundary with CLJP), and in the cube at nx 10 most particles lie within a
 # support of the boundary: 1-3 more iterations a step on 2 ranks (measured 12/13, 11/14, 12/14, 12/13
