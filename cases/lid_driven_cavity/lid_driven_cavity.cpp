@@ -105,9 +105,9 @@ template <int D> void LidDrivenCavity<D>::create(Particles<D>& P, Domain<D>& dom
         // Re = 100 within 75 steps: the moving downstream corner block dragged a particle out along
         // y = 1. In 3D the lid stops at the end walls z = 0, 1: the jump there lies across z, a shear
         // that has no divergence. WCSPH's continuity equation sees walls at rest (see solvers/wcsph),
-        // so none of this changes its density, and so does ISPH's source by default now
-        // (-ppe_wall_velocity zero): the blocks then enter only the viscous term. The choices here were
-        // made, and measured, with the source seeing the walls' velocities (-ppe_wall_velocity prescribed).
+        // so none of this changes its density; ISPH's source now sees them at rest too by default
+        // (-ppe_wall_velocity zero), and the blocks then enter only the viscous term. The choices here
+        // were made, and measured, with the source seeing the walls' velocities (prescribed).
         const bool lid = j >= n && i < n && inside_depth;
         Vector<D> v = Vector<D>::Zero();
         if (lid) v[0] = U_;
