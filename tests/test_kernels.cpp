@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "src/core/error.hpp"
 #include "src/kernels/kernel.hpp"
@@ -174,6 +175,31 @@ TEST(KernelProperties, GradientAntisymmetricAndRadial) {
   gradient_antisymmetric_and_radial<1>();
   gradient_antisymmetric_and_radial<2>();
   gradient_antisymmetric_and_radial<3>();
+}
+
+// Kernel::evaluate, which the pair loops use for a whole particle's pairs at once, gives bitwise the
+// values of W() and dWdr() one at a time: across the support, at its edge and beyond it.
+template <int D> void batch_equals_pointwise() {
+  SCOPED_TRACE("D = " + std::to_string(D));
+  for (KernelType t : all_types()) {
+    const Kernel<D> K(t, kH);
+    const double R = K.support_radius();
+    std::vector<double> r;
+    for (int k = 0; k <= 1000; ++k) r.push_back(1.1 * R * k / 1000.0);
+    r.insert(r.end(), {R, std::nextafter(R, 0.0), std::nextafter(R, 2.0 * R), kH, 2.0 * kH, 1e-300});
+    std::vector<double> W(r.size()), dWdr(r.size());
+    K.evaluate(r.size(), r.data(), W.data(), dWdr.data());
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      EXPECT_EQ(W[k], K.W(r[k])) << K.name() << " r/R=" << r[k] / R;
+      EXPECT_EQ(dWdr[k], K.dWdr(r[k])) << K.name() << " r/R=" << r[k] / R;
+    }
+  }
+}
+
+TEST(KernelProperties, BatchEvaluationEqualsThePointwiseOne) {
+  batch_equals_pointwise<1>();
+  batch_equals_pointwise<2>();
+  batch_equals_pointwise<3>();
 }
 
 TEST(KernelNames, RoundTripAndUnknownThrows) {

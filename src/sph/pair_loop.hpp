@@ -37,23 +37,83 @@ inline bool visited(Rows rows, int kind) {
 }
 
 namespace detail {
-// f(i, j, geometry) for the neighbours j of one particle i, in list order.
+// One particle's pairs, gathered before the physics sees them: the separations of the listed
+// neighbours inside the support, then their distances and kernel values in loops of their own. The
+// square root, the kernel and the division of each pair are then independent of the physics that
+// consumes them, and the compiler can vectorise those loops (one pair at a time, the physics waited on
+// each pair's square root and divisions). One scratch per thread, so that a particle allocates nothing.
+template <int D> struct PairBatch {
+  std::vector<int> j;
+  std::vector<Vector<D>> rij;
+  std::vector<double> r, W, dWdr, dWdr_r;
+  std::size_t size = 0;  // pairs gathered (the vectors keep the largest list's length)
+
+  // Fills the batch with i's pairs (0 < r < support, rc2 the support's square), in list order.
+  void gather(std::size_t i, const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, double rc2) {
+    const std::size_t listed = nl.count(i);
+    if (j.size() < listed) j.resize(listed), rij.resize(listed), r.resize(listed), W.resize(listed),
+                           dWdr.resize(listed), dWdr_r.resize(listed);
+    const Vector<D> xi = P.x[i];
+    std::size_t n = 0;
+    // Every candidate is written and only a pair advances n: a branch on the support test was
+    // mispredicted for the third of the list that lies in the skin.
+    for (const int* it = nl.begin(i); it != nl.end(i); ++it) {
+      const Vector<D> d = xi - P.x[*it];
+      const double r2 = d.squaredNorm();
+      j[n] = *it, rij[n] = d, r[n] = r2;
+      n += static_cast<std::size_t>((r2 < rc2) & (r2 != 0.0));  // in_support, without a branch
+    }
+    size = n;
+    for (std::size_t k = 0; k < n; ++k) r[k] = std::sqrt(r[k]);
+    K.evaluate(n, r.data(), W.data(), dWdr.data());
+    for (std::size_t k = 0; k < n; ++k) dWdr_r[k] = dWdr[k] / r[k];
+  }
+};
+
+// The thread's batch, shared by every loop of dimension D, and whether a loop is filling it now.
+template <int D> struct PairBatchSlot {
+  PairBatch<D> batch;
+  bool in_use = false;
+};
+template <int D> PairBatchSlot<D>& pair_batch_slot() {
+  thread_local PairBatchSlot<D> slot;
+  return slot;
+}
+
+template <int D, class PairFn> inline void visit_batch(std::size_t i, const PairBatch<D>& b, PairFn& f) {
+  PairGeometry<D> g;
+  for (std::size_t k = 0; k < b.size; ++k) {
+    g.rij = b.rij[k];
+    g.r = b.r[k];
+    g.W = b.W[k];
+    g.dWdr = b.dWdr[k];
+    g.dWdr_r = b.dWdr_r[k];
+    g.gradW = g.dWdr_r * g.rij;
+    f(static_cast<int>(i), b.j[k], g);
+  }
+}
+
+// f(i, j, geometry) for the neighbours j of one particle i, in list order. A pair function that visits
+// another particle's pairs gets a batch of its own (the thread's batch is in use).
 template <int D, class PairFn>
 inline void pairs_of(std::size_t i, const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                      double rc2, PairFn& f) {
-  PairGeometry<D> g;
-  for (const int* it = nl.begin(i); it != nl.end(i); ++it) {
-    const int j = *it;
-    g.rij = P.x[i] - P.x[j];
-    const double r2 = g.rij.squaredNorm();
-    if (!in_support(r2, rc2)) continue;
-    g.r = std::sqrt(r2);
-    g.W = K.W(g.r);
-    g.dWdr = K.dWdr(g.r);
-    g.dWdr_r = g.dWdr / g.r;
-    g.gradW = g.dWdr_r * g.rij;
-    f(static_cast<int>(i), j, g);
+  PairBatchSlot<D>& slot = pair_batch_slot<D>();
+  PairBatch<D>& batch = slot.batch;
+  bool& in_use = slot.in_use;
+  if (in_use) {
+    PairBatch<D> own;
+    own.gather(i, P, nl, K, rc2);
+    visit_batch(i, own, f);
+    return;
   }
+  struct Lease {
+    bool& flag;
+    explicit Lease(bool& f) : flag(f) { flag = true; }
+    ~Lease() { flag = false; }
+  } lease(in_use);
+  batch.gather(i, P, nl, K, rc2);
+  visit_batch(i, batch, f);
 }
 }  // namespace detail
 
