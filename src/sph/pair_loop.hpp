@@ -22,8 +22,8 @@ template <int D> struct PairGeometry {
 };
 
 // Whether a listed neighbour at squared distance r2 forms a pair: inside the support (rc2 its square)
-// and not at the particle's own position.
-inline bool in_support(double r2, double rc2) { return r2 < rc2 && r2 != 0.0; }
+// and not at the particle's own position. Both tests are evaluated (&, not &&): no branch.
+inline bool in_support(double r2, double rc2) { return (r2 < rc2) & (r2 != 0.0); }
 
 // Which owned particles a loop visits. A wall particle's own values are extrapolated from the fluid
 // (Adami et al. 2012) or prescribed, never computed from an operator, so a loop whose results only
@@ -61,7 +61,7 @@ template <int D> struct PairBatch {
       const Vector<D> d = xi - P.x[*it];
       const double r2 = d.squaredNorm();
       j[n] = *it, rij[n] = d, r[n] = r2;
-      n += static_cast<std::size_t>((r2 < rc2) & (r2 != 0.0));  // in_support, without a branch
+      n += static_cast<std::size_t>(in_support(r2, rc2));
     }
     size = n;
     for (std::size_t k = 0; k < n; ++k) r[k] = std::sqrt(r[k]);
