@@ -77,6 +77,7 @@ template <int D> struct RatesInputs {
   const Particles<D>& P;
   const std::vector<Vector<D>>& uv;                        // velocities the viscous term sees (walls mirrored)
   const std::vector<Vector<D>>& grad_rho;                  // Antuono's density gradients (empty: Molteni)
+  const std::vector<double>& diffused;                     // the density field the diffusion acts on
   const TaitEos& eos;
   const MonaghanAV& av;
   double h, inv_R, nu, delta_h_c0;
@@ -121,7 +122,7 @@ template <int D>
     if (in.corrected_continuity) s.grad_u += difference_vector_gradient_term(Vj, P.v[i], u_j, g);
     else s.drho += continuity_pair(P.rho[i], Vj, Vector<D>(P.v[i] - u_j), g);
     if (in.diffuse)
-      s.drho += density_diffusion_pair(in.delta_h_c0, P.rho[i], P.rho[j], Vj, F,
+      s.drho += density_diffusion_pair(in.delta_h_c0, in.diffused[i], in.diffused[j], Vj, F,
                                        in.grad_rho.empty() ? zero : in.grad_rho[i],
                                        in.grad_rho.empty() ? zero : in.grad_rho[j], g);
   }

@@ -8,6 +8,7 @@
 #include "src/core/log_events.hpp"
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/free_surface.hpp"
+#include "src/sph/kernel_average.hpp"
 #include "src/sph/leapfrog.hpp"
 #include "src/sph/operators.hpp"
 #include "src/sph/step_limits.hpp"
@@ -16,7 +17,8 @@ namespace sph {
 
 namespace {
 const char* const density_names[] = {"continuity", "summation"};
-const char* const diffusion_names[] = {"none", "molteni", "antuono"};
+const char* const diffusion_names[] = {"none", "molteni", "antuono", "particle"};
+const char* const diffusion_models[] = {"none", "MolteniColagrossi", "Antuono", "MolteniColagrossiParticleScale"};
 const char* const gradient_names[] = {"auto", "corrected", "symmetric"};
 
 struct RawOptions {
@@ -39,8 +41,10 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscCall(PetscOptionsReal("-cfl", "WCSPH: acoustic Courant number, dt <= cfl h / (c0 + U_max) (ISPH reads -cfl as an advective one)", "", o->cfl, &o->cfl, nullptr));
   PetscCall(PetscOptionsEList("-density", "Density: continuity equation or kernel summation", "", density_names, 2,
                               density_names[o->density], &o->density, nullptr));
-  PetscCall(PetscOptionsEList("-density_diffusion", "delta-SPH density diffusion: none, molteni (2009), antuono (2010)",
-                              "", diffusion_names, 3, diffusion_names[o->diffusion], &o->diffusion, nullptr));
+  PetscCall(PetscOptionsEList("-density_diffusion", "delta-SPH density diffusion: none, molteni (2009), antuono (2010), particle (molteni on the density's "
+                              "particle-scale part: rho minus its kernel average; periodic scenes without walls or a "
+                              "free surface)",
+                              "", diffusion_names, 4, diffusion_names[o->diffusion], &o->diffusion, nullptr));
   PetscCall(PetscOptionsReal("-delta", "delta-SPH coefficient", "", o->delta, &o->delta, nullptr));
   PetscCall(PetscOptionsReal("-av_alpha", "WCSPH: Monaghan artificial viscosity alpha (default 0: off; the compressible solver's default is 1)", "", o->alpha, &o->alpha, nullptr));
   PetscCall(PetscOptionsReal("-av_beta", "Monaghan artificial viscosity beta", "", o->beta, &o->beta, nullptr));
@@ -125,6 +129,11 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
     P.rho[i] = rho;
   }
   walls_ = has_walls(P);
+  // Where a wall or a free surface cuts the kernel support, the kernel average of rho is not its
+  // resolved part, and rho minus it would not be particle-scale noise.
+  if (diffusion_ == DensityDiffusion::Particle && (walls_ || scene.physics.free_surface))
+    throw Error("-density_diffusion particle needs a scene without walls or a free surface (the kernel average that "
+                "separates the particle scale is cut there); use -density_diffusion molteni");
   // A closed or periodic box fixes the fluid's volume; a free surface lets the weakly compressible
   // fluid change it (hydrostatic compression), so there the constraint would be wrong.
   if (closed_volume_option_ > 0 && scene.physics.free_surface)
@@ -203,6 +212,15 @@ template <int D> void WcsphSolver<D>::compute_rates() {
     grad_rho = gradient_corrected(P, nl, K, P.rho);
     nh.halo().update(grad_rho);
   }
+  // -density_diffusion particle: the diffusion acts on rho minus its kernel average (every support is
+  // all fluid: setup refuses walls and free surfaces).
+  std::vector<double> rho_fine;
+  if (diffusion_ == DensityDiffusion::Particle) {
+    rho_fine.assign(P.rho.begin(), P.rho.begin() + n);
+    const KernelAverage<double> average = kernel_average_in_fluid(P, scene_->neighbourhood, K, rho_fine, nullptr);
+    for (std::size_t i = 0; i < n; ++i) rho_fine[i] = P.rho[i] - average.average[i];
+    nh.halo().update(rho_fine);
+  }
   log_density.end();
   const LogEventScope log_forces(LogEvent::Forces);
   const double delta_h_c0 = delta_ * h * eos_.c0;
@@ -232,7 +250,8 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   acc_.assign(n, Vector<D>::Zero());
   drho_.assign(n, 0.0);
   const double inv_R = 1.0 / K.support_radius();
-  const wcsph::RatesInputs<D> in{P,     uv,         grad_rho,       eos_,       av_,
+  const std::vector<double>& diffused = rho_fine.empty() ? P.rho : rho_fine;
+  const wcsph::RatesInputs<D> in{P,     uv,         grad_rho,       diffused,   eos_,       av_,
                                  h,     inv_R,      phys.nu,        delta_h_c0, phys.viscous(),
                                  consistent, corrected_gradient, continuity, corrected_continuity, diffuse};
   const bool consistent_viscous = consistent && phys.viscous();
@@ -344,7 +363,7 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
   if (c0_ == 0) models["equation_of_state"]["c0_set_by"] = speed_scale_name_;
   models["density"] = density_names[static_cast<int>(density_)];
   if (diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity)
-    models["density_diffusion"] = {{"model", diffusion_ == DensityDiffusion::Molteni ? "MolteniColagrossi" : "Antuono"},
+    models["density_diffusion"] = {{"model", diffusion_models[static_cast<int>(diffusion_)]},
                                    {"delta", delta_}};
   if (av_.active())
     models["artificial_viscosity"] = {{"model", "MonaghanAV"}, {"alpha", av_.alpha}, {"beta", av_.beta},

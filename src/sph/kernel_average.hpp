@@ -1,8 +1,9 @@
 #pragma once
 // The kernel (Shepard) average of a per-particle field, sum_j V_j W_ij f_j / sum_j V_j W_ij (i
 // included): the field's resolved-scale part, so that f - average is the part that varies on the
-// particle scale. Two schemes separate scales with it: particle-scale shifting (src/sph/shifting.hpp)
-// and ISPH's PPE source under -ppe_particle_divergence_rate (solvers/isph/isph_solver.cpp).
+// particle scale. Three schemes separate scales with it: particle-scale shifting (src/sph/shifting.hpp),
+// ISPH's PPE source under -ppe_particle_divergence_rate (solvers/isph/isph_solver.cpp) and WCSPH's
+// particle-scale density diffusion (-density_diffusion particle, solvers/wcsph/wcsph_solver.hpp).
 #include <vector>
 
 #include "src/neighbours/neighbourhood.hpp"
