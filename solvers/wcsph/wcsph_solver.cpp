@@ -41,9 +41,10 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscCall(PetscOptionsReal("-cfl", "WCSPH: acoustic Courant number, dt <= cfl h / (c0 + U_max) (ISPH reads -cfl as an advective one)", "", o->cfl, &o->cfl, nullptr));
   PetscCall(PetscOptionsEList("-density", "Density: continuity equation or kernel summation", "", density_names, 2,
                               density_names[o->density], &o->density, nullptr));
-  PetscCall(PetscOptionsEList("-density_diffusion", "delta-SPH density diffusion: none, molteni (2009), antuono (2010), particle (molteni on the density's "
-                              "particle-scale part: rho minus its kernel average; periodic scenes without walls or a "
-                              "free surface)",
+  PetscCall(PetscOptionsEList("-density_diffusion",
+                              "delta-SPH density diffusion: none, molteni (2009), antuono (2010), particle (molteni "
+                              "on the density's particle-scale part, rho minus its kernel average; scenes without "
+                              "walls or a free surface)",
                               "", diffusion_names, 4, diffusion_names[o->diffusion], &o->diffusion, nullptr));
   PetscCall(PetscOptionsReal("-delta", "delta-SPH coefficient", "", o->delta, &o->delta, nullptr));
   PetscCall(PetscOptionsReal("-av_alpha", "WCSPH: Monaghan artificial viscosity alpha (default 0: off; the compressible solver's default is 1)", "", o->alpha, &o->alpha, nullptr));
@@ -215,7 +216,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   // -density_diffusion particle: the diffusion acts on rho minus its kernel average (every support is
   // all fluid: setup refuses walls and free surfaces).
   std::vector<double> rho_fine;
-  if (diffusion_ == DensityDiffusion::Particle) {
+  if (diffusion_ == DensityDiffusion::Particle && density_ == DensityMethod::Continuity) {
     rho_fine.assign(P.rho.begin(), P.rho.begin() + n);
     const KernelAverage<double> average = kernel_average_in_fluid(P, scene_->neighbourhood, K, rho_fine, nullptr);
     for (std::size_t i = 0; i < n; ++i) rho_fine[i] = P.rho[i] - average.average[i];
