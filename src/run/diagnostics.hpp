@@ -1,5 +1,6 @@
 #pragma once
 // Whole-system figures and run-health checks, reduced over all ranks.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -87,7 +88,12 @@ template <int D> class NeighbourCountCheck {
   void operator()(const Particles<D>& P, const NeighbourList<D>& nl, double support) {
     double sum = 0.0, count = 0.0, fewest = std::numeric_limits<double>::infinity();
     const double rc2 = support * support;
-    for (std::size_t i = 0; i < P.n_owned && i < nl.size(); ++i) {
+    const std::ptrdiff_t rows = static_cast<std::ptrdiff_t>(std::min(P.n_owned, nl.size()));
+    // Threaded: the sums are of whole numbers, exact in any order, so every thread count gives the
+    // same figures (a serial pass was 2 % of a one-thread WCSPH step, more of a threaded one).
+#pragma omp parallel for schedule(static) reduction(+ : sum, count) reduction(min : fewest)
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+      const std::size_t i = static_cast<std::size_t>(r);
       if (P.kind[i] != kFluid) continue;
       double k = 0.0;
       for (const int* j = nl.begin(i); j != nl.end(i); ++j) k += (P.x[i] - P.x[*j]).squaredNorm() < rc2;

@@ -56,11 +56,18 @@ template <int D> struct PairBatch {
     const Vector<D> xi = P.x[i];
     std::size_t n = 0;
     // Every candidate is written and only a pair advances n: a branch on the support test was
-    // mispredicted for the third of the list that lies in the skin.
-    for (const int* it = nl.begin(i); it != nl.end(i); ++it) {
-      const Vector<D> d = xi - P.x[*it];
+    // mispredicted for the third of the list that lies in the skin. The destinations are local
+    // pointers: through the vectors, each store could alias their data pointers, which were then
+    // reloaded at every candidate.
+    const Vector<D>* const x = P.x.data();
+    int* const jd = j.data();
+    Vector<D>* const rd = rij.data();
+    double* const r2d = r.data();
+    for (const int* it = nl.begin(i), *end = nl.end(i); it != end; ++it) {
+      const int k = *it;
+      const Vector<D> d = xi - x[k];
       const double r2 = d.squaredNorm();
-      j[n] = *it, rij[n] = d, r[n] = r2;
+      jd[n] = k, rd[n] = d, r2d[n] = r2;
       n += static_cast<std::size_t>(in_support(r2, rc2));
     }
     size = n;
@@ -80,7 +87,7 @@ template <int D> PairBatchSlot<D>& pair_batch_slot() {
   return slot;
 }
 
-template <int D, class PairFn> inline void visit_batch(std::size_t i, const PairBatch<D>& b, PairFn& f) {
+template <int D, class PairFn> [[gnu::flatten]] inline void visit_batch(std::size_t i, const PairBatch<D>& b, PairFn& f) {
   PairGeometry<D> g;
   for (std::size_t k = 0; k < b.size; ++k) {
     g.rij = b.rij[k];
