@@ -91,18 +91,26 @@ TEST(ConsistentLaplacian, ExactForLinearAndNearlyExactForQuadraticFieldsOnDisord
   EXPECT_GT(em, 0.1);    // the Morris form is O(1) wrong here: the reason for the consistent one
 }
 
-// The one-pass form (factors gathered beside the moments, used by WCSPH's rates and ISPH's opening
-// kick) is the two-pass operator rearranged: the same values to round-off on every particle of a
+// The one-pass form (factors gathered beside the moments, used by WCSPH's rates and both of ISPH's
+// kicks) is the two-pass operator rearranged: the same values to round-off on every particle of a
 // disordered open cloud, edge particles (where the factors fall back to Morris') included, and exact
-// for a quadratic vector field in the interior.
+// for a quadratic vector field in the interior. The factors it hands out (ISPH's PPE reads them) are
+// laplacian_corrections' bitwise.
 TEST(ConsistentLaplacian, OnePassFormEqualsTheTwoPassOperator) {
   Cloud C(20, 0.25, false);
   auto quad = [](const V2& x) {
     return V2(1.5 * x[0] * x[0] - 0.7 * x[0] * x[1] + 0.4 * x[1] * x[1], -0.3 * x[0] * x[0] + 2.0 * x[1] * x[1] + x[0]);
   };
   const auto u = C.sample<V2>(quad);
-  const auto two_pass = laplacian_consistent(C.P, C.nh->list(), C.K, laplacian_corrections(C.P, C.nh->list(), C.K), u);
-  const auto one_pass = laplacian_consistent_one_pass(C.P, C.nh->list(), C.K, u);
+  const auto factors = laplacian_corrections(C.P, C.nh->list(), C.K);
+  const auto two_pass = laplacian_consistent(C.P, C.nh->list(), C.K, factors, u);
+  std::vector<LaplacianCorrection<2>> one_pass_factors;
+  const auto one_pass = laplacian_consistent_one_pass(C.P, C.nh->list(), C.K, u, Rows::All, &one_pass_factors);
+  ASSERT_EQ(one_pass_factors.size(), factors.size());
+  for (std::size_t i = 0; i < factors.size(); ++i) {
+    EXPECT_EQ(one_pass_factors[i].A, factors[i].A);
+    EXPECT_EQ(one_pass_factors[i].c, factors[i].c);
+  }
   double scale = 0.0, diff = 0.0, err = 0.0;
   for (std::size_t i = 0; i < C.P.n_owned; ++i) scale = std::max(scale, two_pass[i].norm());
   for (std::size_t i = 0; i < C.P.n_owned; ++i) {

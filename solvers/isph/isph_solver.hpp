@@ -89,9 +89,9 @@ template <int D> class IsphSolver : public Solver<D> {
   // operators and, under the consistent ones, at the particles flagged in near_surface.
   std::vector<double> ppe_divergence(const std::vector<Vector<D>>& u, const std::vector<char>& near_surface) const;
   // nu lap u at the current positions (walls: Adami's mirrored velocity); u has ghost values. The
-  // consistent Laplacian's factors, if the caller has them; else they are gathered in the same pass.
+  // consistent Laplacian's factors are gathered in the same pass, and handed to `factors` if given.
   std::vector<Vector<D>> viscous_acceleration(const std::vector<Vector<D>>& u,
-                                              const std::vector<LaplacianCorrection<D>>* corrections) const;
+                                              std::vector<LaplacianCorrection<D>>* factors = nullptr) const;
   std::vector<LaplacianCorrection<D>> laplacian_corrections_if_used() const;
   // Makes P.v = u_star - tau grad p / rho divergence-free at the current positions; returns the solve.
   StepReport project(const std::vector<Vector<D>>& u_star, double tau,

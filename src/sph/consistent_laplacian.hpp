@@ -165,8 +165,11 @@ template <int D> struct FusedConsistentLaplacian {
       for (int b = a; b < D; ++b, ++q) second[q] += (e(a) * e(b)) * w_df;
     first.noalias() += e * w_df.transpose();
   }
-  Vector<D> finish(double inv_R) const {
+  // The Laplacian; `factors`, if given, receives the factors it was applied with (those of
+  // laplacian_corrections, bitwise: the same system summed in the same order).
+  Vector<D> finish(double inv_R, LaplacianCorrection<D>* factors = nullptr) const {
     const LaplacianCorrection<D> f = detail::solve_laplacian_factors(system, *directions, inv_R);
+    if (factors) *factors = f;
     Vector<D> lap = first.transpose() * f.c;
     int q = 0;
     for (int a = 0; a < D; ++a)
@@ -187,18 +190,20 @@ std::vector<T> laplacian_consistent(const Particles<D>& P, const NeighbourList<D
 
 // The consistent Laplacian of a vector field with each particle's factors gathered in the same pass
 // (FusedConsistentLaplacian): the operator of laplacian_corrections + laplacian_consistent, to
-// round-off, in one pass over the pairs instead of two, for a caller that needs the factors for
-// nothing else.
+// round-off, in one pass over the pairs instead of two. `factors`, if given, receives every owned
+// particle's factors (Morris' where a row is not visited), as laplacian_corrections gives them.
 template <int D>
 std::vector<Vector<D>> laplacian_consistent_one_pass(const Particles<D>& P, const NeighbourList<D>& nl,
                                                      const Kernel<D>& K, const std::vector<Vector<D>>& f,
-                                                     Rows rows = Rows::All) {
+                                                     Rows rows = Rows::All,
+                                                     std::vector<LaplacianCorrection<D>>* factors = nullptr) {
   std::vector<Vector<D>> out(P.n_owned, Vector<D>::Zero());
+  if (factors) factors->assign(P.n_owned, LaplacianCorrection<D>());
   const double inv_R = 1.0 / K.support_radius();
   for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
     FusedConsistentLaplacian<D> lap(laplacian_direction_buffer<D>());
     visit_pairs([&](int, int j, const PairGeometry<D>& g) { lap.add(P.m[j] / P.rho[j], g, inv_R, Vector<D>(f[j] - f[i])); });
-    out[i] = lap.finish(inv_R);
+    out[i] = lap.finish(inv_R, factors ? &(*factors)[i] : nullptr);
   }, rows);
   return out;
 }
