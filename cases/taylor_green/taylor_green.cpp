@@ -21,6 +21,21 @@ PetscErrorCode read_options(PetscInt* nx, PetscReal* re, PetscReal* U, PetscReal
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
+
+// grad phi with lap phi = -(Dp/Dt) / (rho0 c0^2) at t = 0, in closed form. With a = U, k = 2 pi and
+// lambda the velocity's decay rate, p = -(rho0 a^2 / 4)(cos 2kx + cos 2ky), so dp/dt = 2 lambda p and
+// u . grad p = (rho0 k a^3 / 4)(sin kx sin 3ky - sin 3kx sin ky): the sound the start would excite is in
+// the modes (2, 0), (0, 2) and (1, 3), (3, 1).
+Vector<2> slow_manifold_velocity(const Vector<2>& x, double U, double decay_rate, double c0) {
+  const double a = U, k = 2.0 * M_PI, c2 = c0 * c0;
+  const Vector<2> decay_part = (decay_rate * a * a / (4.0 * k * c2)) *
+                               Vector<2>(std::sin(2.0 * k * x[0]), std::sin(2.0 * k * x[1]));
+  const Vector<2> advection_part =
+      (a * a * a / (40.0 * c2)) *
+      Vector<2>(std::cos(k * x[0]) * std::sin(3.0 * k * x[1]) - 3.0 * std::cos(3.0 * k * x[0]) * std::sin(k * x[1]),
+                3.0 * std::sin(k * x[0]) * std::cos(3.0 * k * x[1]) - std::sin(3.0 * k * x[0]) * std::cos(k * x[1]));
+  return decay_part + advection_part;
+}
 }  // namespace
 
 void TaylorGreen::set_from_options() {
@@ -49,6 +64,9 @@ Physics<2> TaylorGreen::physics() const {
   phys.rho0 = rho0_;
   phys.nu = U_ * 1.0 / re_;
   phys.U = U_;
+  phys.slow_manifold_velocity = [U = U_, rate = decay_rate()](const Vector<2>& x, double c0) {
+    return slow_manifold_velocity(x, U, rate, c0);
+  };
   return phys;
 }
 

@@ -68,6 +68,7 @@ template <int D> class WcsphSolver : public Solver<D> {
   bool walls_ = false;
   std::string speed_scale_name_;
   int closed_volume_option_ = -1;  // -closed_volume: -1 unset (on without a free surface), 0 off, 1 on
+  bool prepared_start_ = false;    // -prepared_start: the case's slow-manifold velocity added at set-up
   bool closed_volume_ = false;
 };
 

@@ -28,6 +28,14 @@ template <int D> struct Physics {
   // The scene has a free surface: ISPH detects surface particles and imposes p = 0 there.
   bool free_surface = false;
 
+  // The velocity to add to the case's incompressible start so that a weakly compressible fluid with
+  // sound speed c0 starts on its slow manifold: grad phi with lap phi = -(Dp/Dt) / (rho0 c0^2), Dp/Dt
+  // the incompressible pressure's material rate at t = 0. Without it the start excites sound waves
+  // whose pressure is O(Mach) times the flow's (the particles carry their pressure, which the
+  // incompressible field changes along their paths). Given by cases that know their exact solution;
+  // empty: not available. Used by WCSPH's -prepared_start.
+  std::function<Vector<D>(const Vector<D>&, double)> slow_manifold_velocity;
+
   bool viscous() const { return nu > 0.0; }
   bool has_body_force() const { return gravity.squaredNorm() > 0.0; }
   bool has_external_force() const { return static_cast<bool>(external_acceleration); }

@@ -13,6 +13,7 @@ expect_error "-steady_tol must be -1 .* \(got -3\)" $small -steady_tol -3 -outpu
 expect_error "-max_steps must be -1 .* \(got -4\)" $small -max_steps -4 -output_dir "$tmp/a"
 expect_error "raise -c0 so that c0 > " -case taylor_green -solver wcsph -c0 0.01 -nx 8 -t_end 0.02 -progress 0 -output_dir "$tmp/a"
 expect_error "-density_diffusion particle needs a scene without walls or a free surface.*use -density_diffusion molteni" -case lid_driven_cavity -solver wcsph -density_diffusion particle -nx 10 -t_end 0.02 -progress 0 -output_dir "$tmp/a"
+expect_error "-prepared_start needs a case that gives its start.s slow-manifold velocity.*remove the option" -case lid_driven_cavity -solver wcsph -prepared_start -nx 10 -t_end 0.02 -progress 0 -output_dir "$tmp/a"
 expect_error "-dt 0.1 exceeds the scheme's stability limit .*-dt_force 1" $small -dt 0.1 -output_dir "$tmp/a"
 [ -e "$tmp/a" ] && { echo "FAIL: a refused run created its output directory"; fail=1; }
 expect_ok $small -t_end 0.1 -dt 0.05 -dt_force 1 -output_dir "$tmp/forced"
