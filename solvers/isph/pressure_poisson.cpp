@@ -57,6 +57,7 @@ template <int D> PressurePoisson<D>::~PressurePoisson() {
 
 template <int D> void PressurePoisson<D>::destroy_system() {
   if (nullspace_) MatNullSpaceDestroy(&nullspace_);
+  if (P_) MatDestroy(&P_);
   if (A_) MatDestroy(&A_);
   if (pinned_equation_) VecDestroy(&pinned_equation_);
   if (spread_) VecDestroy(&spread_);
@@ -180,9 +181,28 @@ void check_ksp_tolerances() {
 }
 }  // namespace
 
+namespace {
+PetscErrorCode read_ppe_options(PetscReal* pc_drop_tol) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Pressure Poisson equation (-solver isph)", "Solver");
+  PetscCall(PetscOptionsReal("-ppe_pc_drop_tol",
+                             "The preconditioner (BoomerAMG) is built from the pressure matrix with each off-diagonal "
+                             "entry below this fraction of its row's diagonal added to the diagonal instead; the "
+                             "Krylov method still solves the whole matrix to -ksp_rtol (0: the whole matrix; only "
+                             "non-symmetric matrices, the default operators)",
+                             "", *pc_drop_tol, pc_drop_tol, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+}  // namespace
+
 template <int D> void PressurePoisson<D>::set_from_options() {
   if (ksp_) return;
   check_ksp_tolerances();
+  PetscReal pc_drop_tol = pc_drop_tol_;
+  SPH_PETSC(read_ppe_options(&pc_drop_tol));
+  require(pc_drop_tol >= 0 && pc_drop_tol < 1, "-ppe_pc_drop_tol", "in [0, 1)", pc_drop_tol);
+  pc_drop_tol_ = pc_drop_tol;
   // -mat_view: PETSc shows every matrix assembled while it is set, the preconditioners' own too
   // (hypre's copy, multigrid's coarse levels, a diagonal shift's re-assembly). The PPE takes it out of
   // the database and shows its own matrix once per solve instead.
@@ -247,6 +267,13 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   destroy_system();
   SPH_PETSC(KSPDestroy(&ksp_));
   rows_.build(P, nh.list(), K, body_force, dirichlet_, pinned_, consistent);
+  // A row's own diagonal decides what it drops, which would make the preconditioner of a symmetric
+  // matrix non-symmetric, and CG needs a symmetric one: symmetric matrices keep theirs whole. Taken
+  // before the matrices are made: an MPIAIJ view renumbers its off-diagonal columns in place.
+  if (nonsymmetric_ && pc_drop_tol_ > 0) {
+    pc_rows_ = lump_weak_entries(rows_, static_cast<PetscInt>(n), pc_drop_tol_);
+    P_ = make_ppe_matrix(pc_rows_, static_cast<PetscInt>(n), false);
+  }
   A_ = make_ppe_matrix(rows_, static_cast<PetscInt>(n), !nonsymmetric_);
 
   if (!nonsymmetric_ && !any_dirichlet) {  // symmetric and singular: the constants span both null spaces
@@ -262,6 +289,7 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
     SPH_PETSC(VecSum(x_, &trace));
     SPH_PETSC(VecGetSize(x_, &rows));
     SPH_PETSC(MatShift(A_, regularisation * trace / rows));
+    if (P_) SPH_PETSC(MatShift(P_, regularisation * trace / rows));
   }
   // A new KSP for each new matrix, made from the options database: every option, viewers included,
   // then acts on every solve. Keeping one KSP saved no measurable set-up time (the preconditioner is
@@ -269,7 +297,7 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   // another matrix (hypre's Euclid hung after a re-partition on 2 ranks; GAMG refused a coarse level
   // of another size after KSPReset).
   create_ksp();
-  SPH_PETSC(KSPSetOperators(ksp_, A_, A_));
+  SPH_PETSC(KSPSetOperators(ksp_, A_, P_ ? P_ : A_));
   if (closed_) prepare_spread();
 }
 
@@ -443,6 +471,13 @@ template <int D> nlohmann::json PressurePoisson<D>::describe() const {
   SPH_PETSC(PCGetType(pc, &ptype));
   SPH_PETSC(KSPGetTolerances(ksp_, &rtol, &abstol, &dtol, &maxit));
   nlohmann::json j{{"type", ktype ? ktype : ""}, {"pc_type", ptype ? ptype : ""}, {"rtol", rtol}, {"max_it", maxit}};
+  if (nonsymmetric_ && pc_drop_tol_ > 0) j["pc_drop_tol"] = pc_drop_tol_;
+  if (P_ && A_) {  // the last matrix's entries the preconditioner kept
+    MatInfo a, p;
+    SPH_PETSC(MatGetInfo(A_, MAT_GLOBAL_SUM, &a));
+    SPH_PETSC(MatGetInfo(P_, MAT_GLOBAL_SUM, &p));
+    if (a.nz_used > 0) j["pc_kept_entries"] = p.nz_used / a.nz_used;
+  }
   if (ptype && std::string(ptype) == PCHYPRE) {
     const char* htype = nullptr;
     SPH_PETSC(PCHYPREGetType(pc, &htype));
