@@ -11,6 +11,7 @@ expect_error "-output_interval must be -1 .* or positive \(got -2\)" $small -out
 expect_error "-checkpoint_interval must be -1 .* \(got -5\)" $small -checkpoint_interval -5 -output_dir "$tmp/a"
 expect_error "-steady_tol must be -1 .* \(got -3\)" $small -steady_tol -3 -output_dir "$tmp/a"
 expect_error "-max_steps must be -1 .* \(got -4\)" $small -max_steps -4 -output_dir "$tmp/a"
+expect_error "-ppe_pc_drop_tol must be in \[0, 1\) \(got 1.5\)" $small -ppe_pc_drop_tol 1.5 -output_dir "$tmp/a"
 expect_error "raise -c0 so that c0 > " -case taylor_green -solver wcsph -c0 0.01 -nx 8 -t_end 0.02 -progress 0 -output_dir "$tmp/a"
 expect_error "-density_diffusion particle needs a scene without walls or a free surface.*use -density_diffusion molteni" -case lid_driven_cavity -solver wcsph -density_diffusion particle -nx 10 -t_end 0.02 -progress 0 -output_dir "$tmp/a"
 expect_error "-prepared_start needs a case that gives its start.s slow-manifold velocity.*remove the option" -case lid_driven_cavity -solver wcsph -prepared_start -nx 10 -t_end 0.02 -progress 0 -output_dir "$tmp/a"
