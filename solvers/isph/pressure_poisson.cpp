@@ -188,8 +188,8 @@ PetscErrorCode read_ppe_options(PetscReal* pc_drop_tol) {
   PetscCall(PetscOptionsReal("-ppe_pc_drop_tol",
                              "The preconditioner (BoomerAMG) is built from the pressure matrix with each off-diagonal "
                              "entry below this fraction of its row's diagonal added to the diagonal instead; the "
-                             "Krylov method still solves the whole matrix to -ksp_rtol (0: the whole matrix; only "
-                             "non-symmetric matrices, the default operators)",
+                             "Krylov method still solves the whole matrix to -ksp_rtol (0: the whole matrix; BoomerAMG "
+                             "on non-symmetric matrices only, the default solver and operators)",
                              "", *pc_drop_tol, pc_drop_tol, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
@@ -267,10 +267,21 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   destroy_system();
   SPH_PETSC(KSPDestroy(&ksp_));
   rows_.build(P, nh.list(), K, body_force, dirichlet_, pinned_, consistent);
-  // A row's own diagonal decides what it drops, which would make the preconditioner of a symmetric
-  // matrix non-symmetric, and CG needs a symmetric one: symmetric matrices keep theirs whole. Taken
-  // before the matrices are made: an MPIAIJ view renumbers its off-diagonal columns in place.
-  if (nonsymmetric_ && pc_drop_tol_ > 0) {
+  // A new KSP for each new matrix, made from the options database: every option, viewers included,
+  // then acts on every solve. Keeping one KSP saved no measurable set-up time (the preconditioner is
+  // rebuilt for each new matrix either way), and some preconditioners cannot be set up again on
+  // another matrix (hypre's Euclid hung after a re-partition on 2 ranks; GAMG refused a coarse level
+  // of another size after KSPReset).
+  // Made first: its preconditioner decides which matrix that is built from.
+  create_ksp();
+  // BoomerAMG only: a one-level preconditioner loses by it (ILU(0) of the lumped matrix took 1.7x the
+  // GMRES iterations on the cavity at nx 50). A row's own diagonal decides what it drops, which would
+  // make the preconditioner of a symmetric matrix non-symmetric, and CG needs a symmetric one:
+  // symmetric matrices keep theirs whole. Taken before the matrices are made: an MPIAIJ view
+  // renumbers its off-diagonal columns in place.
+  PC pc;
+  SPH_PETSC(KSPGetPC(ksp_, &pc));
+  if (nonsymmetric_ && pc_drop_tol_ > 0 && is_boomeramg(pc)) {
     pc_rows_ = lump_weak_entries(rows_, static_cast<PetscInt>(n), pc_drop_tol_);
     P_ = make_ppe_matrix(pc_rows_, static_cast<PetscInt>(n), false);
   }
@@ -291,12 +302,6 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
     SPH_PETSC(MatShift(A_, regularisation * trace / rows));
     if (P_) SPH_PETSC(MatShift(P_, regularisation * trace / rows));
   }
-  // A new KSP for each new matrix, made from the options database: every option, viewers included,
-  // then acts on every solve. Keeping one KSP saved no measurable set-up time (the preconditioner is
-  // rebuilt for each new matrix either way), and some preconditioners cannot be set up again on
-  // another matrix (hypre's Euclid hung after a re-partition on 2 ranks; GAMG refused a coarse level
-  // of another size after KSPReset).
-  create_ksp();
   SPH_PETSC(KSPSetOperators(ksp_, A_, P_ ? P_ : A_));
   if (closed_) prepare_spread();
 }
@@ -471,8 +476,8 @@ template <int D> nlohmann::json PressurePoisson<D>::describe() const {
   SPH_PETSC(PCGetType(pc, &ptype));
   SPH_PETSC(KSPGetTolerances(ksp_, &rtol, &abstol, &dtol, &maxit));
   nlohmann::json j{{"type", ktype ? ktype : ""}, {"pc_type", ptype ? ptype : ""}, {"rtol", rtol}, {"max_it", maxit}};
-  if (nonsymmetric_ && pc_drop_tol_ > 0) j["pc_drop_tol"] = pc_drop_tol_;
-  if (P_ && A_) {  // the last matrix's entries the preconditioner kept
+  if (P_ && A_) {  // the lumped preconditioner's tolerance, and the last matrix's entries it kept
+    j["pc_drop_tol"] = pc_drop_tol_;
     MatInfo a, p;
     SPH_PETSC(MatGetInfo(A_, MAT_GLOBAL_SUM, &a));
     SPH_PETSC(MatGetInfo(P_, MAT_GLOBAL_SUM, &p));
