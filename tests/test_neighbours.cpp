@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 #include <random>
 #include <string>
@@ -20,6 +21,7 @@
 #include "src/neighbours/halo.hpp"
 #include "src/neighbours/neighbour_list.hpp"
 #include "src/neighbours/neighbourhood.hpp"
+#include "src/neighbours/partition.hpp"
 #include "src/particles/particles.hpp"
 
 namespace {
@@ -263,6 +265,33 @@ template <int D> void lattice_matches_brute_force() {
     }
     EXPECT_EQ(static_cast<int>(got[centre].size()), expected) << "radius/dx " << rq;
   }
+}
+
+// Points in the order the solvers keep them, along the Morton curve, so that the search takes runs of
+// consecutive points together; every 37th point is moved far from its place in the order (a run must
+// end there, not grow a box over the whole cloud), and queries stop part-way through a run.
+template <int D> void curve_ordered_points_match_brute_force() {
+  SCOPED_TRACE("D = " + std::to_string(D));
+  const Domain<D> dom = test_domain<D>({});
+  const int n = D == 2 ? 3000 : 4000;
+  std::vector<Vector<D>> x = test::random_points(dom, n, 5u + D);
+  std::vector<std::pair<std::uint64_t, int>> keyed(n);
+  for (int i = 0; i < n; ++i) keyed[i] = {morton_key<D>(x[i], dom.lo, dom.hi), i};
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<Vector<D>> sorted(n);
+  for (int i = 0; i < n; ++i) sorted[i] = x[keyed[i].second];
+  for (int i = 0; i < n; i += 37) std::swap(sorted[i], sorted[n - 1 - i]);
+  for (double radius : {0.02, 0.06, 0.15})
+    for (std::size_t n_query : {static_cast<std::size_t>(n), static_cast<std::size_t>(n / 2 + 5)}) {
+      NeighbourList<D> nl;
+      nl.build(sorted, n_query, radius);
+      EXPECT_EQ(as_lists(nl), brute_force(sorted, n_query, radius)) << "radius " << radius << ", queries " << n_query;
+    }
+}
+
+TEST(NeighbourList, CurveOrderedPointsMatchBruteForce) {
+  curve_ordered_points_match_brute_force<2>();
+  curve_ordered_points_match_brute_force<3>();
 }
 
 TEST(NeighbourList, OpenBoxMatchesBruteForce) {

@@ -3,6 +3,7 @@
 // contiguous block of rows into its own buffer and the blocks are joined in row order, so the result
 // is the same on any thread count.
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #ifdef _OPENMP
@@ -11,11 +12,13 @@
 
 namespace sph {
 
-// fill_row(i, out) appends row i's entries to `out` (a per-thread buffer) and must not throw.
-// On return offset has n_rows + 1 entries and index holds the rows back to back.
-template <class FillRow>
-void build_compressed_rows(std::size_t n_rows, std::vector<std::size_t>& offset, std::vector<int>& index,
-                           FillRow&& fill_row) {
+// make_row_filler() is called once on each thread and returns that thread's fill_row(i, out), which
+// appends row i's entries to `out` (a per-thread buffer) and must not throw; each thread fills its rows
+// in increasing order, so a filler may keep state from one row to the next (work shared by a run of
+// rows). On return offset has n_rows + 1 entries and index holds the rows back to back.
+template <class MakeRowFiller>
+void build_compressed_rows_per_thread(std::size_t n_rows, std::vector<std::size_t>& offset, std::vector<int>& index,
+                                      MakeRowFiller&& make_row_filler) {
   offset.assign(n_rows + 1, 0);
   std::vector<std::vector<int>> block_index;
 #pragma omp parallel
@@ -29,6 +32,7 @@ void build_compressed_rows(std::size_t n_rows, std::vector<std::size_t>& offset,
     block_index.resize(threads);  // implicit barrier: every thread sees the resized vector
     const std::size_t lo = n_rows * thread / threads, hi = n_rows * (thread + 1) / threads;
     std::vector<int>& out = block_index[thread];
+    auto fill_row = make_row_filler();
     for (std::size_t i = lo; i < hi; ++i) {
       const std::size_t start = out.size();
       fill_row(i, out);
@@ -39,6 +43,13 @@ void build_compressed_rows(std::size_t n_rows, std::vector<std::size_t>& offset,
   index.clear();
   index.reserve(offset[n_rows]);
   for (const auto& b : block_index) index.insert(index.end(), b.begin(), b.end());
+}
+
+// The same with one stateless fill_row(i, out) shared by every thread.
+template <class FillRow>
+void build_compressed_rows(std::size_t n_rows, std::vector<std::size_t>& offset, std::vector<int>& index,
+                           FillRow&& fill_row) {
+  build_compressed_rows_per_thread(n_rows, offset, index, [&] { return std::ref(fill_row); });
 }
 
 }  // namespace sph
