@@ -128,6 +128,16 @@ TEST(ConsistentLaplacian, CorrectedDivergenceExactForLinearFields) {
   const auto u = C.sample<V2>([](const V2& x) { return V2(2.0 * x[0] - x[1] + 0.3, 0.5 * x[0] + 1.5 * x[1]); });
   const auto div = divergence_corrected(C.P, C.nh->list(), C.K, u);
   for (std::size_t i = 0; i < C.P.n_owned; ++i) EXPECT_NEAR(div[i], 3.5, 1e-10);
+  // Two fields in one pass: each exact for its linear field, and bitwise the pass of its own.
+  const auto w = C.sample<V2>([](const V2& x) { return V2(-x[0] + 0.2 * x[1], 0.7 * x[0] - 0.4 * x[1] + 1.0); });
+  const auto both = divergences_corrected(C.P, C.nh->list(), C.K, {&u, &w});
+  const auto div_w = divergence_corrected(C.P, C.nh->list(), C.K, w);
+  ASSERT_EQ(both.size(), 2u);
+  for (std::size_t i = 0; i < C.P.n_owned; ++i) {
+    EXPECT_EQ(both[0][i], div[i]);
+    EXPECT_EQ(both[1][i], div_w[i]);
+    EXPECT_NEAR(div_w[i], -1.4, 1e-10);
+  }
 }
 
 // On a periodic lattice the consistent Laplacian converges at second order (the smoothing error).

@@ -176,7 +176,8 @@ std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vec
 }
 
 template <int D>
-std::vector<double> IsphSolver<D>::ppe_divergence(const std::vector<Vector<D>>& u, const std::vector<char>& near_surface) const {
+std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences(const std::vector<const std::vector<Vector<D>>*>& fields,
+                                                                 const std::vector<char>& near_surface) const {
   const Particles<D>& P = scene_->particles;
   const NeighbourList<D>& nl = scene_->neighbourhood.list();
   const Kernel<D>& K = scene_->kernel;
@@ -188,23 +189,32 @@ std::vector<double> IsphSolver<D>::ppe_divergence(const std::vector<Vector<D>>& 
   // harder, a first-order error (Re 100: 0.45 / 0.43 % against a finite-difference solution at nx 50,
   // 0.28 / 0.19 % at rest) that at Re 1000 and nx 30-50 happens to offset the under-resolved vortex's
   // weakness (README, walls: "the best corner depends on Re").
-  std::vector<Vector<D>> u_at_rest;
+  std::vector<std::vector<Vector<D>>> at_rest;
+  std::vector<const std::vector<Vector<D>>*> us = fields;
   if (source_walls_at_rest_ && walls_) {
-    u_at_rest = u;
-    for (std::size_t i = 0; i < u_at_rest.size(); ++i)
-      if (P.kind[i] == kWall) u_at_rest[i].setZero();
+    at_rest.reserve(fields.size());
+    for (std::size_t f = 0; f < fields.size(); ++f) {
+      at_rest.push_back(*fields[f]);
+      for (std::size_t i = 0; i < at_rest[f].size(); ++i)
+        if (P.kind[i] == kWall) at_rest[f][i].setZero();
+      us[f] = &at_rest[f];
+    }
   }
-  const std::vector<Vector<D>>& us = u_at_rest.empty() ? u : u_at_rest;
-  if (operators_ != OperatorSet::Consistent) return divergence(P, nl, K, us);
-  std::vector<double> div = divergence_corrected(P, nl, K, us, Rows::Fluid);
+  std::vector<std::vector<double>> div;
+  if (operators_ != OperatorSet::Consistent) {
+    for (const auto* u : us) div.push_back(divergence(P, nl, K, *u));
+    return div;
+  }
+  div = divergences_corrected(P, nl, K, us, Rows::Fluid);
   // Next to a free surface the kernel support is cut, and the corrected divergence extrapolates u
   // into the empty half: it amplifies the noise of the unconstrained surface particles, and the dam
   // break blew up with it (nx 40, t = 1.44). The plain divergence is used there.
-  if (!near_surface.empty()) {
-    const std::vector<double> plain = divergence(P, nl, K, us);
-    for (std::size_t i = 0; i < P.n_owned; ++i)
-      if (near_surface[i]) div[i] = plain[i];
-  }
+  if (!near_surface.empty())
+    for (std::size_t f = 0; f < us.size(); ++f) {
+      const std::vector<double> plain = divergence(P, nl, K, *us[f]);
+      for (std::size_t i = 0; i < P.n_owned; ++i)
+        if (near_surface[i]) div[f][i] = plain[i];
+    }
   return div;
 }
 
@@ -230,7 +240,6 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
     }
   }
   const std::vector<char>* surface_flags = phys.free_surface ? &surface : nullptr;
-  std::vector<double> source = ppe_divergence(u_star, near_surface);
   // The velocity u^n = P.v that the last projection made divergence-free has, at the particles' new
   // positions, a particle-scale divergence (div u^n minus its kernel average) that the projection
   // cannot remove: its Laplacian is not the divergence of its gradient on that scale. In the source
@@ -239,8 +248,13 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
   // R U tau / h of it instead, so that below the step with R U tau = h it is removed at a rate per
   // unit time; the step's own change of u keeps all of its divergence.
   const double kept = particle_divergence_rate_ * phys.U * tau / K.h();  // the fraction kept; at least 1: all
-  if (particle_divergence_rate_ >= 0 && solves_ > 0 && kept < 1.0) {
-    std::vector<double> div_u = ppe_divergence(P.v, near_surface);
+  const bool remove_particle_scale = particle_divergence_rate_ >= 0 && solves_ > 0 && kept < 1.0;
+  // div u* and, for the particle-scale part below, div u^n: one pass over the pairs for both.
+  std::vector<std::vector<double>> divergences =
+      remove_particle_scale ? ppe_divergences({&u_star, &P.v}, near_surface) : ppe_divergences({&u_star}, near_surface);
+  std::vector<double>& source = divergences[0];
+  if (remove_particle_scale) {
+    std::vector<double>& div_u = divergences[1];  // its ghost values are filled for the average
     const KernelAverage<double> resolved = kernel_average_in_fluid(P, nh, K, div_u, surface_flags);
     for (std::size_t i = 0; i < P.n_owned; ++i) source[i] -= (1.0 - kept) * (div_u[i] - resolved.average[i]);
   }
@@ -267,7 +281,7 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
   for (PetscInt pass = 0; pass < projection_corrections_; ++pass) {
     LogEventScope log_pass_source(ppe_assembly_event());
     nh.halo().update(P.v);
-    std::vector<double> remaining = ppe_divergence(P.v, near_surface);
+    std::vector<double> remaining = ppe_divergences({&P.v}, near_surface)[0];
     std::vector<double> increment_source = kernel_average_in_fluid(P, nh, K, remaining, surface_flags).average;
     for (double& s : increment_source) s /= tau;
     log_pass_source.end();

@@ -87,7 +87,8 @@ template <int D> class IsphSolver : public Solver<D> {
   std::vector<Vector<D>> pressure_gradient(const std::vector<double>& p) const;  // p has ghost values
   // The PPE's divergence of u (with ghost values): the corrected one, or the plain one with classic
   // operators and, under the consistent ones, at the particles flagged in near_surface.
-  std::vector<double> ppe_divergence(const std::vector<Vector<D>>& u, const std::vector<char>& near_surface) const;
+  std::vector<std::vector<double>> ppe_divergences(const std::vector<const std::vector<Vector<D>>*>& fields,
+                                                   const std::vector<char>& near_surface) const;
   // nu lap u at the current positions (walls: Adami's mirrored velocity); u has ghost values. The
   // consistent Laplacian's factors are gathered in the same pass, and handed to `factors` if given.
   std::vector<Vector<D>> viscous_acceleration(const std::vector<Vector<D>>& u,

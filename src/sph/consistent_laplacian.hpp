@@ -29,6 +29,7 @@
 // Rows sum to zero (constants are in the null space) but w_ij != w_ji: a PPE built on it is not
 // symmetric.
 #include <array>
+#include <stdexcept>
 #include <vector>
 
 #include "src/core/small_inverse.hpp"
@@ -210,22 +211,39 @@ std::vector<Vector<D>> laplacian_consistent_one_pass(const Particles<D>& P, cons
 
 // (div u)_i = tr(L_i sum_j V_j grad_i W_ij (u_j - u_i)^T), with the correction matrices gathered in
 // the same pair loop: exact for linear u on any distribution, unlike the plain divergence, whose
-// error is O(1) in the particle disorder.
+// error is O(1) in the particle disorder. Of up to two fields at once (ISPH's source reads the
+// divergences of u* and u^n at the same positions): one pass over the pairs and one moment matrix for
+// both, each result bitwise that of a pass of its own (the same terms in the same order).
 template <int D>
-std::vector<double> divergence_corrected(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                         const std::vector<Vector<D>>& u, Rows rows = Rows::All) {
+std::vector<std::vector<double>> divergences_corrected(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                       const Kernel<D>& K,
+                                                       const std::vector<const std::vector<Vector<D>>*>& u,
+                                                       Rows rows = Rows::All) {
+  constexpr std::size_t max_fields = 2;
+  if (u.empty() || u.size() > max_fields) throw std::logic_error("divergences_corrected: one or two fields");
+  const std::size_t nf = u.size();
   struct Sums {
-    Tensor<D> M, G;
+    Tensor<D> M;
+    std::array<Tensor<D>, max_fields> G;
   };
-  const std::vector<Sums> sums = sum_over_pairs(P, nl, K, Sums{Tensor<D>::Zero(), Tensor<D>::Zero()},
+  const std::vector<Sums> sums = sum_over_pairs(P, nl, K, Sums{Tensor<D>::Zero(), {Tensor<D>::Zero(), Tensor<D>::Zero()}},
                                                 [&](Sums& s, int i, int j, const PairGeometry<D>& g) {
     const double Vj = P.m[j] / P.rho[j];
     s.M += correction_moment_term(Vj, g);
-    s.G += difference_vector_gradient_term(Vj, u[i], u[j], g);
+    for (std::size_t f = 0; f < nf; ++f) s.G[f] += difference_vector_gradient_term(Vj, (*u[f])[i], (*u[f])[j], g);
   }, rows);
-  std::vector<double> div(P.n_owned);
-  for (std::size_t i = 0; i < P.n_owned; ++i) div[i] = (correction_from_moments(sums[i].M) * sums[i].G).trace();
+  std::vector<std::vector<double>> div(nf, std::vector<double>(P.n_owned));
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    const Tensor<D> L = correction_from_moments(sums[i].M);
+    for (std::size_t f = 0; f < nf; ++f) div[f][i] = (L * sums[i].G[f]).trace();
+  }
   return div;
+}
+
+template <int D>
+std::vector<double> divergence_corrected(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                         const std::vector<Vector<D>>& u, Rows rows = Rows::All) {
+  return divergences_corrected(P, nl, K, {&u}, rows)[0];
 }
 
 }  // namespace sph
