@@ -40,7 +40,7 @@ void NeighbourList<D>::build(const std::vector<Vector<D>>& x, std::size_t n_quer
   const double r2 = radius * radius;
   const nanoflann::SearchParams params(32, 0.0, false);
   build_compressed_rows_per_thread(n_query, offset_, index_, [&] {
-    // The thread's current run [run_begin, run_end) and its candidates, in increasing index order.
+    // Where the thread's current run ends, and the run's candidates in increasing index order.
     return [&, run_end = std::size_t(0), candidates = std::vector<int>(),
             found = std::vector<std::pair<uint32_t, double>>()](std::size_t i, std::vector<int>& out) mutable {
       if (i >= run_end) {
