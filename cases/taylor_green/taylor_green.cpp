@@ -97,7 +97,7 @@ std::map<std::string, double> TaylorGreen::errors(const Particles<2>& P, double 
   // velocity() and pressure() per particle, with their decay factors taken once and the pressure's
   // cos 2kx = 1 - 2 sin^2 kx from the velocity's sines: two sine-cosine pairs a particle instead of
   // four trigonometric calls and two exponentials (the per-step diagnostics of a WCSPH run at 1e5
-  // particles: 0.93x the time). The same fields to round-off.
+  // particles: 0.85x the time). The same fields to round-off.
   const double a = U_ * std::exp(decay_rate() * t), k = 2.0 * M_PI, p_amp = -0.25 * rho0_ * a * a;
   struct Shape {
     double s0, c0, s1, c1;
