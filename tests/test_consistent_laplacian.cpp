@@ -189,4 +189,54 @@ TEST(ConsistentLaplacian, ConvergesOnJitteredLatticeWhereMorrisStalls) {
   EXPECT_LT(lap_c[2], 0.01 * lap_m[2]);
 }
 
+// The moment system and the field moments, summed along the pairs in lanes from their distinct
+// moments (laplacian_moments.hpp), against the definitions summed pair by pair: S = sum_j g psi phi^T,
+// second_q = sum_j e^{alpha_q} w_j, first = sum_j e w_j^T, on random pairs (an odd count, so the
+// lanes are padded) in 1D, 2D and 3D.
+template <int D> void check_moments_against_pairwise_sums() {
+  constexpr int m = D * (D + 1) / 2, n = m + D;
+  std::mt19937 gen(11 + D);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), pos(0.05, 1.0);
+  for (int count : {1, 7, 30}) {
+    LaplacianPairs<D>& pairs = laplacian_pair_buffer<D>();
+    Eigen::Matrix<double, n, n> S = Eigen::Matrix<double, n, n>::Zero();
+    std::array<Vector<D>, m> second;
+    for (auto& v : second) v.setZero();
+    Tensor<D> first = Tensor<D>::Zero();
+    for (int k = 0; k < count; ++k) {
+      Vector<D> e;
+      for (int a = 0; a < D; ++a) e(a) = u(gen);
+      e.normalize();
+      Vector<D> w;
+      for (int a = 0; a < D; ++a) w(a) = u(gen);
+      const double s = pos(gen), g = pos(gen);
+      pairs.add(e, s, g, w);
+      Eigen::Matrix<double, n, 1> phi, psi;
+      int q = 0;
+      for (int a = 0; a < D; ++a)
+        for (int b = a; b < D; ++b, ++q) {
+          phi(q) = (a == b ? 1.0 : 2.0) * e(a) * e(b), psi(D + q) = s * s * e(a) * e(b);
+          second[q] += e(a) * e(b) * w;
+        }
+      for (int a = 0; a < D; ++a) phi(m + a) = e(a), psi(a) = s * e(a);
+      S += g * psi * phi.transpose();
+      first += e * w.transpose();
+    }
+    const std::size_t padded = pairs.padded();
+    EXPECT_EQ(padded % detail::kLanes, 0u);
+    const detail::LaplacianSystem<D> system(detail::sum_laplacian_moments(pairs, padded));
+    const double scale = S.cwiseAbs().maxCoeff();
+    EXPECT_LT((system.S - S).cwiseAbs().maxCoeff(), 1e-13 * scale) << "D " << D << ", " << count << " pairs";
+    const detail::LaplacianFieldMoments<D> fields = detail::sum_laplacian_field_moments(pairs, padded);
+    for (int q = 0; q < m; ++q) EXPECT_LT((fields.second[q] - second[q]).cwiseAbs().maxCoeff(), 1e-13 * count);
+    EXPECT_LT((fields.first - first).cwiseAbs().maxCoeff(), 1e-13 * count);
+  }
+}
+
+TEST(ConsistentLaplacian, MomentsInLanesEqualThePairwiseSums) {
+  check_moments_against_pairwise_sums<1>();
+  check_moments_against_pairwise_sums<2>();
+  check_moments_against_pairwise_sums<3>();
+}
+
 }  // namespace

@@ -69,7 +69,7 @@ template <int D> struct RateSums {
   Tensor<D> M = Tensor<D>::Zero(), grad_u = Tensor<D>::Zero();
   double drho = 0.0;
   FusedConsistentLaplacian<D> viscous;  // the consistent viscous Laplacian's moments and factors
-  explicit RateSums(std::vector<Vector<D>>& directions) : viscous(directions) {}
+  explicit RateSums(LaplacianPairs<D>& pairs) : viscous(pairs) {}
 };
 
 // The fields and settings of one rates evaluation that the pair physics reads.

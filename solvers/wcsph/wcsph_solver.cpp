@@ -283,7 +283,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   // of their own, a step took 1.07-1.14x the time (bench/run_bench.py, 2D and 3D at 1e4-1e5 particles).
   for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
     if (P.kind[i] != kFluid) return;  // walls move as prescribed
-    wcsph::RateSums<D> sums(laplacian_direction_buffer<D>());
+    wcsph::RateSums<D> sums(laplacian_pair_buffer<D>());
     visit_pairs([&](int, int j, const PairGeometry<D>& g) { wcsph::add_rates_pair(in, sums, i, j, g); });
     if (consistent_viscous) sums.acc += phys.nu * sums.viscous.finish(inv_R);
     acc_[i] = sums.acc, drho_[i] = sums.drho;

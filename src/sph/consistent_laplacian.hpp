@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "src/core/small_inverse.hpp"
+#include "src/sph/laplacian_moments.hpp"
 #include "src/sph/operators.hpp"
 
 namespace sph {
@@ -56,22 +57,46 @@ inline double consistent_laplacian_coefficient(const LaplacianCorrection<D>& f, 
 }
 
 namespace detail {
+// Where each entry of a particle's system (below) lies among its distinct moments: entry (p, q) is
+// factor * moment[index] of the array `kind` (0: g s e^2, 1: g s e^3, 2: g s^2 e^3, 3: g s^2 e^4).
+template <int D> struct LaplacianSystemLayout {
+  static constexpr int m = D * (D + 1) / 2, n = m + D;
+  std::array<std::array<int, n>, n> kind{}, index{};
+  std::array<std::array<double, n>, n> factor{};
+  constexpr LaplacianSystemLayout() {
+    const Monomials<D, 2> quadratic;
+    const Monomials<D, 3> cubic;
+    const Monomials<D, 4> quartic;
+    for (int p = 0; p < n; ++p)
+      for (int q = 0; q < n; ++q) {
+        const bool linear_row = p < D, linear_column = q >= m;
+        const auto& pa = quadratic.axes[linear_row ? 0 : p - D];
+        const auto& qa = quadratic.axes[linear_column ? 0 : q];
+        factor[p][q] = linear_column || qa[0] == qa[1] ? 1.0 : 2.0;
+        if (linear_row && linear_column) kind[p][q] = 0, index[p][q] = quadratic.index_unsorted({p, q - m});
+        else if (linear_row) kind[p][q] = 1, index[p][q] = cubic.index_unsorted({p, qa[0], qa[1]});
+        else if (linear_column) kind[p][q] = 2, index[p][q] = cubic.index_unsorted({pa[0], pa[1], q - m});
+        else kind[p][q] = 3, index[p][q] = quartic.index_unsorted({pa[0], pa[1], qa[0], qa[1]});
+      }
+  }
+};
+
 // The unknowns (A_ab for a <= b, then c_a) and the moment conditions (first moments, then the second
-// moments k <= l) of one particle, as a square system sum_j 2 g_ij psi_j phi_j^T z = rhs.
+// moments k <= l) of one particle, as a square system S z = rhs with
+//   S = sum_j g_j psi_j phi_j^T,  phi = (c_ab e_a e_b for a <= b, e_a),  psi = (s e_a, s^2 e_a e_b),
+// c_ab = 1 on the diagonal and 2 off it; e = (x_j - x_i) / |x_j - x_i| and s = |x_j - x_i| in units of
+// the support radius (keeps the system well scaled), so r = s e. Its entries are the distinct
+// moments of laplacian_moments.hpp.
 template <int D> struct LaplacianSystem {
   static constexpr int m = D * (D + 1) / 2, n = m + D;
   using Vec = Eigen::Matrix<double, n, 1>;
-  Eigen::Matrix<double, n, n> S = Eigen::Matrix<double, n, n>::Zero();
+  Eigen::Matrix<double, n, n> S;
 
-  // e = (x_j - x_i) / |x_j - x_i| and s = |x_j - x_i| in units of the support radius (keeps the system
-  // well scaled), so r = s e.
-  void add(double weight, const Vector<D>& e, double s) {
-    Vec phi, psi;
-    int q = 0;
-    for (int a = 0; a < D; ++a)
-      for (int b = a; b < D; ++b, ++q) phi(q) = (a == b ? 1.0 : 2.0) * e(a) * e(b), psi(D + q) = (s * s) * (e(a) * e(b));
-    for (int a = 0; a < D; ++a) phi(m + a) = e(a), psi(a) = s * e(a);
-    S.noalias() += (weight * psi) * phi.transpose();
+  explicit LaplacianSystem(const LaplacianMoments<D>& moments) {
+    constexpr LaplacianSystemLayout<D> layout;
+    const double* arrays[4] = {moments.gs2.data(), moments.gs3.data(), moments.gss3.data(), moments.gss4.data()};
+    for (int p = 0; p < n; ++p)
+      for (int q = 0; q < n; ++q) S(p, q) = layout.factor[p][q] * arrays[layout.kind[p][q]][layout.index[p][q]];
   }
   // Returns false (and leaves f as it is) when the moments are degenerate.
   bool solve(LaplacianCorrection<D>& f) const {
@@ -96,28 +121,21 @@ template <int D> struct LaplacianSystem {
   }
 };
 
-// One particle's factors from its system and the directions e_ij of its pairs; Morris' (A = I, c = 0)
-// where the system is degenerate or a weight would be negative.
+// One particle's factors from its recorded pairs (the first pairs.size; `padded` from pairs.padded());
+// Morris' (A = I, c = 0) where the system is degenerate or a weight would be negative.
 template <int D>
-LaplacianCorrection<D> solve_laplacian_factors(const LaplacianSystem<D>& system,
-                                               const std::vector<Vector<D>>& directions, double inv_R) {
+LaplacianCorrection<D> solve_laplacian_factors(const LaplacianPairs<D>& pairs, std::size_t padded, double inv_R) {
   LaplacianCorrection<D> f;
-  if (!system.solve(f)) return {};
+  if (!LaplacianSystem<D>(sum_laplacian_moments(pairs, padded)).solve(f)) return {};
   // Keep the weights positive, as Morris' are: a negative weight (a one-sided neighbourhood, at a
   // free surface) makes the PPE row lose its diagonal dominance, and the dam break blew up.
-  for (const Vector<D>& e : directions)
+  for (std::size_t k = 0; k < pairs.size; ++k) {
+    const Vector<D> e = pairs.direction(k);
     if (!(e.dot(f.A * e) + f.c.dot(e) > 0.0)) return {};
+  }
   return {f.A * (inv_R * inv_R), f.c * (inv_R * inv_R)};
 }
 }  // namespace detail
-
-// The directions e_ij of one particle's pairs, kept for the sign check (one pass over the pairs, not
-// two); one buffer per thread, so that a particle's pairs allocate nothing.
-template <int D> std::vector<Vector<D>>& laplacian_direction_buffer() {
-  thread_local std::vector<Vector<D>> buffer;
-  buffer.clear();
-  return buffer;
-}
 
 // The factors of every owned particle, from one pass over each particle's pairs.
 template <int D>
@@ -126,15 +144,13 @@ std::vector<LaplacianCorrection<D>> laplacian_corrections(const Particles<D>& P,
   std::vector<LaplacianCorrection<D>> out(P.n_owned);
   const double inv_R = 1.0 / K.support_radius();
   for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
-    std::vector<Vector<D>>& directions = laplacian_direction_buffer<D>();
-    detail::LaplacianSystem<D> system;
+    LaplacianPairs<D>& pairs = laplacian_pair_buffer<D>();
     // Moments of g_ij (the factor 2 of w and of the condition cancel); r scaled by 1 / R, so the
     // solution is A R^2 and c R: scaled back in solve_laplacian_factors.
     visit_pairs([&](int, int j, const PairGeometry<D>& g) {
-      directions.push_back(-g.rij / g.r);
-      system.add(P.m[j] / P.rho[j] * (-g.dWdr_r), directions.back(), g.r * inv_R);
+      pairs.add(-g.rij / g.r, g.r * inv_R, P.m[j] / P.rho[j] * (-g.dWdr_r));
     });
-    out[i] = detail::solve_laplacian_factors(system, directions, inv_R);
+    out[i] = detail::solve_laplacian_factors(pairs, pairs.padded(), inv_R);
   }, rows);
   return out;
 }
@@ -146,35 +162,24 @@ std::vector<LaplacianCorrection<D>> laplacian_corrections(const Particles<D>& P,
 // The same operator as laplacian_corrections + consistent_laplacian_coefficient, to round-off, in one
 // pass over the pairs instead of two.
 template <int D> struct FusedConsistentLaplacian {
-  static constexpr int m = D * (D + 1) / 2;
-  detail::LaplacianSystem<D> system;
-  std::array<Vector<D>, m> second{};
-  Tensor<D> first = Tensor<D>::Zero();  // row a: sum_j 2 g_ij e_a (f_j - f_i)^T
-  std::vector<Vector<D>>* directions = nullptr;
+  LaplacianPairs<D>* pairs;
 
-  explicit FusedConsistentLaplacian(std::vector<Vector<D>>& buffer) : directions(&buffer) {
-    for (auto& v : second) v.setZero();
-  }
+  explicit FusedConsistentLaplacian(LaplacianPairs<D>& buffer) : pairs(&buffer) {}
   void add(double Vj, const PairGeometry<D>& g, double inv_R, const Vector<D>& df) {
-    const Vector<D> e = -g.rij / g.r;
-    directions->push_back(e);
     const double gij = Vj * (-g.dWdr_r);
-    system.add(gij, e, g.r * inv_R);
-    const Vector<D> w_df = (2.0 * gij) * df;
-    int q = 0;
-    for (int a = 0; a < D; ++a)
-      for (int b = a; b < D; ++b, ++q) second[q] += (e(a) * e(b)) * w_df;
-    first.noalias() += e * w_df.transpose();
+    pairs->add(-g.rij / g.r, g.r * inv_R, gij, (2.0 * gij) * df);
   }
   // The Laplacian; `factors`, if given, receives the factors it was applied with (those of
-  // laplacian_corrections, bitwise: the same system summed in the same order).
+  // laplacian_corrections, bitwise: the same moments summed in the same order).
   Vector<D> finish(double inv_R, LaplacianCorrection<D>* factors = nullptr) const {
-    const LaplacianCorrection<D> f = detail::solve_laplacian_factors(system, *directions, inv_R);
+    const std::size_t padded = pairs->padded();
+    const LaplacianCorrection<D> f = detail::solve_laplacian_factors(*pairs, padded, inv_R);
     if (factors) *factors = f;
-    Vector<D> lap = first.transpose() * f.c;
+    const detail::LaplacianFieldMoments<D> moments = detail::sum_laplacian_field_moments(*pairs, padded);
+    Vector<D> lap = moments.first.transpose() * f.c;
     int q = 0;
     for (int a = 0; a < D; ++a)
-      for (int b = a; b < D; ++b, ++q) lap += ((a == b ? 1.0 : 2.0) * f.A(a, b)) * second[q];
+      for (int b = a; b < D; ++b, ++q) lap += ((a == b ? 1.0 : 2.0) * f.A(a, b)) * moments.second[q];
     return lap;
   }
 };
@@ -202,7 +207,7 @@ std::vector<Vector<D>> laplacian_consistent_one_pass(const Particles<D>& P, cons
   if (factors) factors->assign(P.n_owned, LaplacianCorrection<D>());
   const double inv_R = 1.0 / K.support_radius();
   for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
-    FusedConsistentLaplacian<D> lap(laplacian_direction_buffer<D>());
+    FusedConsistentLaplacian<D> lap(laplacian_pair_buffer<D>());
     visit_pairs([&](int, int j, const PairGeometry<D>& g) { lap.add(P.m[j] / P.rho[j], g, inv_R, Vector<D>(f[j] - f[i])); });
     out[i] = lap.finish(inv_R, factors ? &(*factors)[i] : nullptr);
   }, rows);
