@@ -276,18 +276,20 @@ def write_default_results(folder, results, baseline_rss, meta):
     md += ["", f"bytes/particle = (peak RSS - {baseline_rss / 2**20:.1f} MiB of a {BASELINE[1][-3]}^2-particle run) / N. "
            "CPU/wall: the run's CPU time over its wall time and the cores it used (ranks x threads); well below 1 means it shared its cores with other work, or its threads waited "
            "(its times are inflated).", ""]
-    # Scaling in N: each phase's s/ps at the largest size over the smallest, per solver (1 = linear).
+    # Scaling in N: each phase's s/ps at the largest size over the smallest, per family of workloads
+    # (the name without its size: wcsph2d-plain-1e5 and -1e6 are one family, wcsph2d-1e5 another),
+    # 1 = linear.
     groups = {}
     for name, solver, dim, r in results:
-        groups.setdefault((solver, dim), []).append((r["n"], name))
+        groups.setdefault(name.rsplit("-", 1)[0], []).append((r["n"], name))
     scal = []
-    for (solver, dim), runs in groups.items():
+    for family, runs in groups.items():
         if len(runs) < 2:
             continue
         runs.sort()
         (n0, a), (n1, b) = runs[0], runs[-1]
         ratios = [f"{col} {by[b][col] / by[a][col]:.2f}" for col in PHASE_COLUMNS if by[a][col] > 0 and by[b][col] > 0]
-        scal.append(f"- {solver} {dim}D, N {n0} -> {n1}: s/ps ratio " + ", ".join(ratios))
+        scal.append(f"- {family}, N {n0} -> {n1}: s/ps ratio " + ", ".join(ratios))
     if scal:
         md += ["Scaling (s per particle-step at the largest N over the smallest; 1.00 = linear in N):", ""] + scal + [""]
     with open(os.path.join(folder, "report.md"), "w") as f:
