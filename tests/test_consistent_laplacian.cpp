@@ -215,10 +215,10 @@ template <int D> void check_moments_against_pairwise_sums() {
       int q = 0;
       for (int a = 0; a < D; ++a)
         for (int b = a; b < D; ++b, ++q) {
-          phi(q) = (a == b ? 1.0 : 2.0) * e(a) * e(b), psi(D + q) = s * s * e(a) * e(b);
+          phi(q) = (a == b ? 1.0 : 2.0) * e(a) * e(b), psi(q) = s * s * e(a) * e(b);
           second[q] += e(a) * e(b) * w;
         }
-      for (int a = 0; a < D; ++a) phi(m + a) = e(a), psi(a) = s * e(a);
+      for (int a = 0; a < D; ++a) phi(m + a) = e(a), psi(m + a) = s * e(a);
       S += g * psi * phi.transpose();
       first += e * w.transpose();
     }
