@@ -2,11 +2,14 @@
 
 #include "cases/beltrami/beltrami.hpp"
 #include "cases/dam_break/dam_break.hpp"
+#include "cases/elliptical_drop/elliptical_drop.hpp"
 #include "cases/lid_driven_cavity/lid_driven_cavity.hpp"
 #include "cases/poiseuille/poiseuille.hpp"
 #include "cases/scene/scene.hpp"
 #include "cases/sedov/sedov.hpp"
 #include "cases/sod/sod.hpp"
+#include "cases/standing_wave/standing_wave.hpp"
+#include "cases/still_water/still_water.hpp"
 #include "cases/square_patch/square_patch.hpp"
 #include "cases/taylor_green/taylor_green.hpp"
 #include "cases/toy_star/toy_star.hpp"
@@ -25,6 +28,12 @@ const std::vector<CaseEntry>& case_registry() {
        [] { return std::make_unique<LidDrivenCavity<2>>(); }, [] { return std::make_unique<LidDrivenCavity<3>>(); }},
       {"dam_break", "collapsing water column (a x 2a, x a in 3D) in a 4a tank, free surface; Martin & Moyce (1952) front", 2,
        nullptr, [] { return std::make_unique<DamBreak<2>>(); }, [] { return std::make_unique<DamBreak<3>>(); }},
+      {"still_water", "water at rest in an open tank (x L deep in 3D), free surface; the hydrostatic state it starts in", 2,
+       nullptr, [] { return std::make_unique<StillWater<2>>(); }, [] { return std::make_unique<StillWater<3>>(); }},
+      {"elliptical_drop", "inviscid circular drop stretched by u = A0 (x, -y), free surface, no gravity; its semi-axes "
+       "against the ODE of Monaghan (1994)", 2, nullptr, [] { return std::make_unique<EllipticalDrop>(); }, nullptr},
+      {"standing_wave", "first sloshing mode of a tank, small amplitude, free surface; its period against linear theory", 2,
+       nullptr, [] { return std::make_unique<StandingWave>(); }, nullptr},
       {"square_patch", "rotating square of fluid in vacuum, free surface; invariants of inviscid flow", 2, nullptr,
        [] { return std::make_unique<SquarePatch>(); }, nullptr},
       {"poiseuille", "body-force-driven channel between walls, periodic in x; series solution (Morris et al. 1997)", 2,

@@ -22,7 +22,7 @@ TEST(DamBreak, IsphFrontFollowsMartinMoyce) {
   EXPECT_EQ(r.summary["status"], "completed");
   EXPECT_LT(r.summary["errors"]["front_position_rel"].get<double>(), 0.15);
   EXPECT_GT(r.summary["errors"]["front_position"].get<double>(), 2.0);  // the column did collapse
-  EXPECT_EQ(r.summary["models"]["free_surface"]["model"], "LindFreeSurface");
+  EXPECT_EQ(r.summary["models"]["free_surface"]["model"], "SurfaceNodes");
 }
 
 // The 3D column (a x 2a x a, walls in front and behind) to T = 2.5, both solvers, against the same

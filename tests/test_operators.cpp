@@ -600,7 +600,8 @@ TEST(Shifting, FusedPairLoopEqualsTheSeparateOperators) {
     f_expected[i] += grad_f[i].dot(dr[i]);
   }
 
-  shift_particles(P, *S.nh, S.K, model, dx, U, dt, {&f}, &surface);
+  const ShiftBoundary<2> boundary{surface, std::vector<V2>(n, V2::Zero())};
+  shift_particles(P, *S.nh, S.K, model, dx, U, dt, {&f}, &boundary);
   for (std::size_t i = 0; i < n; ++i) {
     ASSERT_EQ(P.x[i], x[i]) << i;
     ASSERT_EQ(P.v[i], v[i]) << i;

@@ -64,7 +64,10 @@ struct Box {
   sph::Domain<2> domain;
   Box() {
     domain.periodic = {true, false};
-    for (int k = 0; k < 4; ++k) P.add(sph::Vector<2>(0.2 + 0.2 * k, 0.5), sph::Vector<2>(1.0, 0.0), 1.0, 1.0);
+    for (int k = 0; k < 4; ++k) {
+      P.add(sph::Vector<2>(0.2 + 0.2 * k, 0.5), sph::Vector<2>(1.0, 0.0), 1.0, 1.0);
+      P.id.back() = k;
+    }
   }
 };
 
@@ -80,13 +83,27 @@ TEST(Health, ParticleThroughAWallStopsTheRun) {
   b.P.x[1][0] = 1.5;  // periodic axis: fine (wrapped at the next rebuild)
   EXPECT_NO_THROW(sph::check_health(b.P, b.domain, 100.0));
   b.P.x[1][1] = -0.01;  // below the bottom wall
-  EXPECT_THROW(sph::check_health(b.P, b.domain, 100.0), sph::Error);
+  b.P.x[3][1] = 1.02;   // and another one above the top
+  try {
+    sph::check_health(b.P, b.domain, 100.0);
+    FAIL() << "no error";
+  } catch (const sph::Error& e) {
+    // The message names the first such particle (smallest label) and where it is.
+    EXPECT_NE(std::string(e.what()).find("fluid particle 1 near (1.5, -0.01) left the box"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Health, EnergyGrowthStopsTheRun) {
   Box b;
   EXPECT_NO_THROW(sph::check_health(b.P, b.domain, 2.1));  // KE = 4 * 0.5
   EXPECT_THROW(sph::check_health(b.P, b.domain, 1.9), sph::Error);
+  b.P.v[2] = sph::Vector<2>(3.0, 0.0);  // the fastest particle is named
+  try {
+    sph::check_health(b.P, b.domain, 1.9);
+    FAIL() << "no error";
+  } catch (const sph::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("fluid particle 2 near (0.6, 0.5) the fastest at speed 3"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Health, BlowUpEndsWithFailedSummaryAndFinalFrame) {

@@ -42,9 +42,12 @@
 // -ppe_particle_divergence_rate removes it at a rate per unit time instead (default 10 U/h: all of it
 // at CFL 0.2, the same rate at smaller steps; isph_solver.cpp, project).
 //
-// Free surface (Lind et al. 2012): surface particles (div r below a threshold, with hysteresis) get
-// p = 0; next to them the PPE source is the plain divergence, since the corrected one extrapolates
-// into the cut half of the support (see src/sph/free_surface.hpp and the README's dam break).
+// Free surface (src/sph/free_surface.hpp, src/sph/surface_nodes.hpp): p = 0 holds at each surface
+// particle's node, dx/2 beyond it, and the surface particle keeps its continuity equation, so that a
+// jet that hits a wall or a pool is stopped by its own pressure; particles the solve would put under
+// tension are let go (p = 0 on them), and sheets and drops too thin for a node take p = 0 themselves.
+// Walls met head on add the pressure that stops the fluid within the step (-ppe_wall_impact). Why
+// each of these: docs/verification/free_surface.md.
 //
 // Density stays at rho0 (the divergence-free variant); the time step obeys the advective CFL and the
 // viscous limit only: no sound speed, which is ISPH's advantage over WCSPH.
@@ -52,12 +55,16 @@
 #include "src/run/solver.hpp"
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/energy_budget.hpp"
+#include "src/sph/free_surface.hpp"
 #include "src/sph/kernel_average.hpp"
 #include "src/sph/shifting.hpp"
 
 namespace sph {
 
 enum class PressureGradient { Corrected, Difference, Symmetric };
+// Where the free surface's p = 0 holds (-free_surface_condition): at each surface particle's node,
+// dx/2 beyond it (src/sph/surface_nodes.hpp), or on the surface particles themselves.
+enum class SurfaceCondition { Node, Particle };
 
 template <int D> class IsphSolver : public Solver<D> {
  public:
@@ -72,23 +79,25 @@ template <int D> class IsphSolver : public Solver<D> {
   // The last step's mean pressure pm and free-surface flag move with their particle (migration, checkpoints).
   std::vector<CheckpointField> checkpoint_fields() override {
     mean_pressure_.resize(scene_->particles.n_owned);
-    surface_state_.resize(scene_->particles.n_owned, 0.0);
-    return {{"mean_step_pressure", mean_pressure_.data(), 1}, {"free_surface_state", surface_state_.data(), 1}};
+    std::vector<double>& state = free_surface_model_.state(scene_->particles.n_owned);
+    return {{"mean_step_pressure", mean_pressure_.data(), 1}, {"free_surface_state", state.data(), 1}};
   }
   void restore_scalars(const nlohmann::json& j) override { solves_ = j.value("pressure_solves", 0L); }
-  // The free-surface flag of the last projection (1: p = 0 imposed there), in free-surface scenes.
+  // The free-surface flag of the last projection (1: on the surface), in free-surface scenes.
   std::vector<ScalarField> output_fields() override {
     if (!scene_->physics.free_surface) return {};
-    surface_state_.resize(scene_->particles.n_owned, 0.0);
-    return {{"free_surface", &surface_state_}};
+    return {{"free_surface", &free_surface_model_.state(scene_->particles.n_owned)}};
   }
 
  private:
   std::vector<Vector<D>> pressure_gradient(const std::vector<double>& p) const;  // p has ghost values
   // The PPE's divergence of u (with ghost values): the corrected one, or the plain one with classic
   // operators and, under the consistent ones, at the particles flagged in near_surface.
+  // The walls' velocity in the first field is first_wall_velocity (in the others zero), under
+  // -ppe_wall_velocity zero.
   std::vector<std::vector<double>> ppe_divergences(const std::vector<const std::vector<Vector<D>>*>& fields,
-                                                   const std::vector<char>& near_surface) const;
+                                                   const std::vector<char>& near_surface,
+                                                   const Vector<D>& first_wall_velocity) const;
   // nu lap u at the current positions (walls: Adami's mirrored velocity); u has ghost values. The
   // consistent Laplacian's factors are gathered in the same pass, and handed to `factors` if given.
   std::vector<Vector<D>> viscous_acceleration(const std::vector<Vector<D>>& u,
@@ -97,9 +106,6 @@ template <int D> class IsphSolver : public Solver<D> {
   // Makes P.v = u_star - tau grad p / rho divergence-free at the current positions; returns the solve.
   StepReport project(const std::vector<Vector<D>>& u_star, double tau,
                      const std::vector<LaplacianCorrection<D>>& corrections);
-  // Free-surface flags at the current positions, with hysteresis against surface_state_; `remember`
-  // makes them the new state (once per step, at the projection).
-  std::vector<char> free_surface(bool remember);
   void shift(double dt);
   double max_speed() const;
 
@@ -116,9 +122,11 @@ template <int D> class IsphSolver : public Solver<D> {
   long solves_ = 0;
   std::vector<double> mean_pressure_;  // pm^{n-1/2} per particle
   bool walls_ = false;
-  PetscReal free_surface_threshold_ = 0.0;       // 0: the dimension's default
-  PetscReal free_surface_exit_threshold_ = 0.0;  // 0: default_free_surface_exit_threshold
-  std::vector<double> surface_state_;            // 1: on the free surface at the last projection
+  FreeSurface<D> free_surface_model_;
+  SurfaceCondition surface_condition_ = SurfaceCondition::Node;
+  SurfaceNodes<D> nodes_;  // the free-surface nodes at the current positions (empty: none)
+  int wall_impact_option_ = -1;  // -ppe_wall_impact: -1 unset (on with a free surface), 0 off, 1 on
+  bool wall_impact_ = false;
   EnergyBudget energy_;                          // since this run's start (a restart: since the restart)
 };
 

@@ -22,6 +22,14 @@ inline double ppe_pair_coefficient(double mj, double rho_i, double rho_j, double
   return 8.0 * mj * F / (s * s);
 }
 
+// The walls' impact condition (-ppe_wall_impact): the predicted velocity (fluid: u*, walls: their own;
+// owned and ghost particles), the walls' unit normals into the fluid (owned), and the projection's tau.
+template <int D> struct WallImpact {
+  const std::vector<Vector<D>>* velocity;
+  const std::vector<Vector<D>>* normal;
+  double tau;
+};
+
 struct PpeRows {
   // This rank's rows split as MPIAIJ keeps them: the "diagonal" block of the columns this rank owns
   // (local column indices) and the "off-diagonal" rest (global indices). Row i is [di[i], di[i + 1]).
@@ -39,7 +47,9 @@ struct PpeRows {
   template <int D>
   void build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const Vector<D>& body_force,
              const std::vector<char>& dirichlet, long pinned,
-             const std::vector<LaplacianCorrection<D>>* consistent = nullptr);
+             const std::vector<LaplacianCorrection<D>>* consistent = nullptr,
+             const SurfaceNodes<D>* nodes = nullptr, const WallImpact<D>* impact = nullptr);
+
 
  private:
   std::vector<PetscInt> dlen_, olen_;  // entries filled per row
@@ -80,8 +90,10 @@ inline void close_gaps(std::vector<PetscInt>& ptr, const std::vector<PetscInt>& 
 template <int D>
 void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                     const Vector<D>& body_force, const std::vector<char>& dirichlet, long pinned,
-                    const std::vector<LaplacianCorrection<D>>* consistent) {
+                    const std::vector<LaplacianCorrection<D>>* consistent,
+                    const SurfaceNodes<D>* nodes, const WallImpact<D>* impact) {
   const std::size_t n = P.n_owned;
+  auto surface_row = [&](int i) { return nodes && nodes->has(static_cast<std::size_t>(i)); };
   const PetscInt first = P.first_gid, end = first + static_cast<PetscInt>(n);
   auto owned_column = [&](int j) { return P.gid[j] >= first && P.gid[j] < end; };
   // Row i has an entry for neighbour j: fluid rows for every neighbour, wall rows for fluid ones,
@@ -122,7 +134,17 @@ void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Ker
     const double value = P.kind[i] == kWall ? g.W : c;
     if (owned_column(j)) dj[di[i] + dlen_[i]] = P.gid[j] - first, da[di[i] + dlen_[i]++] = value;
     else oj[oi[i] + olen_[i]] = P.gid[j], oa[oi[i] + olen_[i]++] = value;
-    if (P.kind[i] == kWall) head_[i] += g.W * P.rho[j] * body_force.dot(g.rij);
+    if (P.kind[i] == kWall) {
+      double head = body_force.dot(g.rij);
+      // A fluid particle predicted to move towards the wall at u_n (beyond the closing kick's tau g,
+      // which the hydrostatic head holds) needs the normal pressure gradient rho u_n / tau to stop.
+      if (impact) {
+        const Vector<D>& n = (*impact->normal)[i];
+        const double u_n = ((*impact->velocity)[j] - impact->tau * body_force - (*impact->velocity)[i]).dot(n);
+        head += std::min(u_n, 0.0) * g.rij.dot(n) / impact->tau;
+      }
+      head_[i] += g.W * P.rho[j] * head;
+    }
   });
 
   const std::ptrdiff_t rows = static_cast<std::ptrdiff_t>(n);
@@ -141,12 +163,17 @@ void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Ker
         double sumW = 0.0;
         for (PetscInt k = 1; k < dlen_[i]; ++k) sumW += d[k];
         for (PetscInt k = 0; k < olen_[i]; ++k) sumW += o[k];
+
         // No fluid in reach (or only at the support's edge, where W is 0): p_w = 0, seen by nobody.
         const double scale = sumW > 0.0 ? -diag / sumW : 0.0;
         for (PetscInt k = 1; k < dlen_[i]; ++k) d[k] *= scale;
         for (PetscInt k = 0; k < olen_[i]; ++k) o[k] *= scale;
         if (sumW > 0.0) rhs[i] = diag * head_[i] / sumW;
         else d[0] = 1.0;
+      } else if (surface_row(i) && !dirichlet[i]) {
+        // The node as one more neighbour (p_s = 0 adds nothing to the right-hand side).
+        d[0] += consistent ? P.m[i] / P.rho[i] * surface_node_coefficient((*consistent)[i], *nodes, i)
+                           : -P.m[i] * 2.0 * nodes->volume[i] / P.rho[i] * nodes->morris_factor(K.h());
       } else if (static_cast<long>(i) == pinned || dirichlet[i]) {
         if (static_cast<long>(i) == pinned) pinned_equation.emplace_back(P.gid[i], diag);
         d[0] = diag > 0.0 ? diag : 1.0;

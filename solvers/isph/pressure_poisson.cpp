@@ -234,13 +234,16 @@ template <int D> bool PressurePoisson<D>::reads_late(const std::string& option) 
 template <int D>
 void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
                                   const Vector<D>& body_force, const std::vector<char>* dirichlet,
-                                  const std::vector<LaplacianCorrection<D>>* consistent) {
+                                  const std::vector<LaplacianCorrection<D>>* consistent,
+                                  const SurfaceNodes<D>* nodes, const WallImpact<D>* impact) {
   const std::size_t n = P.n_owned;
   kind_.assign(P.kind.begin(), P.kind.begin() + n);
   if (dirichlet) dirichlet_ = *dirichlet;
   else dirichlet_.assign(n, 0);
   int any_dirichlet = 0;
   for (char c : dirichlet_) any_dirichlet |= c;
+  if (nodes)
+    for (std::size_t i = 0; i < n; ++i) any_dirichlet |= nodes->has(i);
   MPI_Allreduce(MPI_IN_PLACE, &any_dirichlet, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
 
   int any_wall = 0;
@@ -266,7 +269,7 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   // preconditioner's references to it).
   destroy_system();
   SPH_PETSC(KSPDestroy(&ksp_));
-  rows_.build(P, nh.list(), K, body_force, dirichlet_, pinned_, consistent);
+  rows_.build(P, nh.list(), K, body_force, dirichlet_, pinned_, consistent, nodes, impact);
   // A new KSP for each new matrix, made from the options database: every option, viewers included,
   // then acts on every solve. Keeping one KSP saved no measurable set-up time (the preconditioner is
   // rebuilt for each new matrix either way), and some preconditioners cannot be set up again on

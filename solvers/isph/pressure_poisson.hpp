@@ -63,7 +63,8 @@ template <int D> class PressurePoisson {
   // Particles flagged in `dirichlet` (free surface) get the row p = 0.
   void assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
                 const Vector<D>& body_force = Vector<D>::Zero(), const std::vector<char>* dirichlet = nullptr,
-                const std::vector<LaplacianCorrection<D>>* consistent = nullptr);
+                const std::vector<LaplacianCorrection<D>>* consistent = nullptr,
+                const SurfaceNodes<D>* nodes = nullptr, const WallImpact<D>* impact = nullptr);
 
   // Solves div(grad p / rho) = source (one value per owned particle). With use_guess, p holds the
   // initial guess on entry (the previous step's pressure: a good one); otherwise the KSP starts from

@@ -82,6 +82,7 @@ template <int D> struct RatesInputs {
   const MonaghanAV& av;
   double h, inv_R, nu, delta_h_c0;
   bool viscous, consistent, corrected_gradient, continuity, corrected_continuity, diffuse;
+  Vector<D> hydrostatic_density_gradient = Vector<D>::Zero();  // Fourtakas et al. (2019): rho0 g / c0^2
 };
 
 // Adds pair (i, j) to i's sums: pressure (corrected sums or the symmetric force) with artificial
@@ -121,8 +122,11 @@ template <int D>
     const Vector<D> u_j = P.kind[j] == kWall ? Vector<D>::Zero() : Vector<D>(P.v[j]);
     if (in.corrected_continuity) s.grad_u += difference_vector_gradient_term(Vj, P.v[i], u_j, g);
     else s.drho += continuity_pair(P.rho[i], Vj, Vector<D>(P.v[i] - u_j), g);
+    // Fourtakas et al. (2019): the hydrostatic density difference of the pair, (rho0 g / c0^2) . (x_j - x_i)
+    // to first order in g h / c0^2, is not diffused: still water stays still.
     if (in.diffuse)
-      s.drho += density_diffusion_pair(in.delta_h_c0, in.diffused[i], in.diffused[j], Vj, F,
+      s.drho += density_diffusion_pair(in.delta_h_c0, in.diffused[i],
+                                       in.diffused[j] + in.hydrostatic_density_gradient.dot(g.rij), Vj, F,
                                        in.grad_rho.empty() ? zero : in.grad_rho[i],
                                        in.grad_rho.empty() ? zero : in.grad_rho[j], g);
   }

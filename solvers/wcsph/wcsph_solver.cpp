@@ -17,8 +17,8 @@ namespace sph {
 
 namespace {
 const char* const density_names[] = {"continuity", "summation"};
-const char* const diffusion_names[] = {"none", "molteni", "antuono", "particle"};
-const char* const diffusion_models[] = {"none", "MolteniColagrossi", "Antuono", "MolteniColagrossiParticleScale"};
+const char* const diffusion_names[] = {"none", "molteni", "antuono", "particle", "fourtakas"};
+const char* const diffusion_models[] = {"none", "MolteniColagrossi", "Antuono", "MolteniColagrossiParticleScale", "Fourtakas"};
 const char* const gradient_names[] = {"auto", "corrected", "symmetric"};
 
 struct RawOptions {
@@ -26,6 +26,7 @@ struct RawOptions {
   PetscInt density, diffusion, operators, gradient, shift_rate, shift_scales;
   PetscBool shifting;
   PetscBool closed_volume, closed_volume_set;
+  PetscBool diffusion_set;
   PetscBool prepared_start;
 };
 
@@ -45,8 +46,9 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscCall(PetscOptionsEList("-density_diffusion",
                               "delta-SPH density diffusion: none, molteni (2009), antuono (2010), particle (molteni "
                               "on the density's particle-scale part, rho minus its kernel average; scenes without "
-                              "walls or a free surface)",
-                              "", diffusion_names, 4, diffusion_names[o->diffusion], &o->diffusion, nullptr));
+                              "walls or a free surface), fourtakas (molteni without the hydrostatic density "
+                              "difference, Fourtakas et al. 2019; the default under gravity, else molteni)",
+                              "", diffusion_names, 5, diffusion_names[o->diffusion], &o->diffusion, &o->diffusion_set));
   PetscCall(PetscOptionsReal("-delta", "delta-SPH coefficient", "", o->delta, &o->delta, nullptr));
   PetscCall(PetscOptionsReal("-av_alpha", "WCSPH: Monaghan artificial viscosity alpha (default 0: off; the compressible solver's default is 1)", "", o->alpha, &o->alpha, nullptr));
   PetscCall(PetscOptionsReal("-av_beta", "Monaghan artificial viscosity beta", "", o->beta, &o->beta, nullptr));
@@ -89,7 +91,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
                shifting_model_.A, static_cast<PetscInt>(density_), static_cast<PetscInt>(diffusion_),
                static_cast<PetscInt>(operators_), static_cast<PetscInt>(gradient_),
                static_cast<PetscInt>(shifting_model_.rate), static_cast<PetscInt>(shifting_model_.scales), shifting_,
-               closed_volume_option_ > 0 ? PETSC_TRUE : PETSC_FALSE, PETSC_FALSE,
+               closed_volume_option_ > 0 ? PETSC_TRUE : PETSC_FALSE, PETSC_FALSE, PETSC_FALSE,
                prepared_start_ ? PETSC_TRUE : PETSC_FALSE};
   SPH_PETSC(read_options(&o));
   require(o.c0 >= 0, "-c0", "non-negative", o.c0);
@@ -112,7 +114,9 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   operators_ = static_cast<OperatorSet>(o.operators);
   gradient_ = static_cast<WcsphGradient>(o.gradient);
   diffusion_ = static_cast<DensityDiffusion>(o.diffusion);
+  diffusion_chosen_ = o.diffusion_set;
   if (delta_ == 0.0) diffusion_ = DensityDiffusion::None;
+  free_surface_.set_from_options();
 }
 
 template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
@@ -152,6 +156,12 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
     P.rho[i] = rho;
   }
   walls_ = has_walls(P);
+  free_surface_.setup();
+  // Under gravity Molteni's term diffuses the hydrostatic stratification: mass flows down, and still
+  // water sank into its floor (t = 19 at 40 particles a unit). Fourtakas et al. (2019) diffuse the
+  // density's difference from the hydrostatic one instead.
+  if (!diffusion_chosen_ && diffusion_ == DensityDiffusion::Molteni && scene.physics.has_body_force())
+    diffusion_ = DensityDiffusion::Fourtakas;
   // Where a wall or a free surface cuts the kernel support, the kernel average of rho is not its
   // resolved part, and rho minus it would not be particle-scale noise.
   if (diffusion_ == DensityDiffusion::Particle && (walls_ || scene.physics.free_surface))
@@ -274,9 +284,10 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   drho_.assign(n, 0.0);
   const double inv_R = 1.0 / K.support_radius();
   const std::vector<double>& diffused = rho_fine.empty() ? P.rho : rho_fine;
-  const wcsph::RatesInputs<D> in{P,     uv,         grad_rho,       diffused,   eos_,       av_,
+  wcsph::RatesInputs<D> in{P,     uv,         grad_rho,       diffused,   eos_,       av_,
                                  h,     inv_R,      phys.nu,        delta_h_c0, phys.viscous(),
                                  consistent, corrected_gradient, continuity, corrected_continuity, diffuse};
+  if (diffusion_ == DensityDiffusion::Fourtakas) in.hydrostatic_density_gradient = eos_.rho0 * phys.gravity / (eos_.c0 * eos_.c0);
   const bool consistent_viscous = consistent && phys.viscous();
   // Each particle's sums live in locals while its pairs are visited, and are stored once. The
   // consistent viscous Laplacian is gathered in the same loop as the rest: with its factors in a pass
@@ -347,7 +358,7 @@ template <int D> double WcsphSolver<D>::stable_dt() const {
   double dt = cfl_ * h / (buf[1] + std::sqrt(buf[0]));
   if (phys.viscous()) dt = std::min(dt, kViscousStepFactor * h * h / phys.nu);
   if (max_acc_ > 0.0) dt = std::min(dt, kForceStepFactor * std::sqrt(h / max_acc_));
-  if (shifting_) dt = std::min(dt, shifting_model_.max_dt(h, phys.U));
+  if (shifting_) dt = std::min(dt, shifting_model_.max_dt(h, largest_speed(scene_->particles)));
   return dt;
 }
 
@@ -367,11 +378,12 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
   });
   if (shifting_) {
     if (!nh.update(P)) nh.halo().update(P.rho);
-    // At a free surface particles shift only along it (Lind et al. 2012).
-    std::vector<char> surface;
+    // At a free surface particles shift only along it (Lind et al. 2012), beside it never outwards.
+    ShiftBoundary<D> boundary;
     if (scene_->physics.free_surface)
-      surface = free_surface_particles(P, nh.list(), scene_->kernel, default_free_surface_threshold<D>());
-    shift_particles(P, nh, scene_->kernel, shifting_model_, scene_->dx, scene_->physics.U, dt, {&P.rho}, surface.empty() ? nullptr : &surface);
+      boundary = free_surface_.shift_boundary(P, nh, scene_->kernel, free_surface_.detect(P, nh.list(), scene_->kernel, true));
+    shift_particles(P, nh, scene_->kernel, shifting_model_, scene_->dx, largest_speed(P), dt, {&P.rho},
+                    scene_->physics.free_surface ? &boundary : nullptr);
   }
   const LogEventScope log_density(LogEvent::Density);
   nh.halo().update(P.rho);
@@ -399,6 +411,7 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
   models["operators"] = operator_set_names[static_cast<int>(operators_)];
   models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
   if (shifting_) models["shifting"] = shifting_model_.describe();
+  if (phys.free_surface) models["free_surface"] = free_surface_.describe();
   if (closed_volume_ && density_ == DensityMethod::Continuity) models["closed_volume"] = true;
   if (prepared_start_) models["start"] = "slow manifold (case's compressive velocity added)";
   // Mean fluid density over rho0, minus 1: the volume drift of a closed scene (the cavity).
@@ -410,6 +423,7 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
   const double mean_rho = sums[1] > 0 ? sums[0] / sums[1] : eos_.rho0;
   return {{"models", models},
           {"cfl", cfl_},
+          {"mean_fluid_density", mean_rho},
           {"conservation", {{"mean_fluid_density_rel", mean_rho / eos_.rho0 - 1.0}}}};
 }
 

@@ -8,6 +8,7 @@
 #include "src/run/solver.hpp"
 #include "solvers/wcsph/wcsph_iact.hpp"
 #include "src/sph/consistent_laplacian.hpp"
+#include "src/sph/free_surface.hpp"
 #include "src/sph/shifting.hpp"
 
 namespace sph {
@@ -23,7 +24,7 @@ enum class DensityMethod { Continuity, Summation };
 // 1.1e-3 (1.8, 1.5, 1.3) with delta 0.1; Molteni with delta ~ h^2: 1.33e-3, 2.12e-4, 9.56e-5, 5.8e-5
 // (2.7, 1.2, 0.7), pressure not converging (2.2e-2, 1.1e-2, 1.1e-2). README, "WCSPH with
 // particle-scale delta-SPH". Needs supports of fluid only: scenes with walls or a free surface are refused.
-enum class DensityDiffusion { None, Molteni, Antuono, Particle };
+enum class DensityDiffusion { None, Molteni, Antuono, Particle, Fourtakas };
 enum class WcsphGradient { Auto, Corrected, Symmetric };
 
 template <int D> class WcsphSolver : public Solver<D> {
@@ -35,9 +36,17 @@ template <int D> class WcsphSolver : public Solver<D> {
   StepReport step(double dt) override;
   nlohmann::json describe() const override;
   // The leapfrog carries the last accelerations and density rates into the next step.
+  // The free-surface flags of the last step move with their particles (their hysteresis).
   std::vector<CheckpointField> checkpoint_fields() override {
     acc_.resize(scene_->particles.n_owned), drho_.resize(scene_->particles.n_owned);
-    return {{"acceleration", acc_.empty() ? nullptr : acc_[0].data(), D}, {"density_rate", drho_.data(), 1}};
+    std::vector<double>& surface = free_surface_.state(scene_->particles.n_owned);
+    return {{"acceleration", acc_.empty() ? nullptr : acc_[0].data(), D}, {"density_rate", drho_.data(), 1},
+            {"free_surface_state", surface.data(), 1}};
+  }
+  // The free-surface flag of the last step (1: on the surface), in free-surface scenes.
+  std::vector<ScalarField> output_fields() override {
+    if (!scene_->physics.free_surface) return {};
+    return {{"free_surface", &free_surface_.state(scene_->particles.n_owned)}};
   }
 
  private:
@@ -58,10 +67,12 @@ template <int D> class WcsphSolver : public Solver<D> {
   PetscReal delta_ = 0.1;
   DensityMethod density_ = DensityMethod::Continuity;
   DensityDiffusion diffusion_ = DensityDiffusion::Molteni;
+  bool diffusion_chosen_ = false;  // -density_diffusion given: no default by the scene's physics
   OperatorSet operators_ = OperatorSet::Consistent;
   WcsphGradient gradient_ = WcsphGradient::Auto;
   PetscBool shifting_ = PETSC_TRUE;
   LindShifting shifting_model_;
+  FreeSurface<D> free_surface_;
   std::vector<Vector<D>> acc_;
   std::vector<double> drho_;
   double max_acc_ = 0.0;

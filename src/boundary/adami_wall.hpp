@@ -48,6 +48,32 @@ template <int D> struct AdamiWall {
     return s;
   }
 
+  // The walls' unit normals, into the fluid: -grad of the walls' own kernel sum, sum over wall
+  // neighbours j of V_j grad_w W_wj, which points into the wall body on its first layers (the layers
+  // that fluid particles reach); where that sum vanishes (the middle of a thin wall), the direction from
+  // the wall particle to the Shepard centroid of its fluid neighbours. Zero for walls with no fluid
+  // neighbour. Owned particles.
+  static std::vector<Vector<D>> normals(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                        const Stencil& s) {
+    const std::vector<Vector<D>> g = sum_over_pairs(P, nl, K, Vector<D>(Vector<D>::Zero()),
+                                                    [&](Vector<D>& sum, int, int j, const PairGeometry<D>& pg) {
+      if (P.kind[j] != kFluid) sum += (P.m[j] / P.rho[j]) * pg.gradW;
+    }, Rows::Walls);
+    std::vector<Vector<D>> n(P.n_owned, Vector<D>::Zero());
+    const double scale = 1e-3 / K.h();  // |g| of an exposed wall face is O(1/h)
+    for (std::size_t w = 0; w < P.n_owned; ++w) {
+      if (P.kind[w] != kWall || s.offset[w] == s.offset[w + 1]) continue;
+      if (g[w].norm() > scale) {
+        n[w] = -g[w].normalized();
+      } else {
+        Vector<D> towards = Vector<D>::Zero();
+        for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) towards -= s.weight[k] * s.r_wf[k];
+        if (towards.norm() > 0.0) n[w] = towards.normalized();
+      }
+    }
+    return n;
+  }
+
   // Wall pressure from the fluid (for explicit schemes; ISPH puts the same relation into its matrix).
   static void extrapolate_pressure(const Stencil& s, Particles<D>& P, const Vector<D>& body_force) {
     for (std::size_t w = 0; w < P.n_owned; ++w) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <string>
 
 #include "src/core/domain.hpp"
 #include "src/core/error.hpp"
@@ -43,25 +44,110 @@ template <int D> double fluid_mass(const Particles<D>& P) {
   return m;
 }
 
+// The owned fluid particle with the smallest label among those `bad` picks (over all ranks): its label
+// and position, for messages that say where something went wrong; label -1 when there is none.
+template <int D> struct NamedParticle {
+  long long label = -1;
+  Vector<D> x = Vector<D>::Zero();
+  std::string where() const {
+    std::ostringstream s;
+    s << "fluid particle " << label << " near (";
+    for (int a = 0; a < D; ++a) s << (a ? ", " : "") << x[a];
+    s << ")";
+    return s.str();
+  }
+};
+
+template <int D, class Pick> NamedParticle<D> first_particle(const Particles<D>& P, Pick&& bad) {
+  long long label = std::numeric_limits<long long>::max();
+  std::size_t local = P.n_owned;
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (P.kind[i] == kFluid && bad(i) && P.id[i] < label) label = P.id[i], local = i;
+  long long global = label;
+  MPI_Allreduce(MPI_IN_PLACE, &global, 1, MPI_LONG_LONG, MPI_MIN, PETSC_COMM_WORLD);
+  NamedParticle<D> out;
+  if (global == std::numeric_limits<long long>::max()) return out;
+  out.label = global;
+  if (local < P.n_owned && label == global) out.x = P.x[local];
+  MPI_Allreduce(MPI_IN_PLACE, out.x.data(), D, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  return out;
+}
+
+// The fluid particles closer than half a spacing to a wall particle: inside a wall, since a wall's face
+// lies half a spacing from its first layer. Counted on the current lists (pairs that came within reach
+// since the last rebuild may be missed). All ranks.
+template <int D> long fluid_in_walls(const Particles<D>& P, const NeighbourList<D>& nl, double dx) {
+  const double r2 = 0.25 * dx * dx;
+  long count = 0;
+  const std::ptrdiff_t rows = static_cast<std::ptrdiff_t>(std::min(P.n_owned, nl.size()));
+#pragma omp parallel for schedule(static) reduction(+ : count)
+  for (std::ptrdiff_t r = 0; r < rows; ++r) {
+    const std::size_t i = static_cast<std::size_t>(r);
+    if (P.kind[i] != kFluid) continue;
+    bool inside = false;
+    for (const int* j = nl.begin(i); j != nl.end(i) && !inside; ++j)
+      inside = P.kind[*j] != kFluid && (P.x[i] - P.x[*j]).squaredNorm() < r2;
+    count += inside;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPI_LONG, MPI_SUM, PETSC_COMM_WORLD);
+  return count;
+}
+
+// The share of fluid particles where `flag` (one value per owned particle) is nonzero. All ranks.
+template <int D> double fluid_share(const Particles<D>& P, const std::vector<double>& flag) {
+  double sums[2] = {0.0, 0.0};
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (P.kind[i] == kFluid) sums[0] += flag[i] != 0.0, sums[1] += 1.0;
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  return sums[1] > 0.0 ? sums[0] / sums[1] : 0.0;
+}
+
 // Run health: stops a run whose state is no longer a number, whose fluid left the box through a
-// non-periodic side (walls crossed), or whose kinetic energy exceeds `ke_bound`.
+// non-periodic side (walls crossed, or the open top of a scene), or whose kinetic energy exceeds
+// `ke_bound`. The message names the first such particle and where it is.
 template <int D> void check_health(const Particles<D>& P, const Domain<D>& domain, double ke_bound) {
+  auto not_finite = [&](std::size_t i) { return !P.x[i].allFinite() || !P.v[i].allFinite() || !std::isfinite(P.p[i]); };
+  auto outside = [&](std::size_t i) {
+    for (int a = 0; a < D; ++a)
+      if (!domain.periodic[a] && (P.x[i][a] < domain.lo[a] || P.x[i][a] > domain.hi[a])) return true;
+    return false;
+  };
   int bad[2] = {0, 0};  // NaN, outside
   double ke = 0.0;
   for (std::size_t i = 0; i < P.n_owned; ++i) {
-    if (!P.x[i].allFinite() || !P.v[i].allFinite() || !std::isfinite(P.p[i])) bad[0] = 1;
+    if (not_finite(i)) bad[0] = 1;
     if (P.kind[i] != kFluid) continue;
     ke += 0.5 * P.m[i] * P.v[i].squaredNorm();
-    for (int a = 0; a < D; ++a)
-      if (!domain.periodic[a] && (P.x[i][a] < domain.lo[a] || P.x[i][a] > domain.hi[a])) bad[1] = 1;
+    if (outside(i)) bad[1] = 1;
   }
   MPI_Allreduce(MPI_IN_PLACE, bad, 2, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
   MPI_Allreduce(MPI_IN_PLACE, &ke, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-  if (bad[0]) throw Error("position, velocity or pressure became NaN/Inf: the run blew up; reduce -cfl or -dt");
-  if (bad[1]) throw Error("a fluid particle left the domain through a wall: the run is unstable; reduce -cfl or -dt");
-  if (ke > ke_bound)
-    throw Error("kinetic energy " + std::to_string(ke) + " exceeds 1000 x its reference scale (1/2 M U^2): the run "
-                "blew up; reduce -cfl or -dt");
+  if (bad[0]) {
+    const NamedParticle<D> p = first_particle(P, not_finite);
+    throw Error("position, velocity or pressure became NaN/Inf" + (p.label >= 0 ? " (" + p.where() + " first)" : std::string()) +
+                ": the run blew up; reduce -cfl or -dt");
+  }
+  if (bad[1]) {
+    const NamedParticle<D> p = first_particle(P, outside);
+    std::ostringstream msg;
+    msg << p.where() << " left the box [";
+    for (int a = 0; a < D; ++a) msg << (a ? ", " : "") << domain.lo[a] << ", " << domain.hi[a];
+    msg << "]: it went through a wall or over the box's open top; if the fluid may fly that high, enlarge the "
+           "scene's box, else the walls let it through (see fluid_in_walls in timeseries.csv)";
+    throw Error(msg.str());
+  }
+  if (ke > ke_bound) {
+    // The fastest particle: where the blow-up started, most often.
+    double fastest = 0.0;
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      if (P.kind[i] == kFluid) fastest = std::max(fastest, P.v[i].norm());
+    MPI_Allreduce(MPI_IN_PLACE, &fastest, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+    const NamedParticle<D> p = first_particle(P, [&](std::size_t i) { return P.v[i].norm() == fastest; });
+    std::ostringstream msg;
+    msg << "kinetic energy " << ke << " exceeds 1000 x its reference scale (1/2 M U^2), " << p.where()
+        << " the fastest at speed " << fastest << ": the run blew up; reduce -cfl or -dt";
+    throw Error(msg.str());
+  }
 }
 
 // The state a run starts from (after the solver's set-up, or read from a checkpoint) must be finite:

@@ -7,6 +7,7 @@
 #include <optional>
 #include <sstream>
 
+#include "src/boundary/adami_wall.hpp"
 #include "src/core/log_events.hpp"
 #include "src/core/options.hpp"
 #include "src/io/checkpoint.hpp"
@@ -113,6 +114,7 @@ template <int D> class TimeLoop {
   long last_checkpoint_step_ = -1, failing_step_ = 0;
   int interrupted_ = 0;  // the signal that stopped the run
   bool warned_dt_ = false;
+  bool surface_column_ = false, walls_column_ = false;  // timeseries.csv's free_surface_share, fluid_in_walls
   double last_frame_t_ = 0.0, ke_bound_ = 0.0;
   std::optional<Progress> progress_;
   std::optional<Cadence> frames_, checkpoints_;
@@ -215,6 +217,12 @@ template <int D> void TimeLoop<D>::open_outputs() {
   for (int a = 0; a < D; ++a) columns.push_back(std::string("momentum_") + "xyz"[a]);
   columns.insert(columns.end(), {"ksp_iterations", "ksp_reason"});
   for (const auto& e : case_.errors(s_.P, 0.0)) columns.push_back(e.first);
+  // Free-surface and wall health: the share of fluid particles on the surface (the scheme's flags) and
+  // the fluid particles inside a wall (diagnostics.hpp).
+  surface_column_ = s_.scene.physics.free_surface && has_output_field(solver_.output_fields(), "free_surface");
+  walls_column_ = has_walls(s_.P);
+  if (surface_column_) columns.push_back("free_surface_share");
+  if (walls_column_) columns.push_back("fluid_in_walls");
   if (restarting) series_.emplace(dir + "/timeseries.csv", columns, 1, resumed_.t);
   else series_.emplace(dir + "/timeseries.csv", columns);
 }
@@ -290,6 +298,8 @@ template <int D> void TimeLoop<D>::advance() {
   row.push_back(report.linear_reason);
   case_.accumulate(s_.P, t_, dt);
   for (const auto& e : case_.errors(s_.P, t_)) row.push_back(e.second);
+  if (surface_column_) row.push_back(fluid_share(s_.P, *output_field(solver_.output_fields(), "free_surface")));
+  if (walls_column_) row.push_back(static_cast<double>(fluid_in_walls(s_.P, s_.nh.list(), case_.spacing())));
   series_->row(row);
   log_diagnostics.end();
   progress_->update(step_, t_, dt, report.linear_iterations);

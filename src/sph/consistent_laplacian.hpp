@@ -35,6 +35,7 @@
 #include "src/core/small_inverse.hpp"
 #include "src/sph/laplacian_moments.hpp"
 #include "src/sph/operators.hpp"
+#include "src/sph/surface_nodes.hpp"
 
 namespace sph {
 
@@ -227,7 +228,7 @@ template <int D>
 std::vector<std::vector<double>> divergences_corrected(const Particles<D>& P, const NeighbourList<D>& nl,
                                                        const Kernel<D>& K,
                                                        const std::vector<const std::vector<Vector<D>>*>& u,
-                                                       Rows rows = Rows::All) {
+                                                       Rows rows = Rows::All, const SurfaceNodes<D>* nodes = nullptr) {
   constexpr std::size_t max_fields = 2;
   if (u.empty() || u.size() > max_fields) throw std::logic_error("divergences_corrected: one or two fields");
   const std::size_t nf = u.size();
@@ -243,7 +244,9 @@ std::vector<std::vector<double>> divergences_corrected(const Particles<D>& P, co
   }, rows);
   std::vector<std::vector<double>> div(nf, std::vector<double>(P.n_owned));
   for (std::size_t i = 0; i < P.n_owned; ++i) {
-    const Tensor<D> L = correction_from_moments(sums[i].M);
+    // A surface node moves with its particle: it adds to the moments only.
+    const Tensor<D> L = nodes && nodes->is_splash(i) ? Tensor<D>(Tensor<D>::Identity())
+                        : correction_from_moments(nodes && nodes->has(i) ? Tensor<D>(sums[i].M + nodes->moment_term(i)) : sums[i].M);
     for (std::size_t f = 0; f < nf; ++f) div[f][i] = (L * sums[i].G[f]).trace();
   }
   return div;
@@ -253,6 +256,31 @@ template <int D>
 std::vector<double> divergence_corrected(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                                          const std::vector<Vector<D>>& u, Rows rows = Rows::All) {
   return divergences_corrected(P, nl, K, {&u}, rows)[0];
+}
+
+// The factors of the particles with a free-surface node (src/sph/surface_nodes.hpp), refitted with the
+// node as one more neighbour (p = 0 there), so that their rows stay exact for quadratic fields that
+// vanish at the surface; the others are left as they are.
+template <int D>
+void add_surface_nodes(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const SurfaceNodes<D>& nodes,
+                       std::vector<LaplacianCorrection<D>>& factors) {
+  const double inv_R = 1.0 / K.support_radius();
+  for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
+    if (!nodes.has(i)) return;
+    LaplacianPairs<D>& pairs = laplacian_pair_buffer<D>();
+    visit_pairs([&](int, int j, const PairGeometry<D>& g) {
+      pairs.add(-g.rij / g.r, g.r * inv_R, P.m[j] / P.rho[j] * (-g.dWdr_r));
+    });
+    pairs.add(nodes.normal[i], nodes.distance * inv_R, nodes.node_weight(i));
+    factors[i] = detail::solve_laplacian_factors(pairs, pairs.padded(), inv_R);
+  }, Rows::Fluid);
+}
+
+// The node's weight w_is in i's consistent Laplacian (consistent_laplacian_coefficient for the node).
+template <int D>
+double surface_node_coefficient(const LaplacianCorrection<D>& f, const SurfaceNodes<D>& nodes, std::size_t i) {
+  const Vector<D>& e = nodes.normal[i];
+  return 2.0 * nodes.node_weight(i) * (e.dot(f.A * e) + f.c.dot(e));
 }
 
 }  // namespace sph

@@ -1,18 +1,25 @@
 #pragma once
-// Free-surface particles: the divergence of position, div r_i = -(1/rho_i) sum_j m_j r_ij . grad_i W_ij,
-// equals the dimension D inside the fluid and drops where the support is cut by the surface
-// (Lee et al. 2008; Lind et al. 2012 use div r < 1.5 in 2D). Only fluid particles are flagged.
-// Wall particles count as neighbours (a fluid particle on a wall is not on the surface), so a fluid
-// particle with no fluid neighbour at all (a droplet stuck in a wall corner) is flagged explicitly:
-// otherwise it and its wall particles would form a pressure island with no level, a singular block.
+// Free-surface particles, shared by every scheme with a free surface (ISPH's surface condition, the
+// shifting of ISPH and WCSPH alike).
+//
+// Detection: the divergence of position, div r_i = -(1/rho_i) sum_j m_j r_ij . grad_i W_ij, equals the
+// dimension D inside the fluid and drops where the support is cut by the surface (Lee et al. 2008; Lind
+// et al. 2012 use div r < 1.5 in 2D). Only fluid particles are flagged. Wall particles count as
+// neighbours (a fluid particle on a wall is not on the surface), so a fluid particle with no fluid
+// neighbour at all (a droplet stuck in a wall corner) is flagged explicitly.
 //
 // Hysteresis: a particle flagged at the last step stays flagged until div r rises past a higher exit
-// threshold. With a single threshold a particle whose div r hovers at it switches between p = 0 and
-// an interior row from step to step; each switch is a pressure impulse, so that noise came per step,
-// not per unit time (dam break nx 40: 3.5x the switches per unit time at half the step), and ISPH
-// blew up at small dt where shifting, a rate, removed less disorder per step than the switching made.
+// threshold. With a single threshold a particle whose div r hovers at it switches between the surface
+// condition and an interior row from step to step; each switch is a pressure impulse, so that noise
+// came per step, not per unit time.
+#include <petscsys.h>
+
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "src/core/options.hpp"
+#include "src/neighbours/neighbourhood.hpp"
 #include "src/sph/pair_loop.hpp"
 
 namespace sph {
@@ -56,6 +63,120 @@ std::vector<char> near_free_surface(const Particles<D>& P, const NeighbourList<D
   for (std::size_t i = 0; i < P.n_owned; ++i) near[i] = surface[i] != 0.0;
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>&) { near[i] |= surface[j] != 0.0; });
   return near;
+}
+
+// Fluid particles with no fluid neighbour (droplets on their own, or stuck on a wall).
+template <int D>
+std::vector<char> isolated_fluid_particles(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) {
+  std::vector<char> has_fluid(P.n_owned, 0);
+  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>&) { has_fluid[i] |= P.kind[j] == kFluid; });
+  std::vector<char> isolated(P.n_owned, 0);
+  for (std::size_t i = 0; i < P.n_owned; ++i) isolated[i] = P.kind[i] == kFluid && !has_fluid[i];
+  return isolated;
+}
+
+// Where shifting meets a free surface (src/sph/shifting.hpp): kind 1 on the surface (shift along it
+// only), 2 beside it (never outwards, along `normal`, the kernel-weighted mean of the surface
+// neighbours' normals); 0 elsewhere. Owned particles.
+template <int D> struct ShiftBoundary {
+  std::vector<char> kind;
+  std::vector<Vector<D>> normal;
+};
+
+// The free-surface model of a run: its options (-free_surface_threshold, -free_surface_exit_threshold,
+// read once for every scheme), the flags of the last step that the hysteresis needs (they move with
+// their particles: a checkpoint field) and what the schemes ask of it.
+template <int D> class FreeSurface {
+ public:
+  void set_from_options();
+  // Resolves the defaults; call once the scene is known.
+  void setup();
+
+  // The surface particles at the current positions; `remember` makes them the state that the next
+  // call's hysteresis starts from (once a step).
+  std::vector<char> detect(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, bool remember);
+  // The surface and near-surface particles, and the surface's normal beside it, for shifting.
+  ShiftBoundary<D> shift_boundary(const Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K,
+                                  const std::vector<char>& surface) const;
+
+  // The last step's flags, one per owned particle (1: on the surface); sized to the owned particles.
+  std::vector<double>& state(std::size_t n_owned) {
+    state_.resize(n_owned, 0.0);
+    return state_;
+  }
+  nlohmann::json describe() const {
+    return {{"detection", "div r"}, {"threshold_div_r", threshold_}, {"exit_threshold_div_r", exit_threshold_}};
+  }
+
+ private:
+  PetscReal threshold_ = 0.0;       // 0: the dimension's default
+  PetscReal exit_threshold_ = 0.0;  // 0: default_free_surface_exit_threshold
+  std::vector<double> state_;
+};
+
+namespace detail {
+inline PetscErrorCode read_free_surface_options(PetscReal* threshold, PetscReal* exit_threshold) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Free surface (scenes with one; every scheme)", "FreeSurface");
+  PetscCall(PetscOptionsReal("-free_surface_threshold",
+                             "Free-surface particles: div r below this (0: 1.5 in 2D, 2.4 in 3D; Lind et al. 2012)", "",
+                             *threshold, threshold, nullptr));
+  PetscCall(PetscOptionsReal("-free_surface_exit_threshold",
+                             "A surface particle stays on the surface until div r exceeds this (0: the threshold plus "
+                             "0.4 of its distance to the dimension, 1.7 in 2D)",
+                             "", *exit_threshold, exit_threshold, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+}  // namespace detail
+
+template <int D> void FreeSurface<D>::set_from_options() {
+  SPH_PETSC(detail::read_free_surface_options(&threshold_, &exit_threshold_));
+  require(threshold_ >= 0 && threshold_ < D, "-free_surface_threshold", "in [0, dimension)", threshold_);
+  require(exit_threshold_ >= 0 && exit_threshold_ < D, "-free_surface_exit_threshold", "in [0, dimension)", exit_threshold_);
+}
+
+template <int D> void FreeSurface<D>::setup() {
+  if (threshold_ <= 0) threshold_ = default_free_surface_threshold<D>();
+  if (exit_threshold_ <= 0) exit_threshold_ = default_free_surface_exit_threshold<D>(threshold_);
+  require(exit_threshold_ >= threshold_, "-free_surface_exit_threshold", "at least -free_surface_threshold", exit_threshold_);
+}
+
+template <int D>
+std::vector<char> FreeSurface<D>::detect(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                         bool remember) {
+  state_.resize(P.n_owned, 0.0);
+  std::vector<char> surface = free_surface_particles(P, nl, K, threshold_, exit_threshold_, &state_);
+  if (remember) state_.assign(surface.begin(), surface.end());
+  return surface;
+}
+
+template <int D>
+ShiftBoundary<D> FreeSurface<D>::shift_boundary(const Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K,
+                                                const std::vector<char>& surface) const {
+  const NeighbourList<D>& nl = nh.list();
+  std::vector<double> flags(surface.begin(), surface.end());
+  flags.resize(P.size(), 0.0);
+  nh.halo().update(flags);
+  // The surface particles' own normals, -grad C / |grad C| (walls included), for their neighbours.
+  std::vector<Vector<D>> own = sum_over_pairs(P, nl, K, Vector<D>(Vector<D>::Zero()), [&](Vector<D>& s, int i, int j, const PairGeometry<D>& g) {
+    if (surface[i]) s -= (P.m[j] / P.rho[j]) * g.gradW;
+  }, Rows::Fluid);
+  for (auto& n : own)
+    if (n.squaredNorm() > 0.0) n.normalize();
+  own.resize(P.size(), Vector<D>::Zero());
+  nh.halo().update(own);
+  ShiftBoundary<D> b;
+  b.kind.assign(P.n_owned, 0);
+  b.normal = sum_over_pairs(P, nl, K, Vector<D>(Vector<D>::Zero()), [&](Vector<D>& s, int, int j, const PairGeometry<D>& g) {
+    if (flags[j] != 0.0) s += g.W * own[j];
+  }, Rows::Fluid);
+  const std::vector<char> near = near_free_surface(P, nl, K, flags);
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    b.kind[i] = surface[i] ? 1 : near[i] ? 2 : 0;
+    if (b.normal[i].squaredNorm() > 0.0) b.normal[i].normalize();
+  }
+  return b;
 }
 
 }  // namespace sph

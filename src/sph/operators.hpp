@@ -95,21 +95,28 @@ std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const Neighbour
   return grad;
 }
 
+// Per particle, the moment matrix and the uncorrected gradient sum of f, from one pair loop.
+template <int D> struct GradientSums {
+  Tensor<D> M;
+  Vector<D> grad;
+};
+template <int D>
+std::vector<GradientSums<D>> gradient_sums(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                           const std::vector<double>& f, Rows rows = Rows::All) {
+  return sum_over_pairs(P, nl, K, GradientSums<D>{Tensor<D>::Zero(), Vector<D>::Zero()},
+                        [&](GradientSums<D>& s, int i, int j, const PairGeometry<D>& g) {
+    const double Vj = P.m[j] / P.rho[j];
+    s.M += correction_moment_term(Vj, g);
+    s.grad += difference_gradient_term(Vj, f[i], f[j], g);
+  }, rows);
+}
+
 // The same, with the correction matrices gathered in the same pair loop (bitwise the same result, one
 // pair loop instead of two) for callers that need no other corrected quantity.
 template <int D>
 std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                                        const std::vector<double>& f, Rows rows = Rows::All) {
-  struct Sums {
-    Tensor<D> M;
-    Vector<D> grad;
-  };
-  const std::vector<Sums> sums = sum_over_pairs(P, nl, K, Sums{Tensor<D>::Zero(), Vector<D>::Zero()},
-                                                [&](Sums& s, int i, int j, const PairGeometry<D>& g) {
-    const double Vj = P.m[j] / P.rho[j];
-    s.M += correction_moment_term(Vj, g);
-    s.grad += difference_gradient_term(Vj, f[i], f[j], g);
-  }, rows);
+  const std::vector<GradientSums<D>> sums = gradient_sums(P, nl, K, f, rows);
   std::vector<Vector<D>> grad(P.n_owned);
   for (std::size_t i = 0; i < P.n_owned; ++i) grad[i] = correction_from_moments(sums[i].M) * sums[i].grad;
   return grad;

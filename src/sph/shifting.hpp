@@ -4,7 +4,7 @@
 // (avoiding the clustering and voids that ruin Lagrangian SPH), and fields are Taylor-corrected to the
 // shifted positions.
 //
-// D = A h U dt (Lind et al. 2012, with the case's reference speed U): a shift per unit time, so that
+// D = A h U dt (Lind et al. 2012; U the largest particle speed, largest_speed): a shift per unit time, so that
 // the total shift over a time interval does not depend on how many steps cut it. An earlier version
 // shifted by D = A h^2 per step and recorded that this worked better; it did only because the
 // projection's operators were inconsistent and made an error per step of their own (fixed: see
@@ -25,6 +25,7 @@
 #include "src/core/integer_power.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/core/log_events.hpp"
+#include "src/sph/free_surface.hpp"
 #include "src/sph/kernel_average.hpp"
 #include "src/sph/operators.hpp"
 
@@ -44,7 +45,7 @@ namespace sph {
 enum class ShiftRate { Speed, Strain };
 inline const char* const shift_rate_names[] = {"speed", "strain"};
 inline const char* const shift_rate_help =
-    "Shift diffusivity: speed (D = A h U_ref dt, Lind et al. 2012) or strain (D = A h^2 |S| dt, S the local strain "
+    "Shift diffusivity: speed (D = A h U dt, U the largest particle speed, Lind et al. 2012) or strain (D = A h^2 |S| dt, S the local strain "
     "rate: no shift where the flow does not deform, no time-step limit)";
 // Which part of grad C particles shift along (-shift_scales). The kernel sum C is not 1 on a uniform
 // but anisotropic arrangement, and the flow's strain makes such arrangements systematically: C then has
@@ -64,8 +65,21 @@ inline const char* const shift_scales_help =
     "What shifting removes: all (the whole grad C, Lind et al. 2012) or particle (grad C minus its kernel average: "
     "particle-scale disorder only, not the resolved-scale part that the flow's strain gives C)";
 inline const char* const shift_coefficient_help =
-    "Shifting coefficient A (-1: 2 with -shift_rate speed, 5 with strain; speed keeps dt below 0.5 h / (A U_ref), "
+    "Shifting coefficient A (-1: 2 with -shift_rate speed, 5 with strain; speed keeps dt below 0.5 h / (A U), "
     "strain caps D at 0.5 h^2)";
+
+// The largest particle speed over all ranks, moving walls included (a lid sets its flow's speed): the
+// speed that -shift_rate speed shifts at. With the case's reference speed instead, a fluid at rest was
+// shifted too, and the square lattice it starts on (a saddle of the shift's potential, which favours a
+// hexagonal one) rearranged: still water drifted 1.3 (ISPH) to 3 (WCSPH) spacings by t = 20, and WCSPH's
+// leaked through its floor at t = 17 (40 particles a unit). Taylor-Green errors at t = 1 move by a few
+// per cent, down (docs/verification/free_surface.md).
+template <int D> double largest_speed(const Particles<D>& P) {
+  double u2 = 0.0;
+  for (std::size_t i = 0; i < P.n_owned; ++i) u2 = std::max(u2, P.v[i].squaredNorm());
+  MPI_Allreduce(MPI_IN_PLACE, &u2, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+  return std::sqrt(u2);
+}
 
 struct LindShifting {
   ShiftRate rate = ShiftRate::Speed;
@@ -107,8 +121,9 @@ void remove_kernel_average(const Particles<D>& P, Neighbourhood<D>& nh, const Ke
     if (average.interior[i]) g[i] -= average.average[i];
 }
 
-// Shifts the owned particles by -D grad C, D = model.coefficient(h, U, dt), (on free-surface particles only along the surface: the
-// normal part, n = -grad C / |grad C|, is removed, Lind et al. 2012) and Taylor-corrects the velocity,
+// Shifts the owned particles by -D grad C, D = model.coefficient(h, U, dt) (with a free surface, as
+// `surface` says: on it only along it, the normal part, n = -grad C / |grad C|, removed, Lind et al.
+// 2012; beside it never outwards) and Taylor-corrects the velocity,
 // u + (dr . grad) u with the corrected gradient, and the listed scalar fields likewise. Positions must
 // be current in `nh`.
 //
@@ -120,7 +135,7 @@ void remove_kernel_average(const Particles<D>& P, Neighbourhood<D>& nh, const Ke
 template <int D>
 void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, const LindShifting& model,
                      double dx, double U, double dt, const std::vector<std::vector<double>*>& scalars = {},
-                     const std::vector<char>* surface = nullptr) {
+                     const ShiftBoundary<D>* surface = nullptr) {
   const LogEventScope log_shifting(LogEvent::Shifting);
   const NeighbourList<D>& nl = nh.list();
   const std::size_t n = P.n_owned;
@@ -152,9 +167,14 @@ void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, 
   }, Rows::Fluid);  // walls do not shift
   // A free-surface particle's outward normal is along grad C itself, before any filtering.
   std::vector<Vector<D>> normal;
+  std::vector<char> on_surface;
   if (surface)
-    for (std::size_t i = 0; i < n; ++i) normal.push_back((*surface)[i] ? Vector<D>(-dr[i].normalized()) : Vector<D>::Zero());
-  if (model.scales == ShiftScales::Particle) remove_kernel_average(P, nh, K, dr, surface);
+    for (std::size_t i = 0; i < n; ++i) {
+      const char kind = surface->kind[i];
+      normal.push_back(kind == 2 ? surface->normal[i] : kind == 1 ? Vector<D>(-dr[i].normalized()) : Vector<D>::Zero());
+      on_surface.push_back(kind == 1);
+    }
+  if (model.scales == ShiftScales::Particle) remove_kernel_average(P, nh, K, dr, surface ? &on_surface : nullptr);
   const double Dcoef = model.coefficient(K.h(), U, dt);
   for (std::size_t i = 0; i < n; ++i) {
     L[i] = correction_from_moments(L[i]);
@@ -165,8 +185,14 @@ void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, 
       dr[i] *= -model.coefficient(K.h(), U, dt, (0.5 * (G + G.transpose())).norm());
     }
   }
+  // On the surface particles shift along it only (Lind et al. 2012); beside it never outwards: there
+  // the cut support's grad C points into the fluid as well, and shifting moved the layer below the
+  // surface into it, lifting a fluid at rest (still water rose 3 % in t = 20).
   if (surface)
-    for (std::size_t i = 0; i < n; ++i) dr[i] -= normal[i].dot(dr[i]) * normal[i];
+    for (std::size_t i = 0; i < n; ++i) {
+      const double outward = normal[i].dot(dr[i]);
+      if (surface->kind[i] == 1 || (surface->kind[i] == 2 && outward > 0.0)) dr[i] -= outward * normal[i];
+    }
   // Only fluid particles move; walls keep their place.
   for (std::size_t k = 0; k < scalars.size(); ++k)
     for (std::size_t i = 0; i < n; ++i)

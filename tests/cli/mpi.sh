@@ -37,7 +37,7 @@ compare beltrami1 beltrami2 1e-8 4
 dam3d="-case dam_break -dim 3 -solver isph -nx 6 -t_end 0.2 -ksp_rtol 1e-10"
 run dam3d1 1 $dam3d
 run dam3d2 2 $dam3d
-compare dam3d1 dam3d2 1e-8 2
+compare dam3d1 dam3d2 1e-8 3  # the first step solves up to four times (surface particles let go)
 sod="-options_file $src/cases/sod.opts -nx 200 -t_end 0.1"
 run sod1 1 $sod
 run sod2 2 $sod

@@ -1,0 +1,148 @@
+#include "cases/standing_wave/standing_wave.hpp"
+
+#include <cmath>
+
+#include "cases/common/lattice.hpp"
+#include "cases/common/wall_options.hpp"
+#include "src/core/options.hpp"
+
+namespace sph {
+
+namespace {
+PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* width, PetscReal* depth, PetscReal* amplitude,
+                            PetscReal* g, PetscReal* re, PetscReal* rho0) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Standing wave (-case standing_wave)", "Case");
+  PetscCall(PetscOptionsInt("-nx", "Particles per unit length", "", *nx, nx, nullptr));
+  PetscCall(PetscOptionsReal("-tank_width", "Tank width L (the mode's half wavelength)", "", *width, width, nullptr));
+  PetscCall(PetscOptionsReal("-depth", "Mean water depth h", "", *depth, depth, nullptr));
+  PetscCall(PetscOptionsReal("-amplitude", "The surface's initial amplitude a", "", *amplitude, amplitude, nullptr));
+  PetscCall(PetscOptionsReal("-g", "Gravity", "", *g, g, nullptr));
+  PetscCall(PetscOptionsReal("-re", "Reynolds number sqrt(g h) h / nu", "", *re, re, nullptr));
+  PetscCall(read_wall_scene_options(PetscOptionsObject, layers, rho0));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+}  // namespace
+
+void StandingWave::set_from_options() {
+  SPH_PETSC(read_options(&nx_, &wall_layers_, &width_, &depth_, &amplitude_, &g_, &re_, &rho0_));
+  require(nx_ >= 4, "-nx", "at least 4", nx_);
+  require(width_ > 0, "-tank_width", "positive", width_);
+  require(depth_ > 0, "-depth", "positive", depth_);
+  require(amplitude_ > 0 && amplitude_ < 0.5 * depth_, "-amplitude", "positive and below half the depth", amplitude_);
+  require(g_ > 0, "-g", "positive", g_);
+  require(re_ > 0, "-re", "positive", re_);
+  check_wall_scene_options(wall_layers_, rho0_);
+}
+
+double StandingWave::linear_period() const {
+  const double k = M_PI / width_;
+  return 2.0 * M_PI / std::sqrt(g_ * k * std::tanh(k * depth_));
+}
+
+Physics<2> StandingWave::physics() const {
+  Physics<2> phys;
+  phys.rho0 = rho0_;
+  phys.nu = std::sqrt(g_ * depth_) * depth_ / re_;
+  phys.U = std::sqrt(g_ * depth_);  // the long-wave speed: the flow's speeds are a fraction a / h of it
+  phys.gravity = Vector<2>(0.0, -g_);
+  phys.free_surface = true;
+  return phys;
+}
+
+void StandingWave::create(Particles<2>& P, Domain<2>& domain) const {
+  const double dx = spacing(), k = M_PI / width_;
+  const int L = static_cast<int>(wall_layers_), n = static_cast<int>(std::lround(width_ * nx_));
+  const int rows = static_cast<int>(std::lround(depth_ * nx_)), height = 2 * rows;
+  domain.lo = Vector<2>::Constant(-L * dx);
+  domain.hi = Vector<2>(width_ + L * dx, 20.0 * depth_);
+  domain.periodic.fill(false);
+  Particles<2> all;
+  for (int j = -L; j < height; ++j)
+    for (int i = -L; i < n + L; ++i) {
+      const Vector<2> lattice((i + 0.5) * dx, (j + 0.5) * dx);
+      const bool wall = j < 0 || i < 0 || i >= n;
+      if (wall) {
+        all.add(lattice, Vector<2>::Zero(), rho0_ * dx * dx, rho0_, 0.0, kWall);
+      } else if (j < rows) {
+        // The column stretched to the surface h + eta(x): its particles' volume grows with it.
+        const double stretch = 1.0 + amplitude_ * std::cos(k * lattice[0]) / depth_;
+        const Vector<2> x(lattice[0], lattice[1] * stretch);
+        const double surface = depth_ * stretch;
+        all.add(x, Vector<2>::Zero(), rho0_ * dx * dx * stretch, rho0_, rho0_ * g_ * (surface - x[1]), kFluid);
+      }
+    }
+  P = rank_share(all);
+}
+
+double StandingWave::centre_offset(const Particles<2>& P) const {
+  double sums[2] = {0.0, 0.0};
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (P.kind[i] == kFluid) sums[0] += P.m[i] * P.x[i][0], sums[1] += P.m[i];
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  return sums[0] / sums[1] - 0.5 * width_;
+}
+
+// A swing's extreme is its largest |x_c - L/2| between two crossings (the particles' noise makes
+// small wiggles that a turning-point test would count).
+void StandingWave::accumulate(const Particles<2>& P, double t, double) {
+  const double c = centre_offset(P);
+  if (samples_ > 0 && (c > 0.0) != (last_ > 0.0)) {
+    crossings_.push_back(last_t_ + (t - last_t_) * last_ / (last_ - c));  // linear in time between the samples
+    if (crossings_.size() >= 2) extremes_.push_back(swing_max_), extreme_times_.push_back(swing_max_t_);
+    swing_max_ = 0.0;
+  }
+  if (std::abs(c) > swing_max_) swing_max_ = std::abs(c), swing_max_t_ = t;
+  last_ = c, last_t_ = t;
+  ++samples_;
+}
+
+nlohmann::json StandingWave::accumulated_state() const {
+  return {{"crossings", crossings_}, {"extremes", extremes_}, {"extreme_times", extreme_times_}, {"last_t", last_t_},
+          {"last", last_}, {"swing_max", swing_max_}, {"swing_max_t", swing_max_t_}, {"samples", samples_}};
+}
+
+void StandingWave::restore_accumulated_state(const nlohmann::json& s) {
+  if (s.is_null()) return;
+  crossings_ = s.at("crossings").get<std::vector<double>>();
+  extremes_ = s.at("extremes").get<std::vector<double>>();
+  extreme_times_ = s.at("extreme_times").get<std::vector<double>>();
+  last_t_ = s.at("last_t"), last_ = s.at("last"), samples_ = s.at("samples");
+  swing_max_ = s.at("swing_max"), swing_max_t_ = s.at("swing_max_t");
+}
+
+std::map<std::string, double> StandingWave::errors(const Particles<2>&, double) const {
+  // Two crossings a period: the mean period over the whole crossings seen.
+  const double T = crossings_.size() >= 3 ? 2.0 * (crossings_.back() - crossings_.front()) / (crossings_.size() - 1)
+                                          : std::nan("");
+  double rate = std::nan("");
+  if (extremes_.size() >= 2 && extreme_times_.back() > extreme_times_.front())
+    rate = std::log(extremes_.front() / extremes_.back()) / (extreme_times_.back() - extreme_times_.front());
+  const double T0 = linear_period();
+  return {{"period", T}, {"period_rel", std::abs(T - T0) / T0}, {"damping_rate", rate}};
+}
+
+std::string StandingWave::unmeasured_reason(const std::string& name) const {
+  if (name == "period" || name == "period_rel")
+    return "the centre of mass crossed the middle " + std::to_string(crossings_.size()) +
+           " times, fewer than the 3 a period needs; raise -t_end";
+  if (name == "damping_rate") return "fewer than two whole swings of the centre of mass; raise -t_end";
+  return "";
+}
+
+nlohmann::json StandingWave::parameters() const {
+  const double k = M_PI / width_;
+  return {{"nx", nx_},
+          {"tank_width", width_},
+          {"depth", depth_},
+          {"amplitude", amplitude_},
+          {"g", g_},
+          {"re", re_},
+          {"rho0", rho0_},
+          {"wall_layers", wall_layers_},
+          {"linear_period", linear_period()},
+          {"bulk_damping_rate", 2.0 * physics().nu * k * k}};
+}
+
+}  // namespace sph
