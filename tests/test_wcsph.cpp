@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -56,11 +57,13 @@ double foot_pressure_period(const std::string& dir) {
   std::ifstream in(dir + "/front_position.csv");
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "T,Z,P_foot");
+  EXPECT_EQ(line, "T,Z,P_foot,P_far,H");
   std::vector<double> t, p;
-  double T, Z, P;
-  char comma;
-  while (in >> T >> comma >> Z >> comma >> P) {
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::string T_text, Z_text, P_text;
+    std::getline(fields, T_text, ','), std::getline(fields, Z_text, ','), std::getline(fields, P_text, ',');
+    const double T = std::stod(T_text), P = std::stod(P_text);
     const double time = T * std::sqrt(0.5);  // T = t sqrt(2 g / a), a = g = 1
     if (time > 0.3 && time < 1.5) t.push_back(time), p.push_back(P);
   }

@@ -86,20 +86,33 @@ template <int D> double DamBreak<D>::front(const Particles<D>& P) const {
   return xmax + 0.5 * spacing();  // particle centres sit half a spacing inside the fluid's edge
 }
 
-// Mean fluid pressure in the square of side a/8 at the foot of the left wall: a fixed region, so
-// runs at any resolution measure the same thing (the walls' extrapolated pressure is left out).
-template <int D> double DamBreak<D>::foot_pressure(const Particles<D>& P) const {
+// Mean fluid pressure in the square of side a/8 at the foot of the left wall (x0 = 0) or of the far
+// wall (x0 = 4a, where the surge hits at T ~ 3): a fixed region, so runs at any resolution measure the
+// same thing (the walls' extrapolated pressure is left out); NaN while no fluid is there.
+template <int D> double DamBreak<D>::foot_pressure(const Particles<D>& P, double x0) const {
   const double side = 0.125 * a_;
   double sums[2] = {0.0, 0.0};
   for (std::size_t i = 0; i < P.n_owned; ++i)
-    if (P.kind[i] == kFluid && P.x[i][0] < side && P.x[i][1] < side) sums[0] += P.p[i], sums[1] += 1.0;
+    if (P.kind[i] == kFluid && std::abs(P.x[i][0] - x0) < side && P.x[i][1] < side) sums[0] += P.p[i], sums[1] += 1.0;
   MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   return sums[1] > 0 ? sums[0] / sums[1] : std::nan("");
 }
 
+// The column's height at the left wall (the residual column of Martin & Moyce's second measurement):
+// the highest fluid particle within a/8 of the wall, plus half a spacing.
+template <int D> double DamBreak<D>::column_height(const Particles<D>& P) const {
+  double ymax = 0.0;
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (P.kind[i] == kFluid && P.x[i][0] < 0.125 * a_) ymax = std::max(ymax, P.x[i][1]);
+  MPI_Allreduce(MPI_IN_PLACE, &ymax, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+  return ymax + 0.5 * spacing();
+}
+
 template <int D> std::map<std::string, double> DamBreak<D>::errors(const Particles<D>& P, double t) const {
   const double T = t / time_scale(), Z = front(P) / a_;
-  if (history_.empty() || T > history_.back().T) history_.push_back({T, Z, foot_pressure(P) / (rho0_ * g_ * a_)});
+  const double scale = rho0_ * g_ * a_;
+  if (history_.empty() || T > history_.back().T)
+    history_.push_back({T, Z, foot_pressure(P, 0.0) / scale, foot_pressure(P, 4.0 * a_) / scale, column_height(P) / a_});
   // Mean relative error at the experimental points reached so far (linear interpolation in time).
   const Table exp = reference_table("martin_moyce_1952.csv");
   const std::vector<double> Te = exp.column("T"), Ze = exp.column("Z");
@@ -136,8 +149,8 @@ template <int D> void DamBreak<D>::write_outputs(const Particles<D>& P, double t
   if (rank != 0) return;
   std::ofstream out(dir + "/front_position.csv");
   out.precision(10);
-  out << "T,Z,P_foot\n";
-  for (const auto& [T, Z, P_foot] : history_) out << T << "," << Z << "," << P_foot << "\n";
+  out << "T,Z,P_foot,P_far,H\n";
+  for (const auto& [T, Z, P_foot, P_far, H] : history_) out << T << "," << Z << "," << P_foot << "," << P_far << "," << H << "\n";
 }
 
 template <int D> nlohmann::json DamBreak<D>::parameters() const {
