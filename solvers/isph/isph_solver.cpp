@@ -68,9 +68,9 @@ PetscErrorCode read_options(RawOptions* o) {
                               "where it ends reads as a compression, a first-order error)",
                               "", wall_velocity_names, 2, wall_velocity_names[o->wall_velocity], &o->wall_velocity, nullptr));
   PetscCall(PetscOptionsBool("-ppe_wall_impact",
-                             "Walls stop the fluid that comes at them within the step: their pressure rows add rho "
-                             "u_n (r . n) / tau for a predicted velocity u_n towards them (default: on in scenes with "
-                             "a free surface, off in closed ones)",
+                             "Walls stop the free surface that comes at them within the step: their pressure rows add "
+                             "rho u_n (r . n) / tau for a surface particle's predicted velocity u_n towards them "
+                             "(default: on in scenes with a free surface, off in closed ones)",
                              "", o->wall_impact, &o->wall_impact, &o->wall_impact_set));
   PetscCall(PetscOptionsEList("-free_surface_condition",
                               "Where p = 0 holds: node (at the surface, dx/2 beyond each surface particle, which "
@@ -285,12 +285,19 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
   for (double& s : source) s /= tau;
 
   std::vector<Vector<D>> predicted, wall_normals;
-  WallImpact<D> impact{&predicted, &wall_normals, tau};
+  std::vector<double> impacting;
+  WallImpact<D> impact{&predicted, &wall_normals, &impacting, tau};
   if (wall_impact_) {
     predicted = u_star;
     for (std::size_t i = 0; i < P.size(); ++i)
       if (P.kind[i] != kFluid) predicted[i] = P.v[i];
     wall_normals = AdamiWall<D>::normals(P, nh.list(), K, AdamiWall<D>::stencil(P, nh.list(), K));
+    // An impact is a free surface meeting a wall. Fluid already against a wall moves along it, and the
+    // term on its small normal velocity (zero at the wall, O(dx) at the first particles) distorted
+    // smooth flows: a standing wave's period 9.4 % off at nx 40, against 0.2 % with surface particles only.
+    impacting.assign(P.size(), phys.free_surface ? 0.0 : 1.0);
+    for (std::size_t i = 0; i < surface.size(); ++i) impacting[i] = surface[i];
+    nh.halo().update(impacting);
   }
   // With surface nodes, p = 0 only where a particle has none: a sheet or a drop too thin for one
   // (SurfaceNodes::splash), or a particle with no fluid neighbour and no node (alone on a wall, a node
@@ -482,7 +489,7 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
     models["free_surface"]["condition"] = surface_condition_names[static_cast<int>(surface_condition_)];
     models["free_surface"]["model"] = surface_condition_ == SurfaceCondition::Node ? "SurfaceNodes" : "LindFreeSurface";
   }
-  if (wall_impact_) models["walls"]["impact"] = "rho u_n (r . n) / tau for fluid moving towards a wall";
+  if (wall_impact_) models["walls"]["impact"] = "rho u_n (r . n) / tau for surface particles moving towards a wall";
   models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
   if (phys.viscous())
     models["viscosity"] = {{"model", consistent ? "ConsistentLaplacian" : "MorrisViscosity"}, {"nu", phys.nu}};

@@ -23,10 +23,12 @@ inline double ppe_pair_coefficient(double mj, double rho_i, double rho_j, double
 }
 
 // The walls' impact condition (-ppe_wall_impact): the predicted velocity (fluid: u*, walls: their own;
-// owned and ghost particles), the walls' unit normals into the fluid (owned), and the projection's tau.
+// owned and ghost particles), the walls' unit normals into the fluid (owned), which fluid particles can
+// impact (owned and ghost), and the projection's tau.
 template <int D> struct WallImpact {
   const std::vector<Vector<D>>* velocity;
   const std::vector<Vector<D>>* normal;
+  const std::vector<double>* surface;  // owned and ghost: nonzero on the fluid's surface particles
   double tau;
 };
 
@@ -136,9 +138,9 @@ void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Ker
     else oj[oi[i] + olen_[i]] = P.gid[j], oa[oi[i] + olen_[i]++] = value;
     if (P.kind[i] == kWall) {
       double head = body_force.dot(g.rij);
-      // A fluid particle predicted to move towards the wall at u_n (beyond the closing kick's tau g,
+      // A surface particle predicted to move towards the wall at u_n (beyond the closing kick's tau g,
       // which the hydrostatic head holds) needs the normal pressure gradient rho u_n / tau to stop.
-      if (impact) {
+      if (impact && (*impact->surface)[j] != 0.0) {
         const Vector<D>& n = (*impact->normal)[i];
         const double u_n = ((*impact->velocity)[j] - impact->tau * body_force - (*impact->velocity)[i]).dot(n);
         head += std::min(u_n, 0.0) * g.rij.dot(n) / impact->tau;
