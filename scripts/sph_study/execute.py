@@ -61,6 +61,23 @@ def busy_cores(window=1.0):
     return (os.cpu_count() or 1) * (1.0 - (i1 - i0) / max(1, t1 - t0))
 
 
+_scene_lock = threading.Lock()
+
+
+def make_scene(scene):
+    """Writes a matrix row's scene file (scripts/make-scene) unless an earlier column made it; returns an
+    error message, or None."""
+    with _scene_lock:
+        if os.path.exists(scene["file"]):
+            return None
+        os.makedirs(os.path.dirname(scene["file"]), exist_ok=True)
+        cmd = [os.path.join(REPO, "scripts", "make-scene")] + scene["args"] + ["-o", scene["file"]]
+        p = subprocess.run(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        if p.returncode != 0:
+            return "make-scene %s failed: %s" % (" ".join(scene["args"]), (p.stderr.strip().splitlines() or ["?"])[-1])
+    return None
+
+
 def execute(run, timeout, jobs):
     os.makedirs(run["dir"], exist_ok=True)
     for stale in ("summary.json", "run.json"):
@@ -84,6 +101,11 @@ def execute(run, timeout, jobs):
         env.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
         env.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
     start = time.time()
+    problem = make_scene(run["scene"]) if run.get("scene") else None
+    if problem:
+        rec.update(status="failed", failure=problem, returncode=None, elapsed_s=0.0)
+        write_json(os.path.join(run["dir"], "run.json"), rec)
+        return rec
     try:
         p = subprocess.run(command, cwd=REPO, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                            text=True, timeout=timeout)

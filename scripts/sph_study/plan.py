@@ -160,13 +160,20 @@ def load_matrix(study, path):
     if unknown:
         sys.exit("study: %s: matrix: unknown key(s) %s (known: columns, metric, options, rows)" % (path, ", ".join(unknown)))
     m["options"] = m.get("options") or {}
-    for what, need, allowed in (("rows", "case", {"label", "case", "options", "solver_options", "metric"}),
+    for what, need, allowed in (("rows", "case", {"label", "case", "scene", "options", "solver_options", "metric"}),
                                 ("columns", "solver", {"label", "solver", "options"})):
         items = m.get(what)
         if not isinstance(items, list) or not items:
             sys.exit("study: %s: matrix: '%s' must be a non-empty list" % (path, what))
         labels = set()
         for i, it in enumerate(items):
+            # A row with 'scene:' (scripts/make-scene's arguments) runs -case scene on the file it makes.
+            if isinstance(it, dict) and what == "rows" and "scene" in it:
+                if not isinstance(it["scene"], list) or not it["scene"] or it.get("case", "scene") != "scene":
+                    sys.exit("study: %s: matrix: rows[%d]: 'scene' must be a non-empty list of scripts/make-scene "
+                             "arguments, without 'case' (or with case: scene)" % (path, i))
+                it["scene"] = [str(a) for a in it["scene"]]
+                it["case"] = "scene"
             if not isinstance(it, dict) or need not in it:
                 sys.exit("study: %s: matrix: %s[%d] must be a mapping with '%s'" % (path, what, i, need))
             bad = sorted(set(it) - allowed)
@@ -204,6 +211,12 @@ def plan_matrix_runs(study, out_dir, sph, mpi):
             options["progress"] = 0
             name = "r%d-%s--c%d-%s" % (i + 1, row["label"], j + 1, col["label"])
             run_dir = os.path.join(out_dir, safe_name(name))
+            scene = None
+            if row.get("scene"):  # made when the run starts (execute.py), once for the row's columns
+                # Named by its arguments: other arguments, another file, and the runs are not up to date.
+                file = safe_name("_".join(row["scene"])) + ".vtp"
+                scene = {"args": row["scene"], "file": os.path.join(out_dir, "scenes", file)}
+                options["scene_file"] = scene["file"]
             args = option_args(options) + ["-output_dir", run_dir]
             try:
                 nx = int(options.get("nx") or 0)
@@ -211,7 +224,7 @@ def plan_matrix_runs(study, out_dir, sph, mpi):
                 nx = 0
             runs.append({"solver": col["solver"], "nx": nx, "sweep": {}, "args": args, "dir": run_dir,
                          "label": "%s | %s" % (row["label"], col["label"]), "name": name,
-                         "row": row["label"], "column": col["label"], "metric": row["metric"],
+                         "row": row["label"], "column": col["label"], "metric": row["metric"], "scene": scene,
                          "command": (["mpirun", "-n", str(mpi), "--allow-run-as-root", "--oversubscribe"]
                                      if mpi and mpi > 0 else []) + [sph] + args,
                          "mpi": mpi or 0})

@@ -5,6 +5,7 @@ import csv
 import os
 import unittest
 
+from sph_study.execute import make_scene
 from sph_study.matrix import cell_text, classify_cell, make_matrix_outputs, option_problem, short_reason
 from sph_study.plan import load_study, plan_matrix_runs
 from sph_study.tests.support import TempDirCase, record_run
@@ -135,6 +136,44 @@ class Cells(TempDirCase):
                       "- **Sod** (`-case sod -nx 48`): no variant survived; failed: WCSPH; not applicable: ISPH; "
                       "not run: gas.\n", md)
         self.assertIn("Full reasons:\n\n- TGV × gas: needs a gas scene (`r1-TGV--c3-gas`)\n", md)
+
+
+SCENE_MATRIX = """\
+name: scenes
+matrix:
+  rows:
+    - {label: still, scene: [still_water, --nx, 8]}
+    - {label: bad, scene: [no_such_scene]}
+  columns:
+    - {label: ISPH, solver: isph}
+    - {label: WCSPH, solver: wcsph}
+"""
+
+
+class SceneRows(TempDirCase):
+    """Rows made by scripts/make-scene: run as -case scene on a file named by the scene's arguments."""
+
+    def setUp(self):
+        super().setUp()
+        study = load_study(self.write("scenes.yaml", SCENE_MATRIX))
+        self.out = os.path.join(self.tmp, "m")
+        self.runs = {(r["row"], r["column"]): r for r in plan_matrix_runs(study, self.out, "/opt/sph", 0)}
+
+    def test_planned_as_scene_runs_on_one_file(self):
+        isph, wcsph = self.runs["still", "ISPH"], self.runs["still", "WCSPH"]
+        scene = os.path.join(self.out, "scenes", "still_water_--nx_8.vtp")
+        for run in (isph, wcsph):
+            self.assertEqual(run["args"][:4], ["-case", "scene", "-solver", run["solver"]])
+            self.assertEqual(run["args"][run["args"].index("-scene_file") + 1], scene)
+            self.assertNotIn("-nx", run["args"])
+        self.assertIsNone(make_scene(isph["scene"]))
+        first = os.path.getmtime(scene)
+        self.assertIsNone(make_scene(wcsph["scene"]))  # made once for the row
+        self.assertEqual(os.path.getmtime(scene), first)
+
+    def test_a_scene_make_scene_refuses_is_a_failed_cell(self):
+        msg = make_scene(self.runs["bad", "ISPH"]["scene"])
+        self.assertTrue(msg.startswith("make-scene no_such_scene failed: "), msg)
 
 
 if __name__ == "__main__":

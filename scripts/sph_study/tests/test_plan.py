@@ -282,7 +282,7 @@ matrix:
             ("matrix: {rows: [{case: a}], columns: [{solver: b}, {solver: b}]}\n",
              "matrix: two columns labelled 'b'"),
             ("matrix: {rows: [{case: a, x: 1}], columns: [{solver: b}]}\n",
-             "matrix: rows[0]: unknown key(s) x (known: case, label, metric, options, solver_options)"),
+             "matrix: rows[0]: unknown key(s) x (known: case, label, metric, options, scene, solver_options)"),
             ("matrix: {rows: [{case: a}], columns: [{solver: b}]}\nfoo: 1\n",
              "with 'matrix:', unknown key(s) foo (known: description, matrix, mpi, name)"),
             ("matrix: {rows: [], columns: [{solver: b}]}\n", "matrix: 'rows' must be a non-empty list"),
