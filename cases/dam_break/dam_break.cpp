@@ -58,7 +58,10 @@ template <int D> void DamBreak<D>::create(Particles<D>& P, Domain<D>& domain) co
   domain.lo = Vector<D>::Constant(-L * dx);
   domain.hi = Vector<D>::Constant((n + L) * dx);
   domain.hi[0] = (tank + L) * dx;
-  domain.hi[1] = 20.0 * a_;  // open top: splashes stay inside the box
+  // Open top: room above, and beside and below the tank for the run-up that flies over a side wall
+  // (after T = 4); a tree search costs nothing for the room.
+  domain.hi[1] = 20.0 * a_;
+  domain.lo[0] -= 20.0 * a_, domain.hi[0] += 20.0 * a_, domain.lo[1] -= 100.0 * a_;
   domain.periodic.fill(false);
   Particles<D> all;
   const int depth_lo = D == 3 ? -L : 0, depth_hi = D == 3 ? n + L : 1;

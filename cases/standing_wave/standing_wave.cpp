@@ -76,18 +76,18 @@ void StandingWave::create(Particles<2>& P, Domain<2>& domain) const {
   P = rank_share(all);
 }
 
-double StandingWave::centre_offset(const Particles<2>& P) const {
-  double sums[2] = {0.0, 0.0};
+double StandingWave::horizontal_momentum(const Particles<2>& P) const {
+  double sum = 0.0;
   for (std::size_t i = 0; i < P.n_owned; ++i)
-    if (P.kind[i] == kFluid) sums[0] += P.m[i] * P.x[i][0], sums[1] += P.m[i];
-  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-  return sums[0] / sums[1] - 0.5 * width_;
+    if (P.kind[i] == kFluid) sum += P.m[i] * P.v[i][0];
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  return sum;
 }
 
-// A swing's extreme is its largest |x_c - L/2| between two crossings (the particles' noise makes
+// A swing's extreme is its largest |momentum| between two crossings (the particles' noise makes
 // small wiggles that a turning-point test would count).
 void StandingWave::accumulate(const Particles<2>& P, double t, double) {
-  const double c = centre_offset(P);
+  const double c = horizontal_momentum(P);
   if (samples_ > 0 && (c > 0.0) != (last_ > 0.0)) {
     crossings_.push_back(last_t_ + (t - last_t_) * last_ / (last_ - c));  // linear in time between the samples
     if (crossings_.size() >= 2) extremes_.push_back(swing_max_), extreme_times_.push_back(swing_max_t_);
@@ -113,21 +113,29 @@ void StandingWave::restore_accumulated_state(const nlohmann::json& s) {
 }
 
 std::map<std::string, double> StandingWave::errors(const Particles<2>&, double) const {
-  // Two crossings a period: the mean period over the whole crossings seen.
-  const double T = crossings_.size() >= 3 ? 2.0 * (crossings_.back() - crossings_.front()) / (crossings_.size() - 1)
-                                          : std::nan("");
+  // Whole periods only: crossing 0 to crossing 2m.
+  const std::size_t periods = crossings_.size() >= 3 ? (crossings_.size() - 1) / 2 : 0;
+  const double T = periods > 0 ? (crossings_[2 * periods] - crossings_.front()) / periods : std::nan("");
+  // Least squares of log(extreme) against time: every swing counts, none decides alone.
   double rate = std::nan("");
-  if (extremes_.size() >= 2 && extreme_times_.back() > extreme_times_.front())
-    rate = std::log(extremes_.front() / extremes_.back()) / (extreme_times_.back() - extreme_times_.front());
+  const std::size_t n = extremes_.size();
+  if (n >= 2 && extreme_times_.back() > extreme_times_.front()) {
+    double st = 0.0, sy = 0.0, stt = 0.0, sty = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double t = extreme_times_[k], y = std::log(extremes_[k]);
+      st += t, sy += y, stt += t * t, sty += t * y;
+    }
+    rate = -(n * sty - st * sy) / (n * stt - st * st);
+  }
   const double T0 = linear_period();
   return {{"period", T}, {"period_rel", std::abs(T - T0) / T0}, {"damping_rate", rate}};
 }
 
 std::string StandingWave::unmeasured_reason(const std::string& name) const {
   if (name == "period" || name == "period_rel")
-    return "the centre of mass crossed the middle " + std::to_string(crossings_.size()) +
+    return "the horizontal momentum changed sign " + std::to_string(crossings_.size()) +
            " times, fewer than the 3 a period needs; raise -t_end";
-  if (name == "damping_rate") return "fewer than two whole swings of the centre of mass; raise -t_end";
+  if (name == "damping_rate") return "fewer than two whole swings of the horizontal momentum; raise -t_end";
   return "";
 }
 

@@ -1,14 +1,15 @@
 #pragma once
 // Standing wave: the first sloshing mode of a tank of width L and depth h, released from rest with its
 // surface at h + a cos(k x), k = pi / L, a << h (walls on the floor and both sides, gravity g). Linear
-// theory (Lamb 1932, sec. 227): it oscillates with omega^2 = g k tanh(k h). The fluid's centre of mass
-// moves with the mode, x_c - L/2 proportional to a(t) (to second order in a k), so its zero crossings,
-// read off every particle at every step, give the period: period_rel = |T - 2 pi / omega| / (2 pi /
-// omega), from the crossings so far (NaN before the first full period). Also reported: the period T and
-// the decay rate of the centre of mass's swings (damping_rate, from its successive extremes), beside the
-// bulk viscous rate 2 nu k^2 of linear theory in the case's parameters (the walls' boundary layers add
-// to it). The particles start on a lattice stretched column by column to the surface, each with the
-// mass of its volume and the hydrostatic pressure below that surface.
+// theory (Lamb 1932, sec. 227): it oscillates with omega^2 = g k tanh(k h). The fluid's horizontal
+// momentum moves with the mode and has no mean (the centre of mass's swing may have one: the particles'
+// equilibrium is not exactly the lattice's), so its zero crossings, read at every step, give the period
+// over whole periods (a mean offset lengthens every other half period): period_rel = |T - 2 pi / omega|
+// / (2 pi / omega) (NaN before the first full period). Also reported: T, and the decay rate of the
+// momentum's swings (damping_rate, the least-squares slope of the log of their extremes), beside the bulk
+// viscous rate 2 nu k^2 of linear theory in the case's parameters (the walls' boundary layers add to
+// it). The particles start on a lattice stretched column by column to the surface, each with the mass
+// of its volume and the hydrostatic pressure below that surface.
 #include <vector>
 
 #include "src/run/case.hpp"
@@ -35,12 +36,12 @@ class StandingWave : public Case<2> {
   double linear_period() const;
 
  private:
-  double centre_offset(const Particles<2>& P) const;  // x_c - L/2 over the fluid, all ranks
+  double horizontal_momentum(const Particles<2>& P) const;  // of the fluid, all ranks
 
   PetscInt nx_ = 40, wall_layers_ = 4;
   PetscReal width_ = 1.0, depth_ = 0.5, amplitude_ = 0.01, g_ = 1.0, re_ = 1000.0, rho0_ = 1.0;
-  std::vector<double> crossings_;            // times where x_c - L/2 changes sign
-  std::vector<double> extremes_;             // the largest |x_c - L/2| of each whole swing
+  std::vector<double> crossings_;            // times where the momentum changes sign
+  std::vector<double> extremes_;             // its largest magnitude in each whole swing
   std::vector<double> extreme_times_;
   double last_t_ = 0.0, last_ = 0.0;         // the last sample
   double swing_max_ = 0.0, swing_max_t_ = 0.0;  // the swing under way
