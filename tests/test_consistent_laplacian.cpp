@@ -202,7 +202,7 @@ template <int D> void check_moments_against_pairwise_sums() {
     Eigen::Matrix<double, n, n> S = Eigen::Matrix<double, n, n>::Zero();
     std::array<Vector<D>, m> second;
     for (auto& v : second) v.setZero();
-    Tensor<D> first = Tensor<D>::Zero();
+    Tensor<D> first = Tensor<D>::Zero(), moment = Tensor<D>::Zero();
     for (int k = 0; k < count; ++k) {
       Vector<D> e;
       for (int a = 0; a < D; ++a) e(a) = u(gen);
@@ -221,10 +221,13 @@ template <int D> void check_moments_against_pairwise_sums() {
       for (int a = 0; a < D; ++a) phi(m + a) = e(a), psi(m + a) = s * e(a);
       S += g * psi * phi.transpose();
       first += e * w.transpose();
+      moment += (g * s * s) * e * e.transpose();  // sum_j g r r^T over R^2, r = s R e
     }
     const std::size_t padded = pairs.padded();
     EXPECT_EQ(padded % detail::kLanes, 0u);
-    const detail::LaplacianSystem<D> system(detail::sum_laplacian_moments(pairs, padded));
+    const detail::LaplacianMoments<D> moments = detail::sum_laplacian_moments(pairs, padded);
+    const detail::LaplacianSystem<D> system(moments);
+    EXPECT_LT((detail::moment_matrix_over_R2(moments) - moment).cwiseAbs().maxCoeff(), 1e-13 * count) << "D " << D;
     const double scale = S.cwiseAbs().maxCoeff();
     EXPECT_LT((system.S - S).cwiseAbs().maxCoeff(), 1e-13 * scale) << "D " << D << ", " << count << " pairs";
     const detail::LaplacianFieldMoments<D> fields = detail::sum_laplacian_field_moments(pairs, padded);

@@ -10,7 +10,7 @@ namespace sph {
 
 namespace {
 PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* width, PetscReal* depth, PetscReal* amplitude,
-                            PetscReal* g, PetscReal* re, PetscReal* rho0) {
+                            PetscReal* g, PetscReal* re, PetscReal* rho0, PetscBool* side_walls) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Standing wave (-case standing_wave)", "Case");
   PetscCall(PetscOptionsInt("-nx", "Particles per unit length", "", *nx, nx, nullptr));
@@ -19,6 +19,10 @@ PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* width, Pe
   PetscCall(PetscOptionsReal("-amplitude", "The surface's initial amplitude a", "", *amplitude, amplitude, nullptr));
   PetscCall(PetscOptionsReal("-g", "Gravity", "", *g, g, nullptr));
   PetscCall(PetscOptionsReal("-re", "Reynolds number sqrt(g h) h / nu", "", *re, re, nullptr));
+  PetscCall(PetscOptionsBool("-side_walls",
+                             "Walls at both ends (a tank); 0: one whole wavelength 2L, periodic, a floor only (no "
+                             "contact lines, whose no-slip dissipation the linear theory leaves out)",
+                             "", *side_walls, side_walls, nullptr));
   PetscCall(read_wall_scene_options(PetscOptionsObject, layers, rho0));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
@@ -26,7 +30,9 @@ PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* width, Pe
 }  // namespace
 
 void StandingWave::set_from_options() {
-  SPH_PETSC(read_options(&nx_, &wall_layers_, &width_, &depth_, &amplitude_, &g_, &re_, &rho0_));
+  PetscBool side_walls = side_walls_ ? PETSC_TRUE : PETSC_FALSE;
+  SPH_PETSC(read_options(&nx_, &wall_layers_, &width_, &depth_, &amplitude_, &g_, &re_, &rho0_, &side_walls));
+  side_walls_ = side_walls == PETSC_TRUE;
   require(nx_ >= 4, "-nx", "at least 4", nx_);
   require(width_ > 0, "-tank_width", "positive", width_);
   require(depth_ > 0, "-depth", "positive", depth_);
@@ -39,6 +45,17 @@ void StandingWave::set_from_options() {
 double StandingWave::linear_period() const {
   const double k = M_PI / width_;
   return 2.0 * M_PI / std::sqrt(g_ * k * std::tanh(k * depth_));
+}
+
+// Linear theory's viscous decay rate of the mode's amplitude: the bulk, 2 nu k^2, and the Stokes layers
+// on the floor and, in a tank, on both side walls (Mei et al. 2005, sec. 9; Keulegan 1959), of
+// thickness sqrt(2 nu / omega): sqrt(nu omega / 2) omega^2 / (g sinh^2 kh) (1/2 + sinh(2kh) / (2kL) -
+// h/L), whose floor part is sqrt(nu omega / 2) k / sinh(2kh).
+double StandingWave::damping_rate_theory() const {
+  const double k = M_PI / width_, nu = physics().nu, omega = 2.0 * M_PI / linear_period();
+  const double layers = std::sqrt(0.5 * nu * omega) * omega * omega / (g_ * std::pow(std::sinh(k * depth_), 2));
+  const double walls = side_walls_ ? std::sinh(2.0 * k * depth_) / (2.0 * k * width_) - depth_ / width_ : 0.0;
+  return 2.0 * nu * k * k + layers * (0.5 + walls);
 }
 
 Physics<2> StandingWave::physics() const {
@@ -55,14 +72,16 @@ void StandingWave::create(Particles<2>& P, Domain<2>& domain) const {
   const double dx = spacing(), k = M_PI / width_;
   const int L = static_cast<int>(wall_layers_), n = static_cast<int>(std::lround(width_ * nx_));
   const int rows = static_cast<int>(std::lround(depth_ * nx_)), height = 2 * rows;
-  domain.lo = Vector<2>::Constant(-L * dx);
-  domain.hi = Vector<2>(width_ + L * dx, 20.0 * depth_);
-  domain.periodic.fill(false);
+  // Without side walls: one whole wavelength, periodic in x.
+  const int side = side_walls_ ? L : 0, columns = side_walls_ ? n : 2 * n;
+  domain.lo = Vector<2>(-side * dx, -L * dx);
+  domain.hi = Vector<2>((columns + side) * dx, 20.0 * depth_);
+  domain.periodic = {!side_walls_, false};
   Particles<2> all;
   for (int j = -L; j < height; ++j)
-    for (int i = -L; i < n + L; ++i) {
+    for (int i = -side; i < columns + side; ++i) {
       const Vector<2> lattice((i + 0.5) * dx, (j + 0.5) * dx);
-      const bool wall = j < 0 || i < 0 || i >= n;
+      const bool wall = j < 0 || i < 0 || i >= columns;
       if (wall) {
         all.add(lattice, Vector<2>::Zero(), rho0_ * dx * dx, rho0_, 0.0, kWall);
       } else if (j < rows) {
@@ -77,9 +96,11 @@ void StandingWave::create(Particles<2>& P, Domain<2>& domain) const {
 }
 
 double StandingWave::horizontal_momentum(const Particles<2>& P) const {
+  // Without side walls the whole wavelength's momentum is zero: that of its first half, [0, L).
   double sum = 0.0;
   for (std::size_t i = 0; i < P.n_owned; ++i)
-    if (P.kind[i] == kFluid) sum += P.m[i] * P.v[i][0];
+    if (P.kind[i] == kFluid && (side_walls_ || std::fmod(P.x[i][0] + 2.0 * width_, 2.0 * width_) < width_))
+      sum += P.m[i] * P.v[i][0];
   MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   return sum;
 }
@@ -149,8 +170,10 @@ nlohmann::json StandingWave::parameters() const {
           {"re", re_},
           {"rho0", rho0_},
           {"wall_layers", wall_layers_},
+          {"side_walls", side_walls_},
           {"linear_period", linear_period()},
-          {"bulk_damping_rate", 2.0 * physics().nu * k * k}};
+          {"bulk_damping_rate", 2.0 * physics().nu * k * k},
+          {"damping_rate_theory", damping_rate_theory()}};
 }
 
 }  // namespace sph

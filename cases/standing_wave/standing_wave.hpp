@@ -7,9 +7,10 @@
 // over whole periods (a mean offset lengthens every other half period): period_rel = |T - 2 pi / omega|
 // / (2 pi / omega) (NaN before the first full period). Also reported: T, and the decay rate of the
 // momentum's swings (damping_rate, the least-squares slope of the log of their extremes), beside the bulk
-// viscous rate 2 nu k^2 of linear theory in the case's parameters (the walls' boundary layers add to
-// it). The particles start on a lattice stretched column by column to the surface, each with the mass
-// of its volume and the hydrostatic pressure below that surface.
+// viscous rate 2 nu k^2 and the theory's whole rate with the walls' Stokes layers in the case's
+// parameters. -side_walls 0: one wavelength 2L, periodic, a floor only. The particles start on a
+// lattice stretched column by column to the surface, each with the mass of its volume and the
+// hydrostatic pressure below that surface.
 #include <vector>
 
 #include "src/run/case.hpp"
@@ -34,12 +35,14 @@ class StandingWave : public Case<2> {
   nlohmann::json parameters() const override;
 
   double linear_period() const;
+  double damping_rate_theory() const;
 
  private:
   double horizontal_momentum(const Particles<2>& P) const;  // of the fluid, all ranks
 
   PetscInt nx_ = 40, wall_layers_ = 4;
   PetscReal width_ = 1.0, depth_ = 0.5, amplitude_ = 0.01, g_ = 1.0, re_ = 1000.0, rho0_ = 1.0;
+  bool side_walls_ = true;
   std::vector<double> crossings_;            // times where the momentum changes sign
   std::vector<double> extremes_;             // its largest magnitude in each whole swing
   std::vector<double> extreme_times_;

@@ -126,12 +126,34 @@ template <int D> struct LaplacianSystem {
   }
 };
 
+// The kernel-gradient moment matrix sum_j V_j grad_i W_ij (x_j - x_i)^T = sum_j g_ij r r^T, over R^2,
+// read off the degree-4 moments: sum_j g s^2 e_a e_b = sum_c sum_j g s^2 e_a e_b e_c e_c, as |e| = 1.
+template <int D> Tensor<D> moment_matrix_over_R2(const LaplacianMoments<D>& moments) {
+  static const std::array<std::array<std::array<int, D>, D>, D> index = [] {
+    constexpr Monomials<D, 4> m4;
+    std::array<std::array<std::array<int, D>, D>, D> t{};
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b)
+        for (int c = 0; c < D; ++c) t[a][b][c] = m4.index_unsorted({a, b, c, c});
+    return t;
+  }();
+  Tensor<D> M = Tensor<D>::Zero();
+  for (int a = 0; a < D; ++a)
+    for (int b = 0; b < D; ++b)
+      for (int c = 0; c < D; ++c) M(a, b) += moments.gss4[index[a][b][c]];
+  return M;
+}
+
 // One particle's factors from its recorded pairs (the first pairs.size; `padded` from pairs.padded());
-// Morris' (A = I, c = 0) where the system is degenerate or a weight would be negative.
+// Morris' (A = I, c = 0) where the system is degenerate, the particle is a sheet or a drop
+// (moments_resolve: its near-singular system amplified a film particle's viscous acceleration to 2e4,
+// a falling wedge at nx 80), or a weight would be negative.
 template <int D>
 LaplacianCorrection<D> solve_laplacian_factors(const LaplacianPairs<D>& pairs, std::size_t padded, double inv_R) {
   LaplacianCorrection<D> f;
-  if (!LaplacianSystem<D>(sum_laplacian_moments(pairs, padded)).solve(f)) return {};
+  const LaplacianMoments<D> moments = sum_laplacian_moments(pairs, padded);
+  if (!moments_resolve<D>(moment_matrix_over_R2(moments) / (inv_R * inv_R))) return {};
+  if (!LaplacianSystem<D>(moments).solve(f)) return {};
   // Keep the weights positive, as Morris' are: a negative weight (a one-sided neighbourhood, at a
   // free surface) makes the PPE row lose its diagonal dominance, and the dam break blew up.
   for (std::size_t k = 0; k < pairs.size; ++k) {

@@ -45,12 +45,6 @@ template <int D> struct SurfaceNodes {
   }
 };
 
-// A surface particle whose moment matrix sum_j V_j grad_i W_ij (x_j - x_i)^T has its smallest
-// eigenvalue below this (1 in the bulk, about 1/2 on a flat surface) is a sheet or a drop: no node,
-// and its corrected operators are not used (Marrone et al. 2010 class such particles by the same
-// eigenvalue and threshold).
-constexpr double splash_eigenvalue = 0.2;
-
 // The nodes of the particles flagged in `surface` (owned particles), at distance d.
 template <int D>
 SurfaceNodes<D> surface_nodes(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
@@ -92,9 +86,8 @@ SurfaceNodes<D> surface_nodes(const Particles<D>& P, const Neighbourhood<D>& nh,
     if (!surface[i]) continue;
     const double length = gradC[i].norm();
     if (length > 0.0) nodes.normal[i] = -gradC[i] / length;  // sum_j V_j grad_i W_ij points into the fluid
-    const Tensor<D> Ms = 0.5 * (sum[i].M + sum[i].M.transpose());
-    const double lambda = Eigen::SelfAdjointEigenSolver<Tensor<D>>(Ms, Eigen::EigenvaluesOnly).eigenvalues()[0];
-    if (!(lambda >= splash_eigenvalue)) {
+    // A sheet or a drop (moments_resolve): no node, and its corrected operators are not used.
+    if (!moments_resolve(sum[i].M)) {
       nodes.splash[i] = 1;
       continue;
     }
