@@ -334,6 +334,21 @@ struct Patch {
   const NeighbourList<2>& nl() const { return nh->list(); }
 };
 
+// The sheet-or-drop test: the smallest eigenvalue of the moment matrix's symmetric part against 0.2,
+// on matrices whose eigenvalues are known ((a + c)/2 -+ sqrt(((a - c)/2)^2 + b^2) for [[a, b], [b, c]]).
+TEST(OperatorDisordered, MomentsResolveByTheSmallestEigenvalue) {
+  using T2 = Tensor<2>;
+  EXPECT_TRUE(moments_resolve<2>(T2::Identity()));
+  EXPECT_TRUE(moments_resolve<2>(0.5 * T2::Identity()));  // a flat free surface
+  EXPECT_FALSE(moments_resolve<2>((T2() << 1.0, 0.0, 0.0, 0.1).finished()));  // a sheet along x
+  EXPECT_FALSE(moments_resolve<2>((T2() << 0.6, 0.5, 0.5, 0.6).finished()));  // 0.1 and 1.1
+  EXPECT_TRUE(moments_resolve<2>((T2() << 0.5, 0.4, 0.4, 0.9).finished()));   // 0.253: past Gershgorin's 0.1
+  // Its own eigenvalues are both 1; its symmetric part's are 0.1 and 1.9.
+  EXPECT_FALSE(moments_resolve<2>((T2() << 1.0, 1.8, 0.0, 1.0).finished()));
+  EXPECT_FALSE(moments_resolve<3>(Tensor<3>::Zero()));                         // alone
+  EXPECT_FALSE(moments_resolve<2>(T2::Constant(std::nan(""))));
+}
+
 TEST(OperatorDisordered, CorrectedGradientsExactForLinearFields) {
   const V2 a(3.0, -1.7);
   T2 A;  // u(x) = A x + b, so d u_b / d x_a = A(b, a)
