@@ -293,9 +293,8 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
       if (P.kind[i] != kFluid) predicted[i] = P.v[i];
     wall_normals = AdamiWall<D>::normals(P, nh.list(), K, AdamiWall<D>::stencil(P, nh.list(), K));
     // An impact is a free surface meeting a wall. Fluid already against a wall moves along it, and the
-    // term on its small normal velocity (zero at the wall, O(dx) at the first particles) distorted
-    // smooth flows: a standing wave at nx 40 decayed at 0.055 (theory 0.024), at 0.012 with surface
-    // particles only.
+    // term on its small normal velocity (zero at the wall, O(dx) at the first particles) damps smooth
+    // flows along walls (docs/verification/free_surface.md, the standing wave).
     impacting.assign(P.size(), phys.free_surface ? 0.0 : 1.0);
     for (std::size_t i = 0; i < surface.size(); ++i) impacting[i] = surface[i];
     nh.halo().update(impacting);

@@ -146,8 +146,8 @@ template <int D> Tensor<D> moment_matrix_over_R2(const LaplacianMoments<D>& mome
 
 // One particle's factors from its recorded pairs (the first pairs.size; `padded` from pairs.padded());
 // Morris' (A = I, c = 0) where the system is degenerate, the particle is a sheet or a drop
-// (moments_resolve: its near-singular system amplified a film particle's viscous acceleration to 2e4,
-// a falling wedge at nx 80), or a weight would be negative.
+// (moments_resolve: its near-singular system amplifies noise; docs/verification/free_surface.md), or a
+// weight would be negative.
 template <int D>
 LaplacianCorrection<D> solve_laplacian_factors(const LaplacianPairs<D>& pairs, std::size_t padded, double inv_R) {
   LaplacianCorrection<D> f;

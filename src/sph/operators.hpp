@@ -74,7 +74,7 @@ std::vector<Vector<D>> gradient_symmetric(const Particles<D>& P, const Neighbour
 
 // A moment matrix sum_j V_j grad_i W_ij (x_j - x_i)^T whose symmetric part has its smallest eigenvalue
 // below this (1 in the bulk, about 1/2 on a flat free surface) belongs to a sheet or a drop: its inverse
-// amplifies noise (170x measured at a jet hitting a wall), so corrected operators are not used there.
+// amplifies noise, so corrected operators are not used there (docs/verification/free_surface.md).
 // Marrone et al. (2010) class such particles by the same eigenvalue and threshold.
 constexpr double splash_eigenvalue = 0.2;
 

@@ -177,8 +177,8 @@ void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, 
   if (model.scales == ShiftScales::Particle) remove_kernel_average(P, nh, K, dr, surface ? &on_surface : nullptr);
   const double Dcoef = model.coefficient(K.h(), U, dt);
   for (std::size_t i = 0; i < n; ++i) {
-    // A sheet's or a drop's corrected velocity gradient amplifies its noise: its Taylor correction threw
-    // a particle of a thin film out at 26 U in one step (falling wedge, ISPH, nx 80). Uncorrected there.
+    // A sheet's or a drop's corrected velocity gradient amplifies its noise: uncorrected there
+    // (docs/verification/free_surface.md).
     L[i] = moments_resolve(L[i]) ? correction_from_moments(L[i]) : Tensor<D>(Tensor<D>::Identity());
     if (model.rate == ShiftRate::Speed) {
       dr[i] *= -Dcoef;
