@@ -39,8 +39,11 @@ double l1_velocity(const std::string& tag, const std::string& args) {
 // divided by dt/2 every step: -ppe_particle_divergence_rate -1 gave l1_pressure 2.50e-2, 2.67e-2,
 // 2.86e-2, +7 % per halving). At nx 32 and 48 the last per cent is the start lattice's rearrangement
 // at t ~ 0.2, which moves with dt without a trend: l1_velocity 4.22e-3, 4.37e-3, 4.33e-3, 4.15e-3 at
-// CFL 0.1 ... 0.0125 (nx 32), 2.11e-3, 2.19e-3, 2.12e-3 at CFL 0.1 ... 0.025 (nx 48), so each halving
-// is held to 4 % of the error; a clean second-order fall of the change is not there to test.
+// CFL 0.1 ... 0.0125 (nx 32), 2.11e-3, 2.19e-3, 2.12e-3 at CFL 0.1 ... 0.025 (nx 48). So what is
+// tested is that the changes shrink, as a sum that converges does (an error per step makes them
+// grow), not their share of the error: since the viscous term's smoothing error was removed the
+// error at nx 32 is half what it was while the rearrangement's changes are the same size (2.21e-3,
+// 2.06e-3, 2.10e-3: changes 1.6e-4, 5e-5, against 1.5e-4, 4e-5 before).
 TEST(Convergence, IsphErrorApproachesALimitAsDtFalls) {
   double u[3], p[3];
   const double cfl[] = {0.1, 0.05, 0.025};
@@ -51,8 +54,8 @@ TEST(Convergence, IsphErrorApproachesALimitAsDtFalls) {
   }
   std::printf("ISPH nx 32, CFL 0.1 / 0.05 / 0.025: l1_velocity %.3e %.3e %.3e, l1_pressure %.3e %.3e %.3e\n", u[0], u[1],
               u[2], p[0], p[1], p[2]);
-  EXPECT_LT(std::abs(u[1] - u[0]), 0.04 * u[1]);  // no error per step: each halving within 4 % of the error
-  EXPECT_LT(std::abs(u[2] - u[1]), 0.02 * u[2]);  // and within 2 % of the limit at CFL 0.05
+  EXPECT_LT(std::abs(u[2] - u[1]), 0.5 * std::abs(u[1] - u[0]));  // no error per step: the changes shrink
+  EXPECT_LT(std::abs(u[2] - u[1]), 0.03 * u[2]);                  // to a few per cent of the error
   EXPECT_LT(std::abs(p[1] - p[0]), 0.02 * p[1]);                    // the pressure: no error per step
   EXPECT_LT(std::abs(p[2] - p[1]), 0.02 * p[2]);
 }

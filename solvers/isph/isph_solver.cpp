@@ -29,7 +29,8 @@ const char* const surface_condition_names[] = {"node", "particle"};
 
 struct RawOptions {
   PetscReal cfl, shift_A, particle_divergence_rate;
-  PetscInt shift_rate, shift_scales, gradient, operators, projection_corrections, wall_velocity, surface_condition;
+  PetscInt shift_rate, shift_scales, gradient, operators, viscous_laplacian, projection_corrections, wall_velocity,
+      surface_condition;
   PetscBool shifting, wall_impact, wall_impact_set;
 };
 
@@ -50,6 +51,8 @@ PetscErrorCode read_options(RawOptions* o) {
                               "Viscous and PPE Laplacian, PPE divergence: consistent (exact for quadratic / linear "
                               "fields on any particle distribution) or classic (Morris, Cummins & Rudman, plain)",
                               "", operator_set_names, 2, operator_set_names[o->operators], &o->operators, nullptr));
+  PetscCall(PetscOptionsEList("-viscous_laplacian", viscous_laplacian_help, "", viscous_laplacian_names, 2,
+                              viscous_laplacian_names[o->viscous_laplacian], &o->viscous_laplacian, nullptr));
   PetscCall(PetscOptionsReal("-ppe_particle_divergence_rate",
                              "Rate, in U/h, at which the PPE removes the particle-scale divergence of the previous "
                              "step's velocity, which the projection cannot remove (R: a fraction R U dt / (2 h) per "
@@ -85,7 +88,7 @@ PetscErrorCode read_options(RawOptions* o) {
 template <int D> void IsphSolver<D>::set_from_options() {
   RawOptions o{cfl_, shifting_model_.A, particle_divergence_rate_, static_cast<PetscInt>(shifting_model_.rate),
                static_cast<PetscInt>(shifting_model_.scales), static_cast<PetscInt>(gradient_),
-               static_cast<PetscInt>(operators_), projection_corrections_, source_walls_at_rest_ ? 1 : 0,
+               static_cast<PetscInt>(operators_), static_cast<PetscInt>(viscous_laplacian_), projection_corrections_, source_walls_at_rest_ ? 1 : 0,
                static_cast<PetscInt>(surface_condition_), shifting_, PETSC_FALSE, PETSC_FALSE};
   SPH_PETSC(read_options(&o));
   require(o.cfl > 0 && o.cfl <= 1.0, "-cfl", "in (0, 1]", o.cfl);
@@ -97,6 +100,7 @@ template <int D> void IsphSolver<D>::set_from_options() {
   shifting_model_.A = o.shift_A, shifting_model_.rate = static_cast<ShiftRate>(o.shift_rate);
   shifting_model_.scales = static_cast<ShiftScales>(o.shift_scales);
   gradient_ = static_cast<PressureGradient>(o.gradient), operators_ = static_cast<OperatorSet>(o.operators);
+  viscous_laplacian_ = static_cast<ViscousLaplacian>(o.viscous_laplacian);
   projection_corrections_ = o.projection_corrections, source_walls_at_rest_ = o.wall_velocity == 1;
   surface_condition_ = static_cast<SurfaceCondition>(o.surface_condition);
   wall_impact_option_ = o.wall_impact_set ? (o.wall_impact ? 1 : 0) : -1;
@@ -174,9 +178,17 @@ std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vec
     nh.halo().update(u_wall);
   }
   const std::vector<Vector<D>>& uv = walls_ ? u_wall : u;
-  std::vector<Vector<D>> lap = operators_ != OperatorSet::Consistent
-                                   ? laplacian_morris(P, nh.list(), K, uv)
-                                   : laplacian_consistent_one_pass(P, nh.list(), K, uv, Rows::Fluid, factors);
+  if (operators_ != OperatorSet::Consistent) {
+    std::vector<Vector<D>> lap = laplacian_morris(P, nh.list(), K, uv);
+    for (auto& a : lap) a *= scene_->physics.nu;
+    return lap;
+  }
+  std::vector<LaplacianCorrection<D>> own_factors;
+  std::vector<LaplacianCorrection<D>>& F = factors ? *factors : own_factors;
+  std::vector<Vector<D>> lap = laplacian_consistent_one_pass(P, nh.list(), K, uv, Rows::Fluid, &F);
+  // The surface cuts the supports there, where the fourth moments are one-sided, not isotropic.
+  if (viscous_laplacian_ == ViscousLaplacian::Fourth && !scene_->physics.free_surface)
+    remove_laplacian_smoothing_error(P, nh, K, F, lap);
   for (auto& a : lap) a *= scene_->physics.nu;
   return lap;
 }
@@ -492,7 +504,9 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
   if (wall_impact_) models["walls"]["impact"] = "rho u_n (r . n) / tau for surface particles moving towards a wall";
   models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
   if (phys.viscous())
-    models["viscosity"] = {{"model", consistent ? "ConsistentLaplacian" : "MorrisViscosity"}, {"nu", phys.nu}};
+    models["viscosity"] = {{"model", consistent ? "ConsistentLaplacian" : "MorrisViscosity"}, {"nu", phys.nu},
+                           {"smoothing_error", smoothing_error_description(consistent && viscous_laplacian_ == ViscousLaplacian::Fourth &&
+                                                                            !phys.free_surface)}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
   if (shifting_) models["shifting"] = shifting_model_.describe();
   return {{"models", models}, {"cfl", cfl_}, {"ksp", ppe_.describe()},

@@ -57,6 +57,7 @@
 #include "src/sph/energy_budget.hpp"
 #include "src/sph/free_surface.hpp"
 #include "src/sph/kernel_average.hpp"
+#include "src/sph/laplacian_smoothing.hpp"
 #include "src/sph/shifting.hpp"
 
 namespace sph {
@@ -116,6 +117,7 @@ template <int D> class IsphSolver : public Solver<D> {
   LindShifting shifting_model_;
   PressureGradient gradient_ = PressureGradient::Corrected;
   OperatorSet operators_ = OperatorSet::Consistent;
+  ViscousLaplacian viscous_laplacian_ = ViscousLaplacian::Fourth;
   PetscReal particle_divergence_rate_ = 10;  // in U/h; -1: all of it every step; 10: all of it at CFL 0.2
   PetscInt projection_corrections_ = 1;      // correction passes after the projection
   bool source_walls_at_rest_ = true;         // -ppe_wall_velocity zero: the PPE source sees the walls at rest

@@ -23,7 +23,7 @@ const char* const gradient_names[] = {"auto", "corrected", "symmetric"};
 
 struct RawOptions {
   PetscReal c0, c0_factor, gamma, cfl, delta, alpha, beta, epsilon, shift_A;
-  PetscInt density, diffusion, operators, gradient, shift_rate, shift_scales;
+  PetscInt density, diffusion, operators, viscous_laplacian, gradient, shift_rate, shift_scales;
   PetscBool shifting;
   PetscBool closed_volume, closed_volume_set;
   PetscBool diffusion_set;
@@ -58,6 +58,8 @@ PetscErrorCode read_options(RawOptions* o) {
                               "Continuity divergence and viscous Laplacian: consistent (corrected divergence, "
                               "consistent Laplacian) or classic (plain divergence, Morris)",
                               "", operator_set_names, 2, operator_set_names[o->operators], &o->operators, nullptr));
+  PetscCall(PetscOptionsEList("-viscous_laplacian", viscous_laplacian_help, "", viscous_laplacian_names, 2,
+                              viscous_laplacian_names[o->viscous_laplacian], &o->viscous_laplacian, nullptr));
   PetscCall(PetscOptionsEList("-pressure_gradient",
                               "Pressure force: corrected (Bonet & Lok, p_j - p_i), symmetric (Monaghan, momentum-"
                               "conserving), auto (symmetric with a free surface, whose zero pressure it imposes; "
@@ -89,7 +91,7 @@ PetscErrorCode read_options(RawOptions* o) {
 template <int D> void WcsphSolver<D>::set_from_options() {
   RawOptions o{c0_, c0_factor_, eos_.gamma, cfl_, delta_, av_.alpha, av_.beta, av_.epsilon,
                shifting_model_.A, static_cast<PetscInt>(density_), static_cast<PetscInt>(diffusion_),
-               static_cast<PetscInt>(operators_), static_cast<PetscInt>(gradient_),
+               static_cast<PetscInt>(operators_), static_cast<PetscInt>(viscous_laplacian_), static_cast<PetscInt>(gradient_),
                static_cast<PetscInt>(shifting_model_.rate), static_cast<PetscInt>(shifting_model_.scales), shifting_,
                closed_volume_option_ > 0 ? PETSC_TRUE : PETSC_FALSE, PETSC_FALSE, PETSC_FALSE,
                prepared_start_ ? PETSC_TRUE : PETSC_FALSE};
@@ -112,6 +114,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   av_.alpha = o.alpha, av_.beta = o.beta, av_.epsilon = o.epsilon;
   density_ = static_cast<DensityMethod>(o.density);
   operators_ = static_cast<OperatorSet>(o.operators);
+  viscous_laplacian_ = static_cast<ViscousLaplacian>(o.viscous_laplacian);
   gradient_ = static_cast<WcsphGradient>(o.gradient);
   diffusion_ = static_cast<DensityDiffusion>(o.diffusion);
   diffusion_chosen_ = o.diffusion_set;
@@ -292,15 +295,30 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   // Each particle's sums live in locals while its pairs are visited, and are stored once. The
   // consistent viscous Laplacian is gathered in the same loop as the rest: with its factors in a pass
   // of their own, a step took 1.07-1.14x the time (bench/run_bench.py, 2D and 3D at 1e4-1e5 particles).
+  // The viscous Laplacian's smoothing error removed (src/sph/laplacian_smoothing.hpp) needs its
+  // factors and values after the loop; the free surface cuts the supports, where it is left off.
+  const bool smoothing = consistent_viscous && viscous_laplacian_ == ViscousLaplacian::Fourth && !phys.free_surface;
+  std::vector<LaplacianCorrection<D>> lap_factors(smoothing ? n : 0);
+  std::vector<Vector<D>> lap_u(smoothing ? n : 0, Vector<D>::Zero());
   for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
     if (P.kind[i] != kFluid) return;  // walls move as prescribed
     wcsph::RateSums<D> sums(laplacian_pair_buffer<D>());
     visit_pairs([&](int, int j, const PairGeometry<D>& g) { wcsph::add_rates_pair(in, sums, i, j, g); });
-    if (consistent_viscous) sums.acc += phys.nu * sums.viscous.finish(inv_R);
+    if (consistent_viscous) {
+      const Vector<D> lap = sums.viscous.finish(inv_R, smoothing ? &lap_factors[i] : nullptr);
+      sums.acc += phys.nu * lap;
+      if (smoothing) lap_u[i] = lap;
+    }
     acc_[i] = sums.acc, drho_[i] = sums.drho;
     if (corrected_gradient) M[i] = sums.M, grad_p[i] = sums.grad_p;
     if (corrected_continuity) grad_u[i] = sums.grad_u;
   });
+  if (smoothing) {
+    std::vector<Vector<D>> corrected = lap_u;
+    remove_laplacian_smoothing_error(P, nh, K, lap_factors, corrected);
+    for (std::size_t i = 0; i < n; ++i)
+      if (P.kind[i] == kFluid) acc_[i] += phys.nu * (corrected[i] - lap_u[i]);
+  }
   // The corrected forms: d rho_i/dt = -rho_i tr(L_i grad u_i) and a_i = -L_i grad p_i / rho_i, both
   // exact for linear fields on any particle distribution (the plain forms are O(1) wrong in the
   // disorder; Negi & Ramachandran 2022 found them the obstacle to second order).
@@ -405,7 +423,9 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
                                       {"epsilon", av_.epsilon}};
   if (phys.viscous())
     models["viscosity"] = {{"model", operators_ == OperatorSet::Consistent ? "ConsistentLaplacian" : "MorrisViscosity"},
-                           {"nu", phys.nu}};
+                           {"nu", phys.nu},
+                           {"smoothing_error", smoothing_error_description(operators_ == OperatorSet::Consistent &&
+                                                                            viscous_laplacian_ == ViscousLaplacian::Fourth && !phys.free_surface)}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
   if (walls_) models["walls"] = {{"model", "AdamiWall"}};
   models["operators"] = operator_set_names[static_cast<int>(operators_)];

@@ -9,6 +9,7 @@
 #include "solvers/wcsph/wcsph_iact.hpp"
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/free_surface.hpp"
+#include "src/sph/laplacian_smoothing.hpp"
 #include "src/sph/shifting.hpp"
 
 namespace sph {
@@ -69,6 +70,7 @@ template <int D> class WcsphSolver : public Solver<D> {
   DensityDiffusion diffusion_ = DensityDiffusion::Molteni;
   bool diffusion_chosen_ = false;  // -density_diffusion given: no default by the scene's physics
   OperatorSet operators_ = OperatorSet::Consistent;
+  ViscousLaplacian viscous_laplacian_ = ViscousLaplacian::Second;  // measured: docs/verification/speed_against_error.md
   WcsphGradient gradient_ = WcsphGradient::Auto;
   PetscBool shifting_ = PETSC_TRUE;
   LindShifting shifting_model_;
