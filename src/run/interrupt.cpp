@@ -27,11 +27,15 @@ void install_interrupt_handlers() {
   action.sa_flags = SA_RESTART;  // system calls in progress (file writes, MPI) go on
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  sigaction(SIGHUP, &action, nullptr);  // a closed terminal: end as cleanly as a batch system's SIGTERM
+  // Output to a closed pipe (sph ... | head) must not end the run: the write fails, the run goes on.
+  std::signal(SIGPIPE, SIG_IGN);
 }
 
 std::string signal_name(int signal) {
   if (signal == SIGINT) return "SIGINT";
   if (signal == SIGTERM) return "SIGTERM";
+  if (signal == SIGHUP) return "SIGHUP";
   return "signal " + std::to_string(signal);
 }
 
