@@ -70,7 +70,9 @@ template <int D> class WcsphSolver : public Solver<D> {
   DensityDiffusion diffusion_ = DensityDiffusion::Molteni;
   bool diffusion_chosen_ = false;  // -density_diffusion given: no default by the scene's physics
   OperatorSet operators_ = OperatorSet::Consistent;
-  ViscousLaplacian viscous_laplacian_ = ViscousLaplacian::Second;  // measured: docs/verification/speed_against_error.md
+  // Second: at c0 = 10 U the second-order term's deficit offsets the weakly compressible model's own
+  // dissipation (docs/verification/speed_against_error.md).
+  ViscousLaplacian viscous_laplacian_ = ViscousLaplacian::Second;
   WcsphGradient gradient_ = WcsphGradient::Auto;
   PetscBool shifting_ = PETSC_TRUE;
   LindShifting shifting_model_;

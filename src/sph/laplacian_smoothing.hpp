@@ -7,8 +7,7 @@
 // with mu = sum_j w_ij |r|^4 / (D (D + 2)). So
 //   lap f_i - beta_i lap(lap f)_i,   beta_i = sum_j w_ij |r_ij|^4 / (8 D (D + 2)),
 // with lap applied again by the same weights, removes it: a deconvolution of the kernel's smoothing,
-// one more pass over the pairs. Measured on Taylor-Green (Re 100, t = 1) the vortex's amplitude error
-// fell from +1.8e-3 to -5.7e-4 at nx 64 and the velocity error converged at order ~2.7.
+// one more pass over the pairs (its effect on the errors: the page above).
 //
 // Only at particles whose support holds no wall particle: beside a wall lap f_j of a wall particle
 // does not exist (walls carry extrapolated values, not operators). Callers leave it off where a free
