@@ -17,6 +17,7 @@ std::vector<OptionOwner> option_owners(const RunOptions& chosen);
 namespace {
 
 template <int D> void run_in_dim(const RunOptions& names) {
+  check_option_values(option_owners(names));
   const std::unique_ptr<Case<D>> scene_case = create_case<D>(names.case_name);
   const std::unique_ptr<Solver<D>> solver = create_solver<D>(names.solver_name);
   scene_case->set_from_options();

@@ -5,7 +5,11 @@
 //   ./build/sph -options_file cases/taylor_green.opts -ksp_type gmres -ksp_monitor
 #include <petscsys.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -30,24 +34,67 @@ PetscErrorCode read_names(sph::RunOptions* o, PetscInt* dim, PetscBool* dim_set)
                               static_cast<PetscInt>(solvers.size()), solvers[0], &s, nullptr));
   PetscCall(PetscOptionsInt("-dim", "Spatial dimension (default: the case's own)", "", *dim, dim, dim_set));
   PetscOptionsEnd();
+  // PETSc keeps the default for a choice given without a value: a run of the wrong scene.
+  for (const char* name : {"-case", "-solver", "-dim"}) {
+    const char* value = nullptr;
+    PetscBool given = PETSC_FALSE;
+    PetscCall(PetscOptionsFindPair(nullptr, nullptr, name, &value, &given));
+    PetscCheck(!given || value, PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG,
+               "option %s was given without a value; name one (-help lists them) or leave it out", name);
+  }
   o->case_name = cases[c];
   o->solver_name = solvers[s];
   PetscFunctionReturn(0);
 }
 
-// The first line of an options file that PETSc would refuse with a traceback: one whose first token is
-// neither an option (-name) nor an alias line; 0 when every line is fine.
-int first_bad_line(std::FILE* f, std::string* token) {
-  char buf[4096];
-  for (int line = 1; std::fgets(buf, sizeof buf, f); ++line) {
-    std::string text(buf);
-    text = text.substr(0, text.find('#'));  // '#' starts a comment
-    const std::size_t begin = text.find_first_not_of(" \t\r\n");
-    if (begin == std::string::npos) continue;
-    *token = text.substr(begin, text.find_first_of(" \t\r\n", begin) - begin);
-    if ((*token)[0] != '-' && *token != "alias") return line;
+// A line of an options file as PETSc splits it: words, a double-quoted one counting as one.
+std::vector<std::string> words(const std::string& line) {
+  std::vector<std::string> out;
+  for (std::size_t k = line.find_first_not_of(" \t\r\n"); k != std::string::npos;
+       k = line.find_first_not_of(" \t\r\n", k)) {
+    const bool quoted = line[k] == '"';
+    const std::size_t end = quoted ? line.find('"', k + 1) : line.find_first_of(" \t\r\n", k);
+    out.push_back(line.substr(k + quoted, end == std::string::npos ? std::string::npos : end - k - quoted));
+    k = end == std::string::npos ? end : end + quoted;
   }
-  return 0;
+  return out;
+}
+
+// What PETSc would refuse in an options file with a traceback (or, for a file that includes itself,
+// with a crash): checked here, with the files it includes, so the user gets one line naming the cause.
+// `chain` holds the files that include this one. Returns the one-line message, or "" when all is well.
+std::string options_file_problem(const std::string& path, const std::string& opt, std::vector<std::string>& chain) {
+  struct stat st {};
+  if (stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+    return "options file '" + path + "' (" + opt + ") is a folder; give the path of a file";
+  std::FILE* f = std::fopen(path.c_str(), "r");
+  if (!f) return "cannot read options file '" + path + "' (" + opt + "); check the path";
+  char* real = realpath(path.c_str(), nullptr);
+  const std::string id = real ? real : path;
+  std::free(real);
+  for (const std::string& outer : chain)
+    if (outer == id) {
+      std::fclose(f);
+      return "options file '" + path + "' includes itself (through -options_file); remove the loop";
+    }
+  chain.push_back(id);
+  std::string problem;
+  char buf[4096];
+  for (int line = 1; problem.empty() && std::fgets(buf, sizeof buf, f); ++line) {
+    std::string text(buf);
+    const std::vector<std::string> w = words(text.substr(0, text.find('#')));  // '#' starts a comment
+    const std::string where = "options file '" + path + "' line " + std::to_string(line) + ": ";
+    if (w.empty() || w[0] == "alias") continue;
+    if (w[0][0] != '-')
+      problem = where + "'" + w[0] + "' is not an option; each line holds -name [value], and '#' starts a comment";
+    else if (w.size() > 2)
+      problem = where + "'" + w[2] + "' follows the value of " + w[0] + "; put each option on a line of its own";
+    else if (w.size() == 2 && (w[0] == "-options_file" || w[0] == "-options_file_yaml"))
+      problem = w[0] == "-options_file" ? options_file_problem(w[1], w[0], chain) : "";
+  }
+  std::fclose(f);
+  chain.pop_back();
+  return problem;
 }
 
 // PETSc reads -options_file during initialisation, before a quiet error handler can be installed:
@@ -56,19 +103,13 @@ bool options_files_valid(int argc, char** argv) {
   for (int k = 1; k + 1 < argc; ++k) {
     const std::string opt = argv[k];
     if (opt != "-options_file" && opt != "-options_file_yaml") continue;
-    std::FILE* f = std::fopen(argv[k + 1], "r");
-    if (!f) {
-      std::fprintf(stderr, "sph: error: cannot read options file '%s' (%s); check the path\n", argv[k + 1], opt.c_str());
-      return false;
-    }
-    std::string token;
-    const int line = opt == "-options_file" ? first_bad_line(f, &token) : 0;  // YAML is PETSc's to parse
-    std::fclose(f);
-    if (line > 0) {
-      std::fprintf(stderr,
-                   "sph: error: options file '%s' line %d: '%s' is not an option; each line holds -name [value], "
-                   "and '#' starts a comment\n",
-                   argv[k + 1], line, token.c_str());
+    std::vector<std::string> chain;
+    std::string problem;
+    if (opt == "-options_file") problem = options_file_problem(argv[k + 1], opt, chain);
+    else if (access(argv[k + 1], R_OK) != 0)  // a YAML file's contents are PETSc's to parse
+      problem = "cannot read options file '" + std::string(argv[k + 1]) + "' (" + opt + "); check the path";
+    if (!problem.empty()) {
+      std::fprintf(stderr, "sph: error: %s\n", problem.c_str());
       return false;
     }
   }

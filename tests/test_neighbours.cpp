@@ -520,3 +520,22 @@ TEST(NeighbourSkin, NoRebuildAndStaleListsStayExact) {
 }
 
 }  // namespace
+
+// A periodic wrap maps any distance back in one step: a particle flung 1e300 away by a forced huge
+// step once made the neighbour search loop for ever; a non-finite one stays non-finite for the
+// blow-up check.
+TEST(Domain, WrapMapsAnyDistanceBackInOneStep) {
+  sph::Domain<2> box;
+  box.lo = sph::Vector<2>(-1.0, 0.0);
+  box.hi = sph::Vector<2>(1.0, 1.0);
+  box.periodic = {true, false};
+  EXPECT_DOUBLE_EQ(box.wrap(sph::Vector<2>(2.5, 0.5))[0], 0.5);
+  EXPECT_DOUBLE_EQ(box.wrap(sph::Vector<2>(-3.25, 0.5))[0], 0.75);
+  EXPECT_DOUBLE_EQ(box.wrap(sph::Vector<2>(1.0, 0.5))[0], -1.0);  // hi is outside, lo inside
+  const sph::Vector<2> far = box.wrap(sph::Vector<2>(1e300, 7.0));
+  EXPECT_GE(far[0], -1.0);
+  EXPECT_LT(far[0], 1.0);
+  EXPECT_EQ(far[1], 7.0);  // not a periodic axis
+  EXPECT_FALSE(std::isfinite(box.wrap(sph::Vector<2>(INFINITY, 0.5))[0]));
+  EXPECT_FALSE(std::isfinite(box.wrap(sph::Vector<2>(NAN, 0.5))[0]));
+}

@@ -1,6 +1,7 @@
 #pragma once
 // The simulation box: bounds and, per axis, whether the box is periodic.
 #include <array>
+#include <cmath>
 
 #include "src/core/types.hpp"
 
@@ -13,13 +14,15 @@ template <int D> struct Domain {
 
   Vector<D> length() const { return hi - lo; }
 
-  // Maps a point back into the box along periodic axes.
+  // Maps a point back into the box along periodic axes, in one step whatever the distance (a point
+  // flung 1e300 away must not loop for ever; a non-finite one stays non-finite for the blow-up check).
   Vector<D> wrap(Vector<D> x) const {
     for (int a = 0; a < D; ++a) {
-      if (!periodic[a]) continue;
+      if (!periodic[a] || (x[a] >= lo[a] && x[a] < hi[a])) continue;
       const double L = hi[a] - lo[a];
-      while (x[a] < lo[a]) x[a] += L;
-      while (x[a] >= hi[a]) x[a] -= L;
+      x[a] -= std::floor((x[a] - lo[a]) / L) * L;
+      if (x[a] >= hi[a]) x[a] -= L;  // rounding
+      if (x[a] < lo[a]) x[a] = lo[a];
     }
     return x;
   }

@@ -3,6 +3,8 @@
 #include <petscsys.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <cstdarg>
 #include <regex>
 
@@ -94,7 +96,7 @@ PetscErrorCode capture_help(MPI_Comm, const char format[], ...) {
 }
 }  // namespace
 
-std::vector<std::string> documented_options(const std::function<void()>& read_all) {
+std::string options_help(const std::function<void()>& read_all) {
   g_help_text.clear();
   const auto saved = PetscHelpPrintf;
   PetscHelpPrintf = capture_help;
@@ -129,9 +131,14 @@ std::vector<std::string> documented_options(const std::function<void()>& read_al
     while (std::fgets(line, sizeof line, type_lists)) g_help_text += line;
     std::fclose(type_lists);
   }
+  return g_help_text;
+}
+
+std::vector<std::string> documented_options(const std::function<void()>& read_all) {
+  const std::string text = options_help(read_all);
   std::vector<std::string> names;
   const std::regex option("\\n  -([A-Za-z0-9_]+)");
-  for (auto it = std::sregex_iterator(g_help_text.begin(), g_help_text.end(), option); it != std::sregex_iterator(); ++it)
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), option); it != std::sregex_iterator(); ++it)
     names.push_back((*it)[1].str());
   return names;
 }
@@ -189,6 +196,65 @@ bool read_late_by_active(const std::string& name, const std::vector<OptionOwner>
 }
 
 }  // namespace
+
+namespace {
+
+// What an option's -help line says of its value. PETSc prints a flag as "-name: <TRUE : TRUE>", a
+// real as "-name <0.1 : 0.1>" and an integer, a string or a choice as "-name <now 64 : formerly 64>".
+enum class ValueKind { undocumented, flag, real, other };
+
+ValueKind value_kind(const std::string& help, const std::string& name, std::string* shown) {
+  std::smatch m;
+  if (!std::regex_search(help, m, std::regex("\\n  -" + name + "(:?) <(now )?([^>:]*)"))) return ValueKind::undocumented;
+  *shown = m[3].str();
+  while (!shown->empty() && shown->back() == ' ') shown->pop_back();
+  if (m[1].length() > 0) return ValueKind::flag;
+  return m[2].length() > 0 ? ValueKind::other : ValueKind::real;
+}
+
+// Whether a value (a number or a comma-separated list) holds inf or nan, which PETSc parses as reals.
+bool holds_non_finite(const std::string& value) {
+  std::istringstream items(value);
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    char* end = nullptr;
+    const double x = std::strtod(item.c_str(), &end);
+    if (end != item.c_str() && *end == '\0' && !std::isfinite(x)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void check_option_values(const std::vector<OptionOwner>& owners) {
+  // Before any block reads them: the database's options not yet read, with their values as given.
+  PetscInt n = 0;
+  char** names = nullptr;
+  char** values = nullptr;
+  SPH_PETSC(PetscOptionsLeftGet(nullptr, &n, &names, &values));
+  struct Suspect {
+    std::string name, value;
+    bool has_value;
+  };
+  std::vector<Suspect> suspects;
+  for (PetscInt k = 0; k < n; ++k)
+    if (!values[k] || holds_non_finite(values[k])) suspects.push_back({names[k], values[k] ? values[k] : "", values[k] != nullptr});
+  SPH_PETSC(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
+  if (suspects.empty()) return;
+  std::string help;
+  for (const OptionOwner& o : owners)
+    if (o.active) help += options_help(o.read);
+  for (const Suspect& o : suspects) {
+    std::string shown;
+    const ValueKind kind = value_kind(help, o.name, &shown);
+    if (!o.has_value && (kind == ValueKind::real || kind == ValueKind::other))
+      throw OptionError("option -" + o.name + " was given without a value" +
+                        (shown.empty() ? std::string() : " (its default is " + shown + ")") +
+                        "; give it a value or leave it out");
+    if (o.has_value && kind == ValueKind::real)
+      throw OptionError("option -" + o.name + " has the value '" + o.value + "', which is not a finite number");
+  }
+}
 
 void check_unused_options(const std::vector<OptionOwner>& owners) {
   for (const std::string& name : unused_options().names) {

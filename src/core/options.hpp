@@ -29,6 +29,11 @@ struct OptionOwner {
   bool active = false;         // chosen for this run
 };
 
+// Before the options blocks are read: an option of an active owner given without the value it needs
+// (PETSc would drop it silently and keep the default), or a real option given inf or nan (PETSc parses
+// them), throws OptionError naming it. Flags may stand alone; options PETSc reads itself are its own.
+void check_option_values(const std::vector<OptionOwner>& owners);
+
 // At start-up, every option in the database must have been read by now, except the ones an active
 // owner or PETSc itself reads later (a solve's viewers, -log_view). Throws OptionError naming the
 // first other one: with the owner that reads it when it belongs to a case or solver not chosen, else
@@ -39,7 +44,9 @@ void check_late_options(const std::vector<OptionOwner>& owners);
 // End of run: warns about options still unused (those only PETSc's finalisation reads are exempt).
 void finish_options_check();
 
-// The option names a call of `read_all` documents: its -help text, captured instead of printed.
+// The -help text a call of `read_all` prints, captured instead of printed.
+std::string options_help(const std::function<void()>& read_all);
+// The option names that text documents.
 std::vector<std::string> documented_options(const std::function<void()>& read_all);
 
 }  // namespace sph

@@ -1,6 +1,12 @@
 #include "src/io/output_dir.hpp"
 
 #include <petscsys.h>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <filesystem>
 #include <regex>
@@ -41,10 +47,52 @@ PetscMPIInt rank() {
   return r;
 }
 
+
+// Takes the directory's lock without waiting; on failure returns -1 and says why in `error`.
+int lock_directory(const std::string& dir, std::string* error) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  const std::string path = (fs::path(dir) / ".sph.lock").string();
+  const int fd = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    *error = "cannot create " + path + " (" + std::strerror(errno) + "); check that -output_dir is writable";
+    return -1;
+  }
+  if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int why = errno;
+    char holder[64] = "";
+    const ssize_t n = pread(fd, holder, sizeof holder - 1, 0);
+    holder[n > 0 ? n : 0] = '\0';
+    holder[std::strcspn(holder, "\n")] = '\0';
+    close(fd);
+    *error = why == EWOULDBLOCK
+                 ? "output directory " + dir + " is in use by another run (" +
+                       (holder[0] ? std::string(holder) : std::string("process id not yet written")) +
+                       "); wait for it to end or choose another -output_dir"
+                 : "cannot lock " + path + " (" + std::strerror(why) + ")";
+    return -1;
+  }
+  char host[256] = "";
+  gethostname(host, sizeof host - 1);
+  const std::string holder = "pid " + std::to_string(getpid()) + (host[0] ? std::string(" on ") + host : "") + "\n";
+  if (ftruncate(fd, 0) != 0 || pwrite(fd, holder.data(), holder.size(), 0) < 0) {
+    // The lock holds all the same; only the refusal of a second run names no process.
+  }
+  return fd;
+}
+
 }  // namespace
 
-void prepare_output_dir(const std::string& dir, bool overwrite, bool continuing) {
+OutputDirLock::~OutputDirLock() {
+  if (fd_ >= 0) close(fd_);  // releases the flock
+}
+
+OutputDirLock prepare_output_dir(const std::string& dir, bool overwrite, bool continuing) {
   std::string error;
+  int fd = -1;
+  if (rank() == 0) fd = lock_directory(dir, &error);
+  OutputDirLock lock(fd);
+  throw_if_root_failed(error);
   if (rank() == 0 && !continuing) {
     const std::vector<fs::path> found = entries(dir, is_result);
     if (!found.empty() && !overwrite) {
@@ -60,6 +108,7 @@ void prepare_output_dir(const std::string& dir, bool overwrite, bool continuing)
     }
   }
   throw_if_root_failed(error);
+  return lock;
 }
 
 void remove_frames_from(const std::string& dir, const std::string& basename, int first) {

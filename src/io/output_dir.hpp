@@ -4,13 +4,38 @@
 // user says -overwrite, which removes those results first (frames and MPI pieces, *.csv tables,
 // summary, checkpoint, temporary files; other files stay). A restart continues the run in the
 // directory that holds its checkpoint.
+//
+// A run holds an advisory lock (flock) on <dir>/.sph.lock from before that check to its end, so two
+// runs started together into one directory cannot both pass the check: the second is refused, naming
+// the first one's process. The lock goes with the process, however it ends; the file stays, empty of
+// meaning once unlocked.
 #include <string>
+#include <utility>
 
 namespace sph {
 
-// Collective on PETSC_COMM_WORLD. Creates `dir` if needed. Throws sph::Error naming the directory
-// and the fix when it holds a run and neither `overwrite` nor `continuing` is set.
-void prepare_output_dir(const std::string& dir, bool overwrite, bool continuing);
+// The lock on an output directory, held by rank 0 while the object lives.
+class OutputDirLock {
+ public:
+  OutputDirLock() = default;
+  explicit OutputDirLock(int fd) : fd_(fd) {}
+  OutputDirLock(OutputDirLock&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
+  OutputDirLock& operator=(OutputDirLock&& other) noexcept {
+    std::swap(fd_, other.fd_);
+    return *this;
+  }
+  OutputDirLock(const OutputDirLock&) = delete;
+  OutputDirLock& operator=(const OutputDirLock&) = delete;
+  ~OutputDirLock();
+
+ private:
+  int fd_ = -1;
+};
+
+// Collective on PETSC_COMM_WORLD. Creates `dir` if needed and locks it for this run. Throws
+// sph::Error naming the directory and the fix when another run holds it, or when it holds a run and
+// neither `overwrite` nor `continuing` is set.
+[[nodiscard]] OutputDirLock prepare_output_dir(const std::string& dir, bool overwrite, bool continuing);
 
 // Removes the frames numbered `first` and up (.vtp, .pvtp, pieces): after a restart they belong to
 // the abandoned part of the earlier run. Collective.

@@ -3,6 +3,7 @@
 #include <petscsys.h>
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkErrorCode.h>
 #include <vtkFieldData.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
@@ -12,7 +13,9 @@
 #include <vtkTypeInt64Array.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -75,23 +78,59 @@ vtkNew<vtkDoubleArray> scalar_array(const std::string& name, const std::vector<d
   return a;
 }
 
-// Writes `text` to `path` through a temporary file renamed over it (atomic on POSIX file systems).
+// The one-line failure of a write to `path`, from the system's reason `err` (an errno value).
+Error write_failure(const std::string& path, int err) {
+  const std::string why = err ? std::strerror(err) : "unknown reason";
+  return Error("cannot write " + path + " (" + why + "); " +
+               (err == ENOSPC || err == EDQUOT ? "free space on the disk of -output_dir, or write fewer frames (-output_interval)"
+                                               : "check that -output_dir is writable"));
+}
+
+// Moves a complete temporary file over `path` (atomic on POSIX file systems): readers see the old
+// file or the new one, never a part.
+void replace_with(const std::string& tmp, const std::string& path) {
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    std::remove(tmp.c_str());
+    throw Error("cannot replace " + path + " (rename from " + tmp + ": " + std::strerror(err) + ")");
+  }
+}
+
+// Writes `text` to `path` through a temporary file renamed over it.
 void write_atomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
   {
+    errno = 0;
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error("cannot write " + path + "; check that the output directory is writable");
+    if (!out) throw write_failure(path, errno);
     out << text;
     out.flush();
     if (!out) {
+      const int err = errno;
       std::remove(tmp.c_str());
-      throw Error("failed writing " + path + " (disk full?)");
+      throw write_failure(path, err);
     }
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+  replace_with(tmp, path);
+}
+
+// Writes a frame to `path` through a temporary file, as write_atomically: a failed write (a full
+// disk) leaves no truncated frame behind, and VTK's own multi-line reports are kept off the terminal.
+void write_frame(vtkXMLPolyDataWriter* writer, const std::string& path) {
+  const std::string tmp = path + ".tmp";
+  writer->SetFileName(tmp.c_str());
+  const vtkTypeBool warnings = vtkObject::GetGlobalWarningDisplay();
+  vtkObject::GlobalWarningDisplayOff();
+  errno = 0;
+  const bool written = writer->Write() == 1 && writer->GetErrorCode() == vtkErrorCode::NoError;
+  const int err = errno;
+  const unsigned long code = writer->GetErrorCode();
+  vtkObject::SetGlobalWarningDisplay(warnings);
+  if (!written) {
     std::remove(tmp.c_str());
-    throw Error("cannot replace " + path + " (rename from " + tmp + " failed)");
+    throw write_failure(path, code == vtkErrorCode::OutOfDiskSpaceError ? ENOSPC : err);
   }
+  replace_with(tmp, path);
 }
 
 }  // namespace
@@ -170,14 +209,12 @@ std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const s
   const std::string own = parallel ? piece_name(base_, frame, rank_) : frame_stem(base_, frame) + ".vtp";
   const std::string own_path = dir_ + "/" + own;
   vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetFileName(own_path.c_str());
   writer->SetInputData(poly);
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();  // raw binary
   writer->SetCompressorTypeToZLib();
   writer->SetHeaderTypeToUInt64();  // no 4 GiB limit on a block
-  if (writer->Write() != 1)
-    throw Error("cannot write " + own_path + "; check that -output_dir is writable and not full");
+  write_frame(writer, own_path);
 
   std::string listed = own;
   if (parallel) {

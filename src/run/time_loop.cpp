@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <optional>
 #include <sstream>
 
@@ -98,6 +99,7 @@ template <int D> class TimeLoop {
   const std::string checkpoint_path_;
 
   // Outputs, opened once the input is accepted.
+  OutputDirLock dir_lock_;  // held to the end of the run
   std::optional<ParticleWriter<D>> writer_;
   std::optional<CsvWriter> series_;
   std::vector<std::vector<double>> vorticity_;
@@ -209,7 +211,7 @@ template <int D> void TimeLoop<D>::open_outputs() {
   const std::string& dir = run_.output_dir;
   const bool restarting = opt_.restarting();
   const bool in_place = restarting && is_in_directory(opt_.restart, dir);
-  prepare_output_dir(dir, opt_.overwrite, in_place);
+  dir_lock_ = prepare_output_dir(dir, opt_.overwrite, in_place);
   writer_.emplace(dir);
   if (restarting) writer_->resume(resumed_.t);
   if (in_place) remove_frames_from(dir, "particles", writer_->frames_written());
@@ -390,7 +392,10 @@ template <int D> void TimeLoop<D>::fail(const Error& e) {
   } catch (const Error& later) {
     also = "; writing the failed run's outputs failed too: " + std::string(later.what());
   }
-  throw Error(msg.str() + also + " [earlier frames and the last checkpoint are kept in " + run_.output_dir + "]");
+  // Name only what exists: with -checkpoint_interval 0, or a failure before the first, no checkpoint.
+  const bool checkpoint = std::filesystem::exists(checkpoint_path_);
+  throw Error(msg.str() + also + " [earlier frames" + (checkpoint ? " and the last checkpoint" : "") + " are kept in " +
+              run_.output_dir + (checkpoint ? "" : "; no checkpoint was written") + "]");
 }
 
 template <int D> void TimeLoop<D>::stop_interrupted() {

@@ -36,6 +36,30 @@ expect_error "unknown case|Unknown|case" -case no_such_case
 expect_error "-cfl must be" $small -cfl 5
 expect_error "kernel" $small -kernel no_such_kernel
 expect_error "options|file|PETSc" -options_file "$tmp/missing.opts"
+# An option that needs a value and has none was dropped by PETSc (the default ran): refused, on the
+# command line and in an options file alike. A flag may stand alone.
+bare="-case taylor_green -t_end 0.01 -progress 0 -output_dir $tmp/out -overwrite"
+expect_error "option -nx was given without a value \(its default is 64\)" $bare -nx -re 50
+expect_error "option -re was given without a value" $bare -nx 8 -re
+expect_error "option -restart was given without a value" $bare -nx 8 -restart
+expect_error "option -output_dir was given without a value" -case taylor_green -nx 8 -t_end 0.01 -progress 0 -output_dir
+expect_error "option -case was given without a value" -case -nx 8
+expect_error "option -ksp_rtol was given without a value" $bare -nx 8 -ksp_rtol
+printf -- '-nx\n-t_end 0.01\n' > "$tmp/bare.opts"
+expect_error "option -nx was given without a value" -options_file "$tmp/bare.opts" -progress 0 -output_dir "$tmp/out" -overwrite
+expect_ok $bare -nx 8 -shifting
+# inf and nan parse as reals: refused before the run starts, which would fail at step 1 (or hang).
+expect_error "option -t_end has the value 'inf', which is not a finite number" $bare -nx 8 -t_end inf
+expect_error "option -cfl has the value 'nan', which is not a finite number" $bare -nx 8 -cfl nan
+expect_error "option -dt has the value 'inf'" $bare -nx 8 -dt inf -dt_force 1
+# Options files PETSc would refuse with a traceback, or recurse into until it crashes.
+printf -- '-nx 8\n-options_file %s\n' "$tmp/self.opts" > "$tmp/self.opts"
+expect_error "options file '.*self.opts' includes itself" -options_file "$tmp/self.opts"
+printf -- '-options_file %s\n' "$tmp/b.opts" > "$tmp/a.opts"; printf -- '-re 10\n-options_file %s\n' "$tmp/a.opts" > "$tmp/b.opts"
+expect_error "options file '.*a.opts' includes itself" -options_file "$tmp/a.opts"
+expect_error "options file '.*' \(-options_file\) is a folder" -options_file "$tmp"
+printf -- '-nx 8 -re 10\n' > "$tmp/two.opts"
+expect_error "two.opts' line 1: '-re' follows the value of -nx; put each option on a line of its own" -options_file "$tmp/two.opts"
 printf -- '# a scene\n-nx 8  # particles per side\nnx 16\n' > "$tmp/garbage.opts"
 expect_error "options file '.*garbage.opts' line 3: 'nx' is not an option" -options_file "$tmp/garbage.opts"
 expect_error "option -nx has the value 'abc', which is not an integer" -case taylor_green -nx abc
