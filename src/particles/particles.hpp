@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "src/core/types.hpp"
+#include "src/particles/particle_budget.hpp"
 
 namespace sph {
 
@@ -31,6 +32,7 @@ template <int D> struct Particles {
   // Appends an owned particle; only valid before ghosts exist.
   void add(const Vector<D>& pos, const Vector<D>& vel, double mass, double density, double pressure = 0.0,
            int k = kFluid) {
+    if (x.size() >= particle_budget().limit) refuse_over_budget();
     x.push_back(pos);
     v.push_back(vel);
     m.push_back(mass);

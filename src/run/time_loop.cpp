@@ -19,6 +19,7 @@
 #include "src/neighbours/partition.hpp"
 #include "src/run/diagnostics.hpp"
 #include "src/run/interrupt.hpp"
+#include "src/run/memory_budget.hpp"
 #include "src/run/progress.hpp"
 #include "src/run/provenance.hpp"
 #include "src/run/run_identity.hpp"
@@ -93,6 +94,7 @@ template <int D> class TimeLoop {
   // checkpoint is damaged or was written with other options.
   const nlohmann::json identity_;
   const nlohmann::json resumed_run_;
+  const MemoryBudgetScope memory_;  // checked as the scene is created, before the solver allocates
   RunScene<D> s_;
   long partitions_ = 1;
   CheckpointState<D> resumed_;
@@ -132,10 +134,12 @@ TimeLoop<D>::TimeLoop(const RunParts<D>& run)
       solver_(run.solver),
       identity_(run_identity(run.case_name, run.solver_name, D, run.scene_case.parameters())),
       resumed_run_(resumed_run_header()),
+      memory_(run.solver.bytes_per_particle(), run.solver_name),
       s_(run.scene_case, run.kernel, run.control.skin),
       checkpoint_path_(run.output_dir + "/checkpoint.bin"),
       steady_(run.control.steady_tol),
       check_neighbours_(s_.scene.physics.free_surface) {
+  memory_.check_scene(s_.P.n_owned);
   const double wall = case_.wall_thickness(), support = s_.kernel.support_radius();
   if (wall > 0 && wall < support * (1 - 1e-12))
     throw Error(case_.thin_walls(wall / case_.spacing(), support / case_.spacing()));
