@@ -133,9 +133,23 @@ void fault_point(const char* stage, int write_number) {
   if (fault_at(stage, write_number)) std::raise(SIGKILL);
 }
 
-// Appends header + trailer to the data in `tmp`, syncs it and renames it over `path`. Rank 0 only;
-// returns an error message, empty on success.
-std::string seal(const std::string& tmp, const std::string& path, nlohmann::json header, int write_number) {
+// Moves the older checkpoints along to make room for a new <path>: <path>.<k> to <path>.<k+1>, the
+// oldest dropped, and <path> linked as <path>.1, so <path> itself stays until the new one replaces it.
+std::string keep_older(const std::string& path, int kept) {
+  if (kept <= 1) return "";
+  auto older = [&path](int k) { return path + "." + std::to_string(k); };
+  std::remove(older(kept - 1).c_str());
+  for (int k = kept - 2; k >= 1; --k)
+    if (std::rename(older(k).c_str(), older(k + 1).c_str()) != 0 && errno != ENOENT)
+      return "cannot move " + older(k) + " to " + older(k + 1) + " (" + std::strerror(errno) + ")";
+  if (link(path.c_str(), older(1).c_str()) != 0 && errno != ENOENT)
+    return "cannot keep " + path + " as " + older(1) + " (" + std::strerror(errno) + ")";
+  return "";
+}
+
+// Appends header + trailer to the data in `tmp`, syncs it and renames it over `path` (after moving
+// the older ones along). Rank 0 only; returns an error message, empty on success.
+std::string seal(const std::string& tmp, const std::string& path, nlohmann::json header, int write_number, int kept) {
   std::FILE* f = std::fopen(tmp.c_str(), "r+b");
   if (!f) return "cannot reopen " + tmp + " (" + std::strerror(errno) + ")";
   std::fseek(f, 0, SEEK_END);
@@ -161,6 +175,7 @@ std::string seal(const std::string& tmp, const std::string& path, nlohmann::json
   ok = (std::fclose(f) == 0) && ok;
   if (!ok) return std::strerror(write_errno);
   fault_point("trailer", write_number);
+  if (const std::string moved = keep_older(path, kept); !moved.empty()) return moved;
   if (std::rename(tmp.c_str(), path.c_str()) != 0) return std::string("renaming the temporary file failed (") + std::strerror(errno) + ")";
   fault_point("renamed", write_number);
   return "";
@@ -212,7 +227,7 @@ std::string unseal(const std::string& path, std::string* header_text) {
 
 template <int D>
 void write_checkpoint(const std::string& path, Particles<D>& P, const std::vector<CheckpointField>& extra,
-                      const CheckpointState<D>& state) {
+                      const CheckpointState<D>& state, int kept) {
   static int writes = 0;
   ++writes;
   std::vector<double> kind(P.kind.begin(), P.kind.begin() + P.n_owned);
@@ -238,7 +253,7 @@ void write_checkpoint(const std::string& path, Particles<D>& P, const std::vecto
   } catch (const Error& e) {
     error = e.what();
   }
-  if (root && error.empty()) error = seal(tmp, path, header, writes);
+  if (root && error.empty()) error = seal(tmp, path, header, writes, kept);
   broadcast_from_root(error);
   if (!error.empty()) {
     if (root) std::remove(tmp.c_str());
@@ -299,11 +314,11 @@ std::size_t checkpoint_data_bytes(const std::string& path) {
 }
 
 template void write_checkpoint<1>(const std::string&, Particles<1>&, const std::vector<CheckpointField>&,
-                                  const CheckpointState<1>&);
+                                  const CheckpointState<1>&, int);
 template void write_checkpoint<2>(const std::string&, Particles<2>&, const std::vector<CheckpointField>&,
-                                  const CheckpointState<2>&);
+                                  const CheckpointState<2>&, int);
 template void write_checkpoint<3>(const std::string&, Particles<3>&, const std::vector<CheckpointField>&,
-                                  const CheckpointState<3>&);
+                                  const CheckpointState<3>&, int);
 template CheckpointState<1> read_checkpoint<1>(const std::string&, Particles<1>&, const std::vector<CheckpointField>&);
 template CheckpointState<2> read_checkpoint<2>(const std::string&, Particles<2>&, const std::vector<CheckpointField>&);
 template CheckpointState<3> read_checkpoint<3>(const std::string&, Particles<3>&, const std::vector<CheckpointField>&);

@@ -30,10 +30,12 @@ template <int D> struct CheckpointState {
 };
 
 // Writes <path> (collective). Throws sph::Error naming the checkpoint when any part fails, after
-// removing <path>.tmp; the previous <path> is then untouched.
+// removing <path>.tmp; the previous <path> is then untouched. With `kept` > 1 the previous ones move
+// along, <path> to <path>.1, <path>.1 to <path>.2, ..., up to <path>.<kept-1>, just before the new
+// one is renamed into place (the moves are renames and a hard link: <path> never goes missing).
 template <int D>
 void write_checkpoint(const std::string& path, Particles<D>& P, const std::vector<CheckpointField>& extra,
-                      const CheckpointState<D>& state);
+                      const CheckpointState<D>& state, int kept = 1);
 
 // The header of a checkpoint after checking its trailer and the data's checksum (collective: rank 0
 // reads, every rank gets the header). Throws sph::Error naming the file and what is wrong with it.

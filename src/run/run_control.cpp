@@ -36,6 +36,10 @@ PetscErrorCode read_options(RunControl* o) {
   PetscCall(PetscOptionsReal("-checkpoint_interval",
                              "Time between checkpoints (<output_dir>/checkpoint.bin; -1: with every frame, 0: never)", "",
                              o->checkpoint_interval, &o->checkpoint_interval, nullptr));
+  PetscCall(PetscOptionsInt("-checkpoints_kept",
+                            "Checkpoints kept: the newest is checkpoint.bin, the one before it checkpoint.bin.1, and "
+                            "so on (to go back to before a blow-up)",
+                            "", o->checkpoints_kept, &o->checkpoints_kept, nullptr));
   PetscCall(PetscOptionsInt("-partition_interval",
                             "Steps between re-orderings of the particles along a space-filling curve, which also "
                             "re-balances them over MPI ranks (0: only at start-up and at checkpoints)",
@@ -65,6 +69,7 @@ void read_run_control(RunControl& opt, double case_steady_tol, int dim) {
   require(opt.max_steps >= -1, "-max_steps", "-1 (no limit) or non-negative", opt.max_steps);
   require(opt.output_interval == -1 || opt.output_interval >= 0, "-output_interval",
           "-1 (t_end/20), 0 (first and last frame) or positive", opt.output_interval);
+  require(opt.checkpoints_kept >= 1, "-checkpoints_kept", "at least 1", static_cast<double>(opt.checkpoints_kept));
   require(opt.checkpoint_interval == -1 || opt.checkpoint_interval >= 0, "-checkpoint_interval",
           "-1 (with every frame), 0 (never) or positive", opt.checkpoint_interval);
   require(opt.steady_tol == -1 || opt.steady_tol >= 0, "-steady_tol", "-1 (the case's default), 0 (off) or positive",

@@ -15,6 +15,7 @@ struct RunControl {
   PetscReal skin = 0.2;                // Verlet skin as a fraction of the support radius
   PetscReal steady_tol = -1;           // -1: the case's default
   PetscReal checkpoint_interval = -1;  // -1: with every VTK frame, 0: never
+  PetscInt checkpoints_kept = 1;       // checkpoint.bin, then checkpoint.bin.1, ... (older)
   PetscInt partition_interval = 50;    // steps between re-partitions along the space-filling curve
   PetscInt threads = 0;                // OpenMP threads per rank (0: see configure_threads)
   char restart[PETSC_MAX_PATH_LEN] = "";

@@ -17,13 +17,24 @@ namespace {
 // later -t_end to continue a run).
 bool steers_only(const std::string& name) {
   static const std::set<std::string> exact = {
-      "t_end",  "max_steps", "output_dir", "output_interval", "checkpoint_interval", "progress", "threads",
+      "t_end",  "max_steps", "output_dir", "output_interval", "checkpoint_interval", "checkpoints_kept", "progress", "threads",
       "partition_interval", "restart", "overwrite", "steady_tol", "dt_force", "case", "solver", "dim", "help",
       "version", "options_file", "options_file_yaml", "skip_petscrc"};
   static const char* prefixes[] = {"log", "info", "malloc", "options_", "ksp_monitor", "ksp_view", "ksp_converged_reason",
                                    "ksp_converged_rate", "mat_view", "vec_view", "pc_view", "memory_view", "objects_dump",
                                    "on_error", "fp_trap", "no_signal_handler", "use_gpu_aware_mpi", "citations",
                                    "error_output", "saws", "check_pointer_intensity", "mpi_linear_solver_server", "viewer"};
+  if (exact.count(name)) return true;
+  for (const char* p : prefixes)
+    if (name.rfind(p, 0) == 0) return true;
+  return false;
+}
+
+// Options that change only how the steps to come are taken, not the problem: a restart may change
+// them to rescue a failing run (a smaller step, another linear solver); the change is recorded.
+bool changes_numerics_only(const std::string& name) {
+  static const std::set<std::string> exact = {"cfl", "cfl_force", "dt", "ppe_pc_drop_tol", "mat_type"};
+  static const char* prefixes[] = {"ksp_", "pc_", "sub_ksp_", "sub_pc_"};
   if (exact.count(name)) return true;
   for (const char* p : prefixes)
     if (name.rfind(p, 0) == 0) return true;
@@ -94,7 +105,7 @@ nlohmann::json run_identity(const std::string& case_name, const std::string& sol
           {"options", options}};
 }
 
-void check_same_run(const nlohmann::json& saved, const nlohmann::json& now, const std::string& path) {
+nlohmann::json check_same_run(const nlohmann::json& saved, const nlohmann::json& now, const std::string& path) {
   if (!saved.is_object() || !saved.contains("options"))
     throw Error("checkpoint " + path + " does not record the options it was written with; start a new run");
   for (const char* key : {"case", "solver", "dim"})
@@ -106,8 +117,13 @@ void check_same_run(const nlohmann::json& saved, const nlohmann::json& now, cons
   std::set<std::string> names;
   for (const auto& [name, value] : a.items()) names.insert(name);
   for (const auto& [name, value] : b.items()) names.insert(name);
+  nlohmann::json changed = nlohmann::json::object();
   for (const std::string& name : names) {
     if (a.contains(name) && b.contains(name) && normalised(a[name]) == normalised(b[name])) continue;
+    if (changes_numerics_only(name)) {
+      changed[name] = {{"was", a.contains(name) ? a[name] : "default"}, {"now", b.contains(name) ? b[name] : "default"}};
+      continue;
+    }
     // Given on one side only: the same if the case's effective value agrees (-re 100 is the default).
     if (pa.contains(name) && pb.contains(name) && pa[name] == pb[name]) continue;
     refuse(path, shown(a, name), shown(b, name), name);
@@ -115,6 +131,7 @@ void check_same_run(const nlohmann::json& saved, const nlohmann::json& now, cons
   for (const auto& [name, value] : pa.items())
     if (!pb.contains(name) || pb[name] != value)
       refuse(path, name + " = " + value.dump(), name + " = " + (pb.contains(name) ? pb[name].dump() : "unset"), name);
+  return changed;
 }
 
 }  // namespace sph

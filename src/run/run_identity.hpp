@@ -2,6 +2,7 @@
 // What makes a run the run it is, so that a restart can be checked against the checkpoint it resumes:
 // the case, the solver, the dimension, the case's effective parameters and every option in PETSc's
 // database except those that only steer the run (end time, output, checkpoints, threads, logging).
+// A restart may also change the options that set only the numerics of the steps to come.
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -15,8 +16,10 @@ nlohmann::json options_database();
 nlohmann::json run_identity(const std::string& case_name, const std::string& solver_name, int dim,
                             const nlohmann::json& case_parameters);
 
-// Throws sph::Error naming the first option whose value differs between the checkpoint's identity
-// (`saved`, read from `path`) and this run's (`now`).
-void check_same_run(const nlohmann::json& saved, const nlohmann::json& now, const std::string& path);
+// Throws sph::Error naming the first option that changes the problem and whose value differs between
+// the checkpoint's identity (`saved`, read from `path`) and this run's (`now`). Options that change only
+// the numerics of the steps to come (-cfl, -dt, -ksp_*, -pc_*) may differ: returns those changed, as
+// {name: {"was": value, "now": value}} (a flag's value is null; "default" where not given).
+nlohmann::json check_same_run(const nlohmann::json& saved, const nlohmann::json& now, const std::string& path);
 
 }  // namespace sph

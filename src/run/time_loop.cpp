@@ -81,6 +81,7 @@ template <int D> class TimeLoop {
   void repartition();
   void write_state(const std::string& why = "checkpointed");
   nlohmann::json this_segment(const std::string& status) const;
+  nlohmann::json checked_restart() const;
   void finish(const std::string& status, const std::string& failure);
   [[noreturn]] void fail(const Error& e);
   [[noreturn]] void stop_interrupted();
@@ -94,6 +95,7 @@ template <int D> class TimeLoop {
   // checkpoint is damaged or was written with other options.
   const nlohmann::json identity_;
   const nlohmann::json resumed_run_;
+  const nlohmann::json numerics_changed_;  // by this restart: -cfl, -dt, -ksp_*, ...
   const MemoryBudgetScope memory_;  // checked as the scene is created, before the solver allocates
   RunScene<D> s_;
   long partitions_ = 1;
@@ -134,6 +136,7 @@ TimeLoop<D>::TimeLoop(const RunParts<D>& run)
       solver_(run.solver),
       identity_(run_identity(run.case_name, run.solver_name, D, run.scene_case.parameters())),
       resumed_run_(resumed_run_header()),
+      numerics_changed_(checked_restart()),
       memory_(run.solver.bytes_per_particle(), run.solver_name),
       s_(run.scene_case, run.kernel, run.control.skin),
       checkpoint_path_(run.output_dir + "/checkpoint.bin"),
@@ -151,10 +154,21 @@ TimeLoop<D>::TimeLoop(const RunParts<D>& run)
                 "; lower -dt (-dt 0 follows the limit) or pass -dt_force 1 to run it anyway");
 }
 
+// A restart may change the numerics of the steps to come (a smaller step to rescue a failing run):
+// said at the start, recorded in the history.
+template <int D> nlohmann::json TimeLoop<D>::checked_restart() const {
+  if (!opt_.restarting()) return nlohmann::json::object();
+  const nlohmann::json changed = check_same_run(resumed_run_.value("identity", nlohmann::json()), identity_, opt_.restart);
+  auto text = [](const nlohmann::json& v) { return v.is_null() ? std::string("(flag)") : v.get<std::string>(); };
+  for (const auto& [name, change] : changed.items())
+    PetscPrintf(PETSC_COMM_WORLD, "restart: -%s %s (was %s): the numerics of the steps to come\n", name.c_str(),
+                text(change["now"]).c_str(), text(change["was"]).c_str());
+  return changed;
+}
+
 template <int D> nlohmann::json TimeLoop<D>::resumed_run_header() const {
   if (!opt_.restarting()) return nlohmann::json::object();
   nlohmann::json resumed = read_checkpoint_header(opt_.restart).value("run", nlohmann::json::object());
-  check_same_run(resumed.value("identity", nlohmann::json()), identity_, opt_.restart);
   return resumed;
 }
 
@@ -354,15 +368,18 @@ template <int D> void TimeLoop<D>::write_state(const std::string& why) {
                      {"steady_state_window", steady_.to_json()}, {"history", history_},
                      {"case_state", case_.accumulated_state()}};
   run["history"].push_back(this_segment(why));
-  write_checkpoint(checkpoint_path_, s_.P, solver_.checkpoint_fields(), {t_, step_, solver_.checkpoint_scalars(), run});
+  write_checkpoint(checkpoint_path_, s_.P, solver_.checkpoint_fields(), {t_, step_, solver_.checkpoint_scalars(), run},
+                   static_cast<int>(opt_.checkpoints_kept));
 }
 
 // This run's entry in the history of runs that led to its state.
 template <int D> nlohmann::json TimeLoop<D>::this_segment(const std::string& status) const {
-  return nlohmann::json{{"status", status}, {"steps", {resumed_.step, step_}}, {"t", {resumed_.t, t_}},
-                        {"wall_time_s", seconds_since(wall_start_)}, {"mpi_ranks", ranks_},
-                        {"threads_per_rank", opt_.threads}, {"version", program_version()},
-                        {"command_line", summary_.at("provenance").value("command_line", nlohmann::json())}};
+  nlohmann::json j{{"status", status}, {"steps", {resumed_.step, step_}}, {"t", {resumed_.t, t_}},
+                   {"wall_time_s", seconds_since(wall_start_)}, {"mpi_ranks", ranks_},
+                   {"threads_per_rank", opt_.threads}, {"version", program_version()},
+                   {"command_line", summary_.at("provenance").value("command_line", nlohmann::json())}};
+  if (!numerics_changed_.empty()) j["numerics_changed"] = numerics_changed_;
+  return j;
 }
 
 template <int D> void TimeLoop<D>::finish(const std::string& status, const std::string& failure) {

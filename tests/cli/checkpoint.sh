@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Checkpoints cannot lie: a restart with other options is refused naming the option, a changed byte
 # (data or header) is refused, and a restart with the same options (a default spelled out included)
-# is accepted.   usage: checkpoint.sh <sph executable> <source dir>
+# or other numerics of the steps to come (-cfl, -dt, -ksp_*) is accepted; older checkpoints are kept.   usage: checkpoint.sh <sph executable> <source dir>
 set -u
 sph="$1"; src="$2"; tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail=0
@@ -18,6 +18,25 @@ expect_error "written with -solver isph.*-solver wcsph" ${run/isph/wcsph} -resta
 expect_error "-nx 8.*-nx 16" $run -nx 16 -restart "$ck" -output_dir "$tmp/b"
 expect_ok $run -re 100 -restart "$ck" -output_dir "$tmp/c"  # 100 is the default
 expect_ok $run -t_end 0.06 -restart "$ck" -output_dir "$tmp/d"  # continuing further is allowed
+# A failing run is rescued with a smaller step or another linear solver: the numerics of the steps to
+# come may change on restart, and the change is recorded in the history.
+expect_ok $run -t_end 0.06 -cfl 0.1 -dt 0.004 -ksp_type bcgs -restart "$ck" -output_dir "$tmp/e"
+expect_json "$tmp/e/summary.json" 's["status"] == "completed" and s["history"][-1]["numerics_changed"] == {"cfl": {"was": "default", "now": "0.1"}, "dt": {"was": "default", "now": "0.004"}, "ksp_type": {"was": "default", "now": "bcgs"}} and "numerics_changed" not in s["history"][0]' "a restart with other numerics records them"
+expect_error "same -shift_coefficient" $run -shift_coefficient 1.5 -restart "$ck" -output_dir "$tmp/b"  # the scheme, not its numerics
+
+# -checkpoints_kept K keeps the K newest, newest first; a run restarted from an older one (to go back
+# to before a blow-up) continues in place.
+k="$tmp/kept"
+expect_ok $run -t_end 0.1 -checkpoints_kept 3 -output_dir "$k"
+times() { for f in "$@"; do python3 -c 'import json,struct,sys; b=open(sys.argv[1],"rb").read(); n=struct.unpack("<Q",b[-24:-16])[0]; print(round(json.loads(b[-24-n:-24])["t"], 6))' "$f"; done | tr '\n' ' '; }
+kept_t=$(times "$k/checkpoint.bin" "$k/checkpoint.bin.1" "$k/checkpoint.bin.2")
+python3 -c 'import sys; t = [float(x) for x in sys.argv[1:]]; sys.exit(not (len(t) == 3 and t[0] == 0.1 and t[0] > t[1] > t[2] > 0))' $kept_t \
+  && [ ! -e "$k/checkpoint.bin.3" ] && echo "ok: -checkpoints_kept 3 kept t = $kept_t" \
+  || { echo "FAIL: -checkpoints_kept 3 kept $(ls "$k" | grep checkpoint | tr '\n' ' ') at t = $kept_t"; fail=1; }
+oldest=$(times "$k/checkpoint.bin.2")
+expect_ok $run -t_end 0.1 -checkpoints_kept 3 -cfl 0.1 -restart "$k/checkpoint.bin.2" -output_dir "$k"
+expect_json "$k/summary.json" "s['status'] == 'completed' and abs(s['history'][-1]['t'][0] - $oldest) < 1e-6 and 'cfl' in s['history'][-1]['numerics_changed']" "restarted from the oldest kept checkpoint, with a smaller step"
+expect_error "-checkpoints_kept must be at least 1" $run -checkpoints_kept 0 -output_dir "$tmp/b"
 
 # Two bytes changed in the data, then a time edited in the header.
 cp "$ck" "$tmp/data.bin"
