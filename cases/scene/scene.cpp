@@ -93,6 +93,7 @@ template <int D> void SceneCase<D>::set_from_options() {
   const PointGrid<D> grid(x, box_, dx_);
   const std::vector<int> count = neighbour_counts(grid, x, dx_);
   free_surface_detected_ = has_open_fluid_face<D>(count, kind);
+  check_moving_walls(grid, x);
   const WallThickness w = measure_wall_thickness(grid, x, kind, count, dx_);
   walls_ = w.thickness;
   thinnest_at_ = x[w.particle];
@@ -106,6 +107,9 @@ template <int D> void SceneCase<D>::resolve_parameters() {
     if (it->second.size() != want)
       throw Error(file_.error(std::string("field data '") + name + "' has " + std::to_string(it->second.size()) +
                               " values; give " + shape));
+    for (double value : it->second)
+      if (!std::isfinite(value))
+        throw Error(file_.error(std::string("field data '") + name + "' holds " + number(value) + "; give a finite number"));
     return &it->second;
   };
   auto scalar = [&](const char* name, PetscBool set, double opt, double fallback) {
@@ -160,6 +164,10 @@ template <int D> void SceneCase<D>::resolve_parameters() {
   physics_.nu = scalar("nu", opt_.nu_set, opt_.nu, 0.0);
   require(physics_.nu >= 0, opt_.nu_set ? "-nu" : "the scene's field data nu", "non-negative", physics_.nu);
   t_end_ = scalar("t_end", PETSC_FALSE, 0.0, 1.0);
+  // Named here, where it comes from: -t_end's own check would blame an option the user never gave.
+  PetscBool t_end_given = PETSC_FALSE;
+  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-t_end", &t_end_given));
+  if (!t_end_given) require(t_end_ > 0, "the scene's field data t_end", "positive (or pass -t_end)", t_end_);
   if (opt_.gravity_set) {
     if (opt_.gravity_n != D)
       throw Error("-gravity needs " + std::to_string(D) + " values for this " + std::to_string(D) + "D scene, got " +
@@ -188,6 +196,29 @@ template <int D> void SceneCase<D>::resolve_parameters() {
     throw Error(opt_.U_set || file_.field.count("U") ? "the reference speed U must be positive (got " + number(physics_.U) + ")"
                                                  : file_.error("sets no reference speed and nothing moves (no velocity, no "
                                                                "gravity); add field data 'U' or pass -U"));
+}
+
+// Walls keep their place: a moving wall (kind 2) only slides along itself, its velocity the no-slip
+// condition's. A velocity towards or away from the fluid beside it (within 25 degrees of the normal
+// that the fluid within 3 dx gives) would be ignored: the particle would neither move nor push.
+template <int D> void SceneCase<D>::check_moving_walls(const PointGrid<D>& grid, const std::vector<Vector<D>>& x) const {
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (file_.kind[i] != kSceneMovingWall) continue;
+    Vector<D> v;
+    for (int a = 0; a < D; ++a) v[a] = file_.v[i][a];
+    if (v.norm() == 0) continue;
+    Vector<D> towards_fluid = Vector<D>::Zero();
+    grid.for_each_within(x[i], 3 * dx_, [&](int j, const Vector<D>& d) {
+      if (file_.kind[j] == kSceneFluid) towards_fluid += d.normalized();
+    });
+    if (towards_fluid.norm() == 0) continue;
+    const double cosine = std::abs(v.dot(towards_fluid.normalized())) / v.norm();
+    if (cosine > std::cos(25 * M_PI / 180))
+      throw Error(file_.error("moving-wall particle " + std::to_string(i) + " at " + point<D>(x[i]) + " has velocity " +
+                              point<D>(v) + ", " + number(std::round(std::acos(cosine) * 180 / M_PI)) +
+                              " degrees from the normal of the fluid beside it; walls keep their place and a moving "
+                              "wall (kind 2) slides along itself: give it a velocity along its wall"));
+  }
 }
 
 template <int D> void SceneCase<D>::check_particles_in_box() const {

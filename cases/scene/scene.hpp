@@ -19,6 +19,7 @@
 
 #include "src/run/case.hpp"
 #include "cases/scene/scene_file.hpp"
+#include "cases/scene/scene_geometry.hpp"
 
 namespace sph {
 
@@ -49,6 +50,7 @@ template <int D> class SceneCase : public Case<D> {
  private:
   void resolve_parameters();  // file field data, then the options that override it
   void check_particles_in_box() const;
+  void check_moving_walls(const PointGrid<D>& grid, const std::vector<Vector<D>>& x) const;
 
   SceneFile file_;
   Domain<D> box_;

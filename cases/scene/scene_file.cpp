@@ -7,6 +7,7 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataReader.h>
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -47,6 +48,31 @@ struct QuietVtk {
 
 std::string SceneFile::error(const std::string& what) const { return "scene file '" + path + "': " + what; }
 
+namespace {
+
+// The point arrays a scene reads must be numeric, and one spelled like them in another case is a
+// slip that would leave, say, a lid at rest: refused, naming it. Other arrays (a frame's density,
+// mass, id used as a scene) are not read.
+void check_array_names(const SceneFile& s, vtkPointData* pd) {
+  for (int k = 0; k < pd->GetNumberOfArrays(); ++k) {
+    vtkAbstractArray* a = pd->GetAbstractArray(k);
+    if (!a || !a->GetName()) continue;
+    const std::string name = a->GetName();
+    std::string lower = name;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* known : {"kind", "velocity", "pressure"}) {
+      if (lower != known) continue;
+      if (name != known)
+        throw Error(s.error("has a point array '" + name + "', which is not read: the array is '" + known +
+                            "' (lower case); rename it"));
+      if (!vtkDataArray::SafeDownCast(a))
+        throw Error(s.error("point array '" + name + "' is not numeric (" + a->GetClassName() + "); write numbers"));
+    }
+  }
+}
+
+}  // namespace
+
 SceneFile read_scene_file(const std::string& path) {
   SceneFile s;
   s.path = path;
@@ -71,10 +97,11 @@ SceneFile read_scene_file(const std::string& path) {
   vtkDataArray* kind = pd->GetArray("kind");
   if (!kind || kind->GetNumberOfComponents() != 1)
     throw Error(s.error("has no point array 'kind' (one value per particle: 0 fluid, 1 fixed wall, 2 moving wall); add it"));
+  check_array_names(s, pd);
   vtkDataArray* vel = pd->GetArray("velocity");
-  if (vel && (vel->GetNumberOfComponents() < 1 || vel->GetNumberOfComponents() > 3))
+  if (vel && (vel->GetNumberOfComponents() < 2 || vel->GetNumberOfComponents() > 3))
     throw Error(s.error("point array 'velocity' has " + std::to_string(vel->GetNumberOfComponents()) +
-                        " components; give 2 or 3"));
+                        " component(s); give 2 or 3 (x, y[, z])"));
   vtkDataArray* pres = pd->GetArray("pressure");
   if (pres && pres->GetNumberOfComponents() != 1)
     throw Error(s.error("point array 'pressure' must have one component"));

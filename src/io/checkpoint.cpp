@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 #include "src/core/collective.hpp"
@@ -183,6 +184,10 @@ std::string seal(const std::string& tmp, const std::string& path, nlohmann::json
 
 // Reads and checks the header of `path`. Rank 0 only; returns an error message, empty on success.
 std::string unseal(const std::string& path, std::string* header_text) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    return "-restart " + path + " is a folder; give its checkpoint file (" +
+           (std::filesystem::path(path) / "checkpoint.bin").string() + ")";
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) return "cannot read checkpoint " + path + "; check the -restart path";
   const std::string broken = "checkpoint " + path + " is damaged or incomplete";

@@ -30,6 +30,10 @@ bool steers_only(const std::string& name) {
   return false;
 }
 
+// Options that name an input file whose content the case's parameters identify (the scene file's
+// checksum): the same file by another path is the same run, another file with the same name is not.
+bool identified_by_content(const std::string& name) { return name == "scene_file"; }
+
 // Options that change only how the steps to come are taken, not the problem: a restart may change
 // them to rescue a failing run (a smaller step, another linear solver); the change is recorded.
 bool changes_numerics_only(const std::string& name) {
@@ -100,7 +104,7 @@ nlohmann::json run_identity(const std::string& case_name, const std::string& sol
   nlohmann::json options = nlohmann::json::object();
   const nlohmann::json db = options_database();
   for (const auto& [name, value] : db.items())
-    if (!steers_only(name)) options[name] = value;
+    if (!steers_only(name) && !identified_by_content(name)) options[name] = value;
   return {{"case", case_name}, {"solver", solver_name}, {"dim", dim}, {"parameters", case_parameters},
           {"options", options}};
 }
@@ -120,6 +124,7 @@ nlohmann::json check_same_run(const nlohmann::json& saved, const nlohmann::json&
   nlohmann::json changed = nlohmann::json::object();
   for (const std::string& name : names) {
     if (a.contains(name) && b.contains(name) && normalised(a[name]) == normalised(b[name])) continue;
+    if (identified_by_content(name)) continue;  // recorded by checkpoints of earlier versions
     if (changes_numerics_only(name)) {
       changed[name] = {{"was", a.contains(name) ? a[name] : "default"}, {"now", b.contains(name) ? b[name] : "default"}};
       continue;
@@ -129,7 +134,7 @@ nlohmann::json check_same_run(const nlohmann::json& saved, const nlohmann::json&
     refuse(path, shown(a, name), shown(b, name), name);
   }
   for (const auto& [name, value] : pa.items())
-    if (!pb.contains(name) || pb[name] != value)
+    if (!identified_by_content(name) && (!pb.contains(name) || pb[name] != value))
       refuse(path, name + " = " + value.dump(), name + " = " + (pb.contains(name) ? pb[name].dump() : "unset"), name);
   return changed;
 }

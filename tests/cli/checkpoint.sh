@@ -56,4 +56,5 @@ expect_error "fails its header checksum" $run -restart "$tmp/header.bin" -output
 head -c 3000 "$ck" >"$tmp/short.bin"
 expect_error "damaged or incomplete" $run -restart "$tmp/short.bin" -output_dir "$tmp/b"
 expect_error "cannot read checkpoint" $run -restart "$tmp/none.bin" -output_dir "$tmp/b"
+expect_error "-restart .*/a is a folder; give its checkpoint file \(.*/a/checkpoint.bin\)" $run -restart "$tmp/a" -output_dir "$tmp/b"
 exit $fail

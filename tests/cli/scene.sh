@@ -23,6 +23,16 @@ expect_error "scene file '$tmp/nan.vtp': particle 7 has a coordinate that is not
 expect_error "scene file '$tmp/outside.vtp': particle 7 at \(100, 0.5\) lies outside the box \[-0.5, 1.5\] along x" $short -scene_file "$tmp/outside.vtp"
 expect_error "scene file '$tmp/no_fluid.vtp': has no fluid particle" $short -scene_file "$tmp/no_fluid.vtp"
 expect_error "scene file '$tmp/no_dx.vtp': gives no particle spacing; add field data 'dx' or pass -scene_dx" $short -scene_file "$tmp/no_dx.vtp"
+# A misspelt or malformed array would leave the lid at rest; a lid pushed into the fluid would never
+# move: each refused, naming it.
+for d in Velocity velocity_text velocity_1 lid_normal dx_inf t_end_negative; do damage $d; done
+expect_error "scene file '$tmp/Velocity.vtp': has a point array 'Velocity', which is not read: the array is 'velocity' \(lower case\)" $short -scene_file "$tmp/Velocity.vtp"
+expect_error "scene file '$tmp/velocity_text.vtp': point array 'velocity' is not numeric" $short -scene_file "$tmp/velocity_text.vtp"
+expect_error "scene file '$tmp/velocity_1.vtp': point array 'velocity' has 1 component\(s\); give 2 or 3" $short -scene_file "$tmp/velocity_1.vtp"
+expect_error "scene file '$tmp/lid_normal.vtp': moving-wall particle [0-9]+ at \(.*\) has velocity \(0, -1\), [0-9]+ degrees from the normal of the fluid beside it; .*give it a velocity along its wall" $short -scene_file "$tmp/lid_normal.vtp"
+expect_error "scene file '$tmp/dx_inf.vtp': field data 'dx' holds inf; give a finite number" $short -scene_file "$tmp/dx_inf.vtp"
+expect_error "the scene's field data t_end must be positive \(or pass -t_end\) \(got -1\)" ${short/-t_end 0.02/} -scene_file "$tmp/t_end_negative.vtp"
+expect_ok $short -scene_file "$tmp/t_end_negative.vtp" -output_dir "$tmp/t_end_given"  # the option overrides the file
 make_scene cavity --nx 8 --wall-layers 2 -o "$tmp/thin.vtp"
 expect_error "scene file '$tmp/thin.vtp': the walls near \(.*\) are 2 dx thick, thinner than the kernel support \(3 dx\); add wall layers" $short -scene_file "$tmp/thin.vtp"
 # The kernel decides: the same walls are thick enough for a smaller support.
@@ -35,6 +45,13 @@ expect_error "-scene_box needs 4 values" $short -scene_file "$tmp/cavity.vtp" -s
 # Options override the file; a missing dx can come from the command line.
 expect_ok $short -scene_file "$tmp/no_dx.vtp" -scene_dx 0.125 -nu 0.02 -output_dir "$tmp/override"
 expect_json "$tmp/override/summary.json" "s['status'] == 'completed' and s['physics']['nu'] == 0.02 and s['dx'] == 0.125 and not s['parameters']['free_surface']" "override: -nu and -scene_dx taken, closed cavity has no free surface"
+# A scene is identified by its content: the same file by another path restarts, another file of the
+# same name does not.
+mkdir -p "$tmp/moved"; cp "$tmp/cavity.vtp" "$tmp/moved/cavity.vtp"
+expect_ok -case scene -scene_file "$tmp/cavity.vtp" -t_end 0.02 -progress 0 -threads 1 -output_dir "$tmp/first"
+expect_ok -case scene -scene_file "$tmp/moved/cavity.vtp" -t_end 0.04 -progress 0 -threads 1 -restart "$tmp/first/checkpoint.bin" -output_dir "$tmp/moved_run"
+make_scene cavity --nx 8 --re 50 -o "$tmp/moved/cavity.vtp"
+expect_error "checkpoint .* was written with nu = 0.01, this run has nu = 0.02" -case scene -scene_file "$tmp/moved/cavity.vtp" -t_end 0.04 -progress 0 -threads 1 -restart "$tmp/first/checkpoint.bin" -output_dir "$tmp/refused"
 # -help documents the scene's options.
 "$sph" -help -case scene 2>&1 | grep -q -- "-scene_file" && echo "ok: -help lists -scene_file" || { echo "FAIL: -help lacks -scene_file"; fail=1; }
 

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Writes a damaged copy of a good scene file, for the refusal tests.
 
-usage: bad_scene.py GOOD.vtp OUT.vtp DEFECT   (DEFECT: no_kind, kind_5, nan, outside, no_fluid, no_dx)
+usage: bad_scene.py GOOD.vtp OUT.vtp DEFECT   (DEFECT: no_kind, kind_5, nan, outside, no_fluid, no_dx,
+       Velocity, velocity_text, velocity_1, lid_normal, dx_inf, t_end_negative)
 """
 import sys
 
@@ -26,6 +27,29 @@ elif defect == "no_fluid":
         kind.SetValue(i, 1)
 elif defect == "no_dx":
     poly.GetFieldData().RemoveArray("dx")
+elif defect == "Velocity":
+    poly.GetPointData().GetArray("velocity").SetName("Velocity")
+elif defect in ("velocity_text", "velocity_1"):
+    n = kind.GetNumberOfTuples()
+    a = vtk.vtkStringArray() if defect == "velocity_text" else vtk.vtkDoubleArray()
+    a.SetNumberOfValues(n)
+    for i in range(n):
+        a.SetValue(i, "1" if defect == "velocity_text" else 1.0)
+    poly.GetPointData().RemoveArray("velocity")
+    a.SetName("velocity")
+    poly.GetPointData().AddArray(a)
+elif defect == "lid_normal":  # the lid pushed down into the fluid instead of sliding
+    v = poly.GetPointData().GetArray("velocity")
+    for i in range(kind.GetNumberOfTuples()):
+        if kind.GetValue(i) == 2:
+            v.SetTuple3(i, 0.0, -1.0, 0.0)
+elif defect in ("dx_inf", "t_end_negative"):
+    name, value = ("dx", float("inf")) if defect == "dx_inf" else ("t_end", -1.0)
+    poly.GetFieldData().RemoveArray(name)
+    a = vtk.vtkDoubleArray()
+    a.SetName(name)
+    a.InsertNextValue(value)
+    poly.GetFieldData().AddArray(a)
 else:
     sys.exit(f"bad_scene.py: unknown defect {defect}")
 w = vtk.vtkXMLPolyDataWriter()
