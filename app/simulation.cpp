@@ -17,7 +17,7 @@ std::vector<OptionOwner> option_owners(const RunOptions& chosen);
 namespace {
 
 template <int D> void run_in_dim(const RunOptions& names) {
-  check_option_values(option_owners(names));
+  const std::vector<std::string> valueless = check_finite_option_values(option_owners(names));
   const std::unique_ptr<Case<D>> scene_case = create_case<D>(names.case_name);
   const std::unique_ptr<Solver<D>> solver = create_solver<D>(names.solver_name);
   scene_case->set_from_options();
@@ -31,6 +31,7 @@ template <int D> void run_in_dim(const RunOptions& names) {
                             : "out/" + scene_case->output_name() + "-" + names.solver_name + "-" +
                                   std::to_string(scene_case->resolution());
   check_unused_options(option_owners(names));
+  check_valueless_options(valueless, option_owners(names));
   run_time_loop<D>({*scene_case, *solver, names.case_name, names.solver_name, control, kernel, output_dir,
                     [&names] { check_late_options(option_owners(names)); }});
   finish_options_check();

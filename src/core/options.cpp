@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstdarg>
+#include <map>
+#include <optional>
 #include <regex>
 
 #include <unistd.h>
@@ -226,34 +228,65 @@ bool holds_non_finite(const std::string& value) {
 
 }  // namespace
 
-void check_option_values(const std::vector<OptionOwner>& owners) {
-  // Before any block reads them: the database's options not yet read, with their values as given.
+namespace {
+
+// The options not yet read, with their values as given (none: given without one); before any block
+// reads them, every option the user gave.
+std::vector<std::pair<std::string, std::optional<std::string>>> given_options() {
   PetscInt n = 0;
   char** names = nullptr;
   char** values = nullptr;
   SPH_PETSC(PetscOptionsLeftGet(nullptr, &n, &names, &values));
-  struct Suspect {
-    std::string name, value;
-    bool has_value;
-  };
-  std::vector<Suspect> suspects;
+  std::vector<std::pair<std::string, std::optional<std::string>>> given;
   for (PetscInt k = 0; k < n; ++k)
-    if (!values[k] || holds_non_finite(values[k])) suspects.push_back({names[k], values[k] ? values[k] : "", values[k] != nullptr});
+    given.emplace_back(names[k], values[k] ? std::optional<std::string>(values[k]) : std::nullopt);
   SPH_PETSC(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
-  if (suspects.empty()) return;
-  std::string help;
-  for (const OptionOwner& o : owners)
-    if (o.active) help += options_help(o.read);
-  for (const Suspect& o : suspects) {
-    std::string shown;
-    const ValueKind kind = value_kind(help, o.name, &shown);
-    if (!o.has_value && (kind == ValueKind::real || kind == ValueKind::other))
-      throw OptionError("option -" + o.name + " was given without a value" +
+  return given;
+}
+
+// Calls f(name, kind, shown default) for each of `names` that an active owner's -help documents. The
+// owners' blocks are read again to print their help: the cheapest first (run control, then solvers,
+// then cases, which may read a scene file), and only until every name is found.
+template <class F> void classify(std::vector<std::string> names, const std::vector<OptionOwner>& owners, F&& f) {
+  for (auto o = owners.rbegin(); o != owners.rend() && !names.empty(); ++o) {
+    if (!o->active) continue;
+    const std::string help = options_help(o->read);
+    for (auto it = names.begin(); it != names.end();) {
+      std::string shown;
+      const ValueKind kind = value_kind(help, *it, &shown);
+      if (kind == ValueKind::undocumented) {
+        ++it;
+        continue;
+      }
+      f(*it, kind, shown);
+      it = names.erase(it);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> check_finite_option_values(const std::vector<OptionOwner>& owners) {
+  std::vector<std::string> valueless, non_finite;
+  std::map<std::string, std::string> value_of;
+  for (const auto& [name, value] : given_options()) {
+    if (!value) valueless.push_back(name);
+    else if (holds_non_finite(*value)) non_finite.push_back(name), value_of[name] = *value;
+  }
+  classify(non_finite, owners, [&](const std::string& name, ValueKind kind, const std::string&) {
+    if (kind == ValueKind::real)
+      throw OptionError("option -" + name + " has the value '" + value_of[name] + "', which is not a finite number");
+  });
+  return valueless;
+}
+
+void check_valueless_options(const std::vector<std::string>& valueless, const std::vector<OptionOwner>& owners) {
+  classify(valueless, owners, [](const std::string& name, ValueKind kind, const std::string& shown) {
+    if (kind == ValueKind::real || kind == ValueKind::other)
+      throw OptionError("option -" + name + " was given without a value" +
                         (shown.empty() ? std::string() : " (its default is " + shown + ")") +
                         "; give it a value or leave it out");
-    if (o.has_value && kind == ValueKind::real)
-      throw OptionError("option -" + o.name + " has the value '" + o.value + "', which is not a finite number");
-  }
+  });
 }
 
 void check_unused_options(const std::vector<OptionOwner>& owners) {

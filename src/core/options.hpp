@@ -29,10 +29,13 @@ struct OptionOwner {
   bool active = false;         // chosen for this run
 };
 
-// Before the options blocks are read: an option of an active owner given without the value it needs
-// (PETSc would drop it silently and keep the default), or a real option given inf or nan (PETSc parses
-// them), throws OptionError naming it. Flags may stand alone; options PETSc reads itself are its own.
-void check_option_values(const std::vector<OptionOwner>& owners);
+// Before the options blocks are read: a real option of an active owner given inf or nan (PETSc parses
+// them) throws OptionError naming it. Returns the options given without a value, for the next check.
+std::vector<std::string> check_finite_option_values(const std::vector<OptionOwner>& owners);
+// After the blocks are read (reading them again for their help must not take what they took, such as
+// the PPE's -mat_view): one of `valueless` that needs a value throws OptionError naming it, since PETSc
+// dropped it and kept the default. Flags may stand alone; options only PETSc reads are its own.
+void check_valueless_options(const std::vector<std::string>& valueless, const std::vector<OptionOwner>& owners);
 
 // At start-up, every option in the database must have been read by now, except the ones an active
 // owner or PETSc itself reads later (a solve's viewers, -log_view). Throws OptionError naming the

@@ -411,7 +411,8 @@ template <int D> void TimeLoop<D>::fail(const Error& e) {
     // No derived fields: the state may hold NaN. The .pvd lists it last, for inspection.
     writer_->write(s_.P, t_, frame_fields(false));
   } catch (const Error& later) {
-    also = "; writing the failed run's outputs failed too: " + std::string(later.what());
+    also = later.what() == std::string(e.what()) ? "; the failed state could not be written either"
+                                                 : "; writing the failed run's outputs failed too: " + std::string(later.what());
   }
   // Name only what exists: with -checkpoint_interval 0, or a failure before the first, no checkpoint.
   const bool checkpoint = std::filesystem::exists(checkpoint_path_);
