@@ -1,5 +1,5 @@
 // The 3D Beltrami (ABC) flow: its exact solution checked against the Navier-Stokes equations, then ISPH
-// and WCSPH against it end to end, at resolutions that fit CI (README: "Beltrami flow (3D)").
+// and WCSPH against it end to end, at resolutions that fit CI (docs/verification/beltrami.md).
 #include <gtest/gtest.h>
 #include <petscsys.h>
 

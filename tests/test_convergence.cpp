@@ -1,5 +1,5 @@
 // Convergence in dt and in h on the Taylor-Green vortex (Re = 100, t = 1) against its exact solution,
-// at resolutions that fit CI. The README's tables (cases/studies/taylor_green*.yaml) go further.
+// at resolutions that fit CI. The tables of docs/verification/taylor_green.md (cases/studies/taylor_green*.yaml) go further.
 //
 // What used to fail: ISPH's error grew as dt fell (nx 64: 2.2e-3, 1.5e-3, 3.7e-3 at CFL 0.2, 0.1,
 // 0.05), because the projection's operators were inconsistent and shifting was defined per step;

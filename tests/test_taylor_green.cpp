@@ -64,7 +64,7 @@ TEST(TaylorGreen, IsphMatchesAnalyticDecayAndConverges) {
 // that error removed (-viscous_laplacian fourth, the default) the share is 30-100x closer to the exact
 // dissipation (measured 1.5e-3 and -1.3e-4 at nx 16 and 32). With -shift_scales particle,
 // shifting's share falls faster than h (measured order 1.8 from nx 16 to 32, third order from nx 32 to
-// 128 at CFL 0.05, README); with the whole grad C it fell at 0.6.
+// 128 at CFL 0.05, docs/verification/taylor_green.md); with the whole grad C it fell at 0.6.
 struct EnergyBudgetRun {
   double start, end, viscous, pressure, body_force, shifting, exact_viscous;
 };

@@ -92,7 +92,7 @@ TEST(Walls, IsphCavityWithSymmetricLidCornersMatchesGhia) {
 // inside the box. Ghia's Re = 1000 centreline values have RMS 0.41 (u) and 0.31 (v), so 15% still
 // separates a cavity with the right vortex from a stagnant or wrong one. The boundary layers span about
 // one particle at nx 30 and the vortex is too weak (measured 8.9 % and 10.2 %; 4.3 % and 5.3 % at
-// nx 50, 0.59 % and 0.43 % at nx 100, README).
+// nx 50, 0.59 % and 0.43 % at nx 100, docs/verification/lid_driven_cavity.md).
 TEST(Walls, IsphCavityRe1000StaysInsideAndApproachesGhia) {
   const auto s = expect_steady_cavity("cavity_isph_30_re1000", "isph", 1000, 0.15, 0.15);
   ASSERT_FALSE(s.is_null());
@@ -122,7 +122,7 @@ TEST(Walls, IsphCavityRe1000WithThePrescribedWallVelocityInTheSourceStaysInside)
 // and 14 % in a least-squares fit to the reference), a deficit that falls at second order: measured
 // 3.36 % and 3.65 % at nx 12, 1.95 % and 2.11 % at nx 16, orders 1.89 and 1.91. (With -ppe_wall_velocity
 // prescribed, the default before, 1.34 % and 1.17 % at nx 16: the lid's corner term in the source
-// offsets part of the deficit, README.) The test asserts the order, and a bound at nx 16.
+// offsets part of the deficit, docs/verification/lid_driven_cavity_3d.md.) The test asserts the order, and a bound at nx 16.
 TEST(Walls, IsphCubicCavityRe100ConvergesToTheReference) {
   const char* options = "-case lid_driven_cavity -dim 3 -re 100 -output_interval 0 -checkpoint_interval 0 -nx ";
   const auto coarse = run_sph("cavity3d_isph_12", std::string(options) + "12");

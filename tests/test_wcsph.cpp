@@ -52,7 +52,7 @@ TEST(Wcsph, DensityOptionsAreReported) {
 // free face, period 4 a / c0 (linear acoustics). The foot pressure's period, from its crossings of its
 // mean over t = 0.3-1.5, is checked against that for two sound speeds (measured at nx 16: 0.207 and
 // 0.105 against 0.2 and 0.1; 10% allows for the column widening as it collapses). This is why WCSPH's
-// pressure differs from ISPH's pointwise while the period means agree (README, dam break).
+// pressure differs from ISPH's pointwise while the period means agree (docs/verification/dam_break.md).
 double foot_pressure_period(const std::string& dir) {
   std::ifstream in(dir + "/front_position.csv");
   std::string line;

@@ -207,7 +207,7 @@ std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences(const std::vecto
   // compression of order U/dx there: it raises that corner's stagnation pressure and drives the vortex
   // harder, a first-order error (Re 100: 0.45 / 0.43 % against a finite-difference solution at nx 50,
   // 0.28 / 0.19 % at rest) that at Re 1000 and nx 30-50 happens to offset the under-resolved vortex's
-  // weakness (README, walls: "the best corner depends on Re").
+  // weakness (docs/verification/lid_driven_cavity.md, "Why the best corner depends on Re").
   std::vector<std::vector<Vector<D>>> at_rest;
   std::vector<const std::vector<Vector<D>>*> us = fields;
   if (source_walls_at_rest_ && walls_) {
@@ -273,7 +273,7 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
   // positions, a particle-scale divergence (div u^n minus its kernel average) that the projection
   // cannot remove: its Laplacian is not the divergence of its gradient on that scale. In the source
   // div u* / tau all of it is divided by tau, every step, and becomes a pressure noise that grows as
-  // 1/dt (README, "ISPH's time error"). -ppe_particle_divergence_rate R keeps a fraction
+  // 1/dt (docs/verification/taylor_green.md, "ISPH's time error"). -ppe_particle_divergence_rate R keeps a fraction
   // R U tau / h of it instead, so that below the step with R U tau = h it is removed at a rate per
   // unit time; the step's own change of u keeps all of its divergence.
   const double kept = particle_divergence_rate_ * phys.U * tau / K.h();  // the fraction kept; at least 1: all

@@ -27,7 +27,7 @@
 // particle distribution, so the projection leaves no first-order divergence of its own making that
 // the next step must remove again (a second-order one it does: below). `-operators classic` keeps the Morris viscous term, the Cummins & Rudman PPE and
 // the plain divergence: a symmetric PPE (CG), kept for comparison only (Taylor-Green nx 64, CFL 0.2:
-// 1.5e-2 against 1.0e-3; see README).
+// 1.5e-2 against 1.0e-3; see docs/verification/taylor_green.md).
 //
 // The projection is approximate: the consistent Laplacian L is not the corrected divergence of the
 // corrected gradient D G. On the resolved scales they differ at second order in h, and one projection

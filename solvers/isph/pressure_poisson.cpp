@@ -110,7 +110,7 @@ bool is_boomeramg(PC pc) {
 // level of aggressive coarsening takes twice the iterations and a fifth of the set-up: the pressure
 // solve in 0.58x the time on the Beltrami cube (nx 40, first steps; bench/run_bench.py --suite amg),
 // 0.39x over a whole Beltrami run (nx 24, t 1) and 0.52x on the 3D dam break (nx 10), same results to
-// the solver tolerance. In 2D these sets do not pay (0.78-2.8x the default's time, README), so this is
+// the solver tolerance. In 2D these sets do not pay (0.78-2.8x the default's time, docs/pressure-solve.md), so this is
 // the 3D default only, and only when the user sets none of these four options.
 template <int D> void PressurePoisson<D>::aggressive_coarsening_in_3d() {
   if (D != 3) return;

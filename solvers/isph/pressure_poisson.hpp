@@ -121,7 +121,7 @@ template <int D> class PressurePoisson {
   // -perturbation 0.2 at nx 128, the cavity at nx 50, the dam break at nx 40 and the Beltrami cube at
   // nx 24 took 0.46, 0.70, 0.62, 0.55 and 0.23 of the pressure solve's time with the whole matrix;
   // 0.01 saved less in each; 0.05 was within 5 % of it on the lattice and with walls but slower on
-  // the disordered particles and in 3D (README, Pressure solve options).
+  // the disordered particles and in 3D (docs/pressure-solve.md).
   double pc_drop_tol_ = 0.02;
 };
 

@@ -118,7 +118,7 @@ template <int D>
     // instead of 1.9% / 0.5%). ISPH keeps v_w in its pressure source: the projection does not
     // accumulate the source, which there raises the stagnation pressure in the downstream corner and
     // drives the vortex harder, a first-order error that at Re 1000 and nx 50 cancels most of the
-    // scheme's under-resolution (README, Numerics, walls: "the best corner depends on Re").
+    // scheme's under-resolution (docs/verification/lid_driven_cavity.md, "Why the best corner depends on Re").
     const Vector<D> u_j = P.kind[j] == kWall ? Vector<D>::Zero() : Vector<D>(P.v[j]);
     if (in.corrected_continuity) s.grad_u += difference_vector_gradient_term(Vj, P.v[i], u_j, g);
     else s.drho += continuity_pair(P.rho[i], Vj, Vector<D>(P.v[i] - u_j), g);

@@ -143,7 +143,7 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
   // which the incompressible field changes along their paths (Dp/Dt), so without the compressive
   // velocity that makes the continuity equation follow it the start rings with sound of pressure
   // O(Mach) times the flow's. Under c0 ~ 1/h that was an O(h) pressure error (Taylor-Green, mean over
-  // t <= 0.04: l1_pressure at order 1.25 from nx 128 to 256, 1.93 with the prepared start; README,
+  // t <= 0.04: l1_pressure at order 1.25 from nx 128 to 256, 1.93 with the prepared start; docs/verification/taylor_green.md,
   // WCSPH with particle-scale delta-SPH).
   if (prepared_start_) {
     if (!scene.physics.slow_manifold_velocity)

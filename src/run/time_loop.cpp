@@ -31,7 +31,7 @@
 namespace sph {
 
 namespace {
-// A run has blown up when the kinetic energy exceeds this many times 1/2 M U^2 (README, Outputs).
+// A run has blown up when the kinetic energy exceeds this many times 1/2 M U^2 (docs/user-guide.md).
 constexpr double kBlowUpKineticEnergy = 1e3;
 
 using Clock = std::chrono::steady_clock;

@@ -4,7 +4,7 @@
 // sum_i m_i (u_i + d_i / 2) . d_i, and each cause k is credited with its share, sum_i m_i
 // (u_i + d_i / 2) . d_k,i; the shares add up to the change. A solver reports the budget in
 // summary.json (conservation.energy_budget), the tool that split ISPH's decay-rate error into the
-// viscous term's and shifting's parts (README, "What limits ISPH's order").
+// viscous term's and shifting's parts (docs/verification/taylor_green.md, "What limits ISPH's order").
 #include <array>
 #include <initializer_list>
 #include <tuple>

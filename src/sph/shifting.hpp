@@ -58,7 +58,7 @@ inline const char* const shift_rate_help =
 // average over the fluid, the particle-scale part that disorder makes and shifting is for; the resolved
 // part left is O(h^2) smaller. Its energy input is then 8.7e-4 / 9.3e-5 / 9.2e-6 (third order). Not the
 // default yet: it restores disorder a few particles wide more weakly, and the start lattice's
-// rearrangement at nx 32 grows a little (README, "What limits ISPH's order").
+// rearrangement at nx 32 grows a little (docs/verification/taylor_green.md, "What limits ISPH's order").
 enum class ShiftScales { All, Particle };
 inline const char* const shift_scales_names[] = {"all", "particle"};
 inline const char* const shift_scales_help =
