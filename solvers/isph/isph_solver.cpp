@@ -105,6 +105,7 @@ template <int D> void IsphSolver<D>::set_from_options() {
   surface_condition_ = static_cast<SurfaceCondition>(o.surface_condition);
   wall_impact_option_ = o.wall_impact_set ? (o.wall_impact ? 1 : 0) : -1;
   free_surface_model_.set_from_options();
+  ppe_.expect_nonsymmetric(operators_ == OperatorSet::Consistent);
   ppe_.set_from_options();
 }
 

@@ -77,10 +77,31 @@ template <int D> void PressurePoisson<D>::create_ksp() {
   SPH_PETSC(KSPSetTolerances(ksp_, 1e-8, 1e-50, PETSC_DEFAULT, 1000));
   // The previous step's pressure is a good first guess.
   SPH_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
+  if (nonsymmetric_) SPH_PETSC(KSPSetPCSide(ksp_, PC_RIGHT));  // before the options: -help shows it
   SPH_PETSC(KSPSetFromOptions(ksp_));
   right_preconditioning();
+  check_ksp_choice();
   aggressive_coarsening_in_3d();
   symmetric_coarse_solve();
+}
+
+// What the defaults above would make of the user's KSP: a direct solve (preonly) takes no first guess,
+// and a method for symmetric matrices cannot solve the non-symmetric one (it diverged at step 1).
+template <int D> void PressurePoisson<D>::check_ksp_choice() {
+  PetscBool preonly = PETSC_FALSE, symmetric_only = PETSC_FALSE, user_guess = PETSC_FALSE;
+  SPH_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ksp_), KSPPREONLY, &preonly));
+  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-ksp_initial_guess_nonzero", &user_guess));
+  if (preonly && !user_guess) SPH_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_FALSE));
+  SPH_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(ksp_), &symmetric_only, KSPCG, KSPPIPECG,
+                                      KSPGROPPCG, KSPPIPECGRR, KSPCR, KSPPIPECR, KSPMINRES, KSPSYMMLQ, ""));
+  if (nonsymmetric_ && symmetric_only) {
+    KSPType type = nullptr;
+    SPH_PETSC(KSPGetType(ksp_, &type));
+    throw Error(std::string("-ksp_type ") + type +
+                " needs a symmetric matrix, and this run's pressure matrix is not (the consistent operators, walls "
+                "or a free surface make it so); use the default (gmres), another method such as bcgs, or "
+                "-operators classic in a periodic scene");
+  }
 }
 
 // BoomerAMG under a temporary option: PCHYPRE reads its BoomerAMG settings from the options database
@@ -141,7 +162,9 @@ template <int D> void PressurePoisson<D>::right_preconditioning() {
   SPH_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(ksp_), &both_sides, KSPGMRES, KSPLGMRES,
                                       KSPDGMRES, KSPPGMRES, KSPBCGS, KSPIBCGS, KSPFBCGS, KSPFBCGSR, KSPBCGSL,
                                       KSPPIPEBCGS, ""));
-  if (nonsymmetric_ && both_sides && !user_side) SPH_PETSC(KSPSetPCSide(ksp_, PC_RIGHT));
+  if (user_side) return;
+  // Set before the options for -help; a type chosen there that has one side only decides it itself.
+  SPH_PETSC(KSPSetPCSide(ksp_, nonsymmetric_ && both_sides ? PC_RIGHT : PC_SIDE_DEFAULT));
 }
 
 // CG needs a symmetric positive definite preconditioner. BoomerAMG's default coarse solve, Gaussian

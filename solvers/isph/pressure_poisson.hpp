@@ -58,6 +58,9 @@ template <int D> class PressurePoisson {
   // Laplacian): the default KSP becomes GMRES unless the user chose one, and a singular system pins
   // one pressure instead of attaching a null space.
   void use_nonsymmetric(bool nonsymmetric);
+  // The same before set_from_options, from what the options already say (the consistent operators),
+  // so that -help shows the defaults a run gets (GMRES, right preconditioning); makes no KSP.
+  void expect_nonsymmetric(bool nonsymmetric) { nonsymmetric_ = nonsymmetric; }
 
   // Builds the matrix for the current particle positions (owned rows, global column indices).
   // Particles flagged in `dirichlet` (free surface) get the row p = 0.
@@ -92,6 +95,7 @@ template <int D> class PressurePoisson {
   void destroy_system();
   void create_ksp();
   void right_preconditioning();
+  void check_ksp_choice();
   void symmetric_coarse_solve();
   void aggressive_coarsening_in_3d();
   static constexpr const char* coarse_relax_option = "-pc_hypre_boomeramg_relax_type_coarse";

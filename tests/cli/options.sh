@@ -69,6 +69,18 @@ expect_error "-ksp_max_it must be at least 1" $small -ksp_max_it 0
 expect_error "use -solver compressible" -case sod -solver wcsph -nx 48 -progress 0
 expect_error "use -solver compressible" -case toy_star -solver isph -nx 50 -progress 0
 
+# -help shows the pressure solve's defaults as a run gets them (GMRES, right preconditioning, with the
+# consistent operators); a symmetric-only method is refused for the non-symmetric matrix before it
+# diverges at step 1, and a direct solve needs no first-guess option.
+"$sph" -help 2>&1 | grep -q -- "-ksp_type <now gmres" && "$sph" -help 2>&1 | grep -q -- "-ksp_pc_side <now RIGHT" \
+  && echo "ok: -help shows gmres and RIGHT" || { echo "FAIL: -help does not show the default KSP (gmres, RIGHT)"; fail=1; }
+"$sph" -help -operators classic 2>&1 | grep -q -- "-ksp_type <now cg" && echo "ok: -help -operators classic shows cg" \
+  || { echo "FAIL: -help -operators classic does not show cg"; fail=1; }
+expect_error "-ksp_type cg needs a symmetric matrix, and this run's pressure matrix is not" $small -ksp_type cg
+expect_error "-ksp_type minres needs a symmetric matrix" -case lid_driven_cavity -operators classic -nx 8 -progress 0 -output_dir $tmp/out -overwrite -ksp_type minres
+expect_ok $small -ksp_type preonly -pc_type lu
+expect_ok $small -operators classic -ksp_type cg
+
 # PETSc options read late (a solve's viewers, -log_view at the end) are accepted, and act.
 "$sph" $small -t_end 1 -max_steps 2 -output_dir "$tmp/late" -ksp_converged_reason -pc_view -log_view :"$tmp/log.txt" \
   >"$tmp/stdout" 2>"$tmp/stderr" || { echo "FAIL: late-read PETSc options refused:"; cat "$tmp/stderr"; fail=1; }
