@@ -18,6 +18,7 @@
 #include "solvers/registry.hpp"
 #include "src/core/error.hpp"
 #include "src/run/interrupt.hpp"
+#include "src/run/provenance.hpp"
 
 namespace {
 
@@ -126,6 +127,14 @@ int main(int argc, char** argv) {
   }
   sph::install_error_handler();
   sph::install_interrupt_handlers();
+  // PETSc printed its own version during initialisation; -version runs nothing.
+  PetscBool version = PETSC_FALSE;
+  PetscOptionsHasName(nullptr, nullptr, "-version", &version);
+  if (version) {
+    PetscPrintf(PETSC_COMM_WORLD, "sph %s\n", sph::program_version());
+    PetscFinalize();
+    return 0;
+  }
   int status = 0;
   try {
     sph::RunOptions names;
