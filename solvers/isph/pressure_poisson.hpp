@@ -39,6 +39,9 @@
 
 namespace sph {
 
+// Whether a preconditioner is hypre's BoomerAMG (ppe_krylov.cpp).
+bool is_boomeramg(PC pc);
+
 template <int D> class PressurePoisson {
  public:
   PressurePoisson() = default;

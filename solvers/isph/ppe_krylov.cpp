@@ -1,0 +1,235 @@
+// The pressure solve's Krylov solver: made anew for every matrix from the defaults (GMRES or CG by
+// the matrix's symmetry, BoomerAMG, right preconditioning, the 3D coarsening) and then the user's
+// -ksp_* / -pc_* options, with the checks of what those make of it. The matrix and the solve:
+// pressure_poisson.cpp.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "solvers/isph/pressure_poisson.hpp"
+#include "src/core/error.hpp"
+#include "src/core/options.hpp"
+
+namespace sph {
+
+bool is_boomeramg(PC pc) {
+  PetscBool hypre = PETSC_FALSE;
+  SPH_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCHYPRE, &hypre));
+  const char* htype = nullptr;
+  if (hypre) SPH_PETSC(PCHYPREGetType(pc, &htype));
+  return htype && std::string(htype) == "boomeramg";
+}
+
+// The defaults, then every -ksp_* / -pc_* option from the database (viewers included: KSPReset
+// dropped those, which is why the KSP is made anew instead of reset).
+template <int D> void PressurePoisson<D>::create_ksp() {
+  if (ksp_) SPH_PETSC(KSPDestroy(&ksp_));
+  SPH_PETSC(KSPCreate(PETSC_COMM_WORLD, &ksp_));
+  SPH_PETSC(KSPSetType(ksp_, nonsymmetric_ ? KSPGMRES : KSPCG));
+  PC pc;
+  SPH_PETSC(KSPGetPC(ksp_, &pc));
+  SPH_PETSC(PCSetType(pc, PCHYPRE));  // BoomerAMG unless -pc_hypre_type says otherwise (PCHYPRESetType would fix it)
+  SPH_PETSC(KSPSetTolerances(ksp_, 1e-8, 1e-50, PETSC_DEFAULT, 1000));
+  // The previous step's pressure is a good first guess.
+  SPH_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
+  if (nonsymmetric_) SPH_PETSC(KSPSetPCSide(ksp_, PC_RIGHT));  // before the options: -help shows it
+  SPH_PETSC(KSPSetFromOptions(ksp_));
+  right_preconditioning();
+  check_ksp_choice();
+  aggressive_coarsening_in_3d();
+  symmetric_coarse_solve();
+}
+
+// What the defaults above would make of the user's KSP: a direct solve (preonly) takes no first guess,
+// and a method for symmetric matrices is warned against on the non-symmetric matrix (with BoomerAMG it
+// diverged at step 1; Jacobi-CG converged on Taylor-Green, docs/solvers.md, so it is not refused).
+template <int D> void PressurePoisson<D>::check_ksp_choice() {
+  PetscBool preonly = PETSC_FALSE, symmetric_only = PETSC_FALSE, user_guess = PETSC_FALSE;
+  SPH_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ksp_), KSPPREONLY, &preonly));
+  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-ksp_initial_guess_nonzero", &user_guess));
+  if (preonly && !user_guess) SPH_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_FALSE));
+  SPH_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(ksp_), &symmetric_only, KSPCG, KSPPIPECG,
+                                      KSPGROPPCG, KSPPIPECGRR, KSPCR, KSPPIPECR, KSPMINRES, KSPSYMMLQ, ""));
+  static bool warned = false;  // the KSP is made anew every step
+  if (nonsymmetric_ && symmetric_only && !warned) {
+    KSPType type = nullptr;
+    SPH_PETSC(KSPGetType(ksp_, &type));
+    SPH_PETSC(PetscFPrintf(PETSC_COMM_WORLD, stderr,
+                           "sph: warning: -ksp_type %s assumes a symmetric matrix, and this run's pressure matrix is "
+                           "not (the consistent operators, walls or a free surface make it so): it may not converge; "
+                           "the default (gmres) or bcgs suit it, or -operators classic in a periodic scene\n",
+                           type));
+    warned = true;
+  }
+}
+
+// BoomerAMG under a temporary option: PCHYPRE reads its BoomerAMG settings from the options database
+// only, so each (name, value) is put there for one PCSetFromOptions and taken out again. Settings a
+// PCSetFromOptions does not find keep their values, so later calls do not undo these.
+namespace {
+PetscErrorCode set_boomeramg_options(PC pc, const std::vector<std::pair<const char*, const char*>>& options) {
+  PetscFunctionBeginUser;
+  for (const auto& [name, value] : options) PetscCall(PetscOptionsSetValue(nullptr, name, value));
+  PetscCall(PCSetFromOptions(pc));
+  for (const auto& [name, value] : options) PetscCall(PetscOptionsClearValue(nullptr, name));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+// In 3D a PPE row has about 110 neighbours instead of 20, and BoomerAMG's default (Falgout coarsening,
+// classical interpolation, strong threshold 0.25) spends half the pressure solve in its set-up, which
+// is made anew every solve. HMIS coarsening with ext+i interpolation, strong threshold 0.5 and one
+// level of aggressive coarsening takes twice the iterations and a fifth of the set-up: the pressure
+// solve in 0.58x the time on the Beltrami cube (nx 40, first steps; bench/run_bench.py --suite amg),
+// 0.39x over a whole Beltrami run (nx 24, t 1) and 0.52x on the 3D dam break (nx 10), same results to
+// the solver tolerance. In 2D these sets do not pay (0.78-2.8x the default's time, docs/pressure-solve.md), so this is
+// the 3D default only, and only when the user sets none of these four options.
+template <int D> void PressurePoisson<D>::aggressive_coarsening_in_3d() {
+  if (D != 3) return;
+  PC pc;
+  SPH_PETSC(KSPGetPC(ksp_, &pc));
+  if (!is_boomeramg(pc)) return;
+  const std::vector<std::pair<const char*, const char*>> options = {
+      {"-pc_hypre_boomeramg_coarsen_type", "HMIS"},
+      {"-pc_hypre_boomeramg_interp_type", "ext+i"},
+      {"-pc_hypre_boomeramg_strong_threshold", "0.5"},
+      {"-pc_hypre_boomeramg_agg_nl", "1"}};
+  for (const auto& [name, value] : options) {
+    PetscBool user = PETSC_FALSE;
+    SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, name, &user));
+    if (user) return;
+  }
+  SPH_PETSC(set_boomeramg_options(pc, options));
+}
+
+// Right preconditioning for the non-symmetric matrix: the tolerance then applies to the true residual.
+// With left preconditioning it applies to the preconditioned one, which the near-null constant mode of
+// a regularised periodic system (see assemble) inflates by 1/eps: the solution was then only good to
+// 1e-4 (GMRES; BiCGStab at -ksp_rtol 1e-10 was 7e-6 off), and 1 and 2 ranks differed by that much.
+// Only for the KSP types that offer both sides, and unless -ksp_pc_side says otherwise.
+template <int D> void PressurePoisson<D>::right_preconditioning() {
+  PetscBool user_side = PETSC_FALSE, both_sides = PETSC_FALSE;
+  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-ksp_pc_side", &user_side));
+  SPH_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(ksp_), &both_sides, KSPGMRES, KSPLGMRES,
+                                      KSPDGMRES, KSPPGMRES, KSPBCGS, KSPIBCGS, KSPFBCGS, KSPFBCGSR, KSPBCGSL,
+                                      KSPPIPEBCGS, ""));
+  if (user_side) return;
+  // Set before the options for -help; a type chosen there that has one side only decides it itself.
+  SPH_PETSC(KSPSetPCSide(ksp_, nonsymmetric_ && both_sides ? PC_RIGHT : PC_SIDE_DEFAULT));
+}
+
+// CG needs a symmetric positive definite preconditioner. BoomerAMG's default coarse solve, Gaussian
+// elimination, is not one on the singular coarse matrix of a periodic domain: Taylor-Green nx 128,
+// -operators classic, -ksp_rtol 1e-12 stopped with DIVERGED_INDEFINITE_PC at step 7. So under a
+// CG-type KSP the coarse level is relaxed with the symmetric-SOR/Jacobi of the other levels, unless
+// the user chose a coarse or an all-level relaxation: that run then reached step 77 (stopping at a
+// residual of 9e-11, near the round-off floor), at no cost in iterations or time at rtol 1e-8.
+template <int D> void PressurePoisson<D>::symmetric_coarse_solve() {
+  PetscBool cg = PETSC_FALSE, user = PETSC_FALSE, user_all = PETSC_FALSE;
+  SPH_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(ksp_), &cg, KSPCG, KSPPIPECG, KSPGROPPCG,
+                                      KSPPIPECGRR, KSPCR, KSPPIPECR, KSPMINRES, KSPSYMMLQ, ""));
+  PC pc;
+  SPH_PETSC(KSPGetPC(ksp_, &pc));
+  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, coarse_relax_option, &user));
+  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-pc_hypre_boomeramg_relax_type_all", &user_all));
+  if (!cg || !is_boomeramg(pc) || user || user_all) return;
+  SPH_PETSC(set_boomeramg_options(pc, {{coarse_relax_option, "symmetric-SOR/Jacobi"}}));
+}
+
+namespace {
+// PETSc reads a tolerance of -1 or -2 as PETSC_DECIDE / PETSC_DEFAULT, so a negative one is not refused
+// there: it failed at the first solve, blamed on the solve. Checked at start-up instead.
+void check_ksp_tolerances() {
+  auto get = [](const char* name, bool positive_integer, auto ok, const char* what) {
+    PetscReal v = 0.0;
+    PetscInt k = 0;
+    PetscBool set = PETSC_FALSE;
+    if (positive_integer) SPH_PETSC(PetscOptionsGetInt(nullptr, nullptr, name, &k, &set)), v = static_cast<double>(k);
+    else SPH_PETSC(PetscOptionsGetReal(nullptr, nullptr, name, &v, &set));
+    if (set) require(ok(v), name, what, v);
+  };
+  get("-ksp_rtol", false, [](double v) { return v > 0 && v < 1; }, "in (0, 1)");
+  get("-ksp_atol", false, [](double v) { return v >= 0; }, "non-negative");
+  get("-ksp_divtol", false, [](double v) { return v > 1; }, "above 1");
+  get("-ksp_max_it", true, [](double v) { return v >= 1; }, "at least 1");
+}
+}  // namespace
+
+namespace {
+PetscErrorCode read_ppe_options(PetscReal* pc_drop_tol) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Pressure Poisson equation (-solver isph)", "Solver");
+  PetscCall(PetscOptionsReal("-ppe_pc_drop_tol",
+                             "The preconditioner (BoomerAMG) is built from the pressure matrix with each off-diagonal "
+                             "entry below this fraction of its row's diagonal added to the diagonal instead; the "
+                             "Krylov method still solves the whole matrix to -ksp_rtol (0: the whole matrix; BoomerAMG "
+                             "on non-symmetric matrices only, the default solver and operators)",
+                             "", *pc_drop_tol, pc_drop_tol, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+}  // namespace
+
+template <int D> void PressurePoisson<D>::set_from_options() {
+  if (ksp_) return;
+  check_ksp_tolerances();
+  PetscReal pc_drop_tol = pc_drop_tol_;
+  SPH_PETSC(read_ppe_options(&pc_drop_tol));
+  require(pc_drop_tol >= 0 && pc_drop_tol < 1, "-ppe_pc_drop_tol", "in [0, 1)", pc_drop_tol);
+  pc_drop_tol_ = pc_drop_tol;
+  // -mat_view: PETSc shows every matrix assembled while it is set, the preconditioners' own too
+  // (hypre's copy, multigrid's coarse levels, a diagonal shift's re-assembly). The PPE takes it out of
+  // the database and shows its own matrix once per solve instead.
+  PetscBool set = PETSC_FALSE;
+  SPH_PETSC(PetscOptionsGetViewer(PETSC_COMM_WORLD, nullptr, nullptr, "-mat_view", &mat_viewer_, &mat_format_, &set));
+  if (set) SPH_PETSC(PetscOptionsClearValue(nullptr, "-mat_view"));
+  create_ksp();
+}
+
+template <int D> void PressurePoisson<D>::use_nonsymmetric(bool nonsymmetric) {
+  if (nonsymmetric == nonsymmetric_ && ksp_) return;
+  nonsymmetric_ = nonsymmetric;
+  create_ksp();  // the defaults differ
+}
+
+template <int D> bool PressurePoisson<D>::reads_late(const std::string& option) {
+  // Read during a solve or an assembly: the solve's viewers, the matrix's -mat_* options (-mat_type,
+  // a factorisation package's), and the options of the solvers a preconditioner makes in its set-up
+  // (bjacobi/asm blocks, multigrid levels).
+  static const char* const exact[] = {"ksp_converged_reason", "pc_view"};
+  static const char* const prefixes[] = {"mat_", "sub_", "mg_levels_", "mg_coarse_", "redundant_"};
+  for (const char* e : exact)
+    if (option == e) return true;
+  for (const char* p : prefixes)
+    if (option.rfind(p, 0) == 0) return true;
+  return false;
+}
+
+// pressure_poisson.cpp's explicit instantiations of the class see only that file's members.
+template void PressurePoisson<1>::create_ksp();
+template void PressurePoisson<1>::check_ksp_choice();
+template void PressurePoisson<1>::aggressive_coarsening_in_3d();
+template void PressurePoisson<1>::right_preconditioning();
+template void PressurePoisson<1>::symmetric_coarse_solve();
+template void PressurePoisson<1>::set_from_options();
+template void PressurePoisson<1>::use_nonsymmetric(bool);
+template bool PressurePoisson<1>::reads_late(const std::string&);
+template void PressurePoisson<2>::create_ksp();
+template void PressurePoisson<2>::check_ksp_choice();
+template void PressurePoisson<2>::aggressive_coarsening_in_3d();
+template void PressurePoisson<2>::right_preconditioning();
+template void PressurePoisson<2>::symmetric_coarse_solve();
+template void PressurePoisson<2>::set_from_options();
+template void PressurePoisson<2>::use_nonsymmetric(bool);
+template bool PressurePoisson<2>::reads_late(const std::string&);
+template void PressurePoisson<3>::create_ksp();
+template void PressurePoisson<3>::check_ksp_choice();
+template void PressurePoisson<3>::aggressive_coarsening_in_3d();
+template void PressurePoisson<3>::right_preconditioning();
+template void PressurePoisson<3>::symmetric_coarse_solve();
+template void PressurePoisson<3>::set_from_options();
+template void PressurePoisson<3>::use_nonsymmetric(bool);
+template bool PressurePoisson<3>::reads_late(const std::string&);
+
+}  // namespace sph
