@@ -47,23 +47,19 @@ nlohmann::json expect_steady_cavity(const char* label, const char* solver, int r
 }
 
 // Cavity Re = 100 at 30 x 30 particles, run to steady state. The interior Ghia values themselves have
-// an RMS of about 0.35, so a stagnant or wrongly-driven cavity fails by far. Measured 0.45 % and 0.38 %
-// (0.62 % and 0.72 % with -ppe_wall_velocity prescribed, the default before; the profiles read off by
-// the linear fit; Shepard's average, the metric before that, gave 2.0 % and 0.9 %, its bias at the lid,
-// and the bound on u was 5 % then).
+// an RMS of about 0.35, so a stagnant or wrongly-driven cavity fails by far; the bounds sit a few times
+// above the measured errors (docs/verification/lid_driven_cavity.md, "Design measurements").
 TEST(Walls, IsphCavityRe100MatchesGhia) { expect_steady_cavity("cavity_isph_30", "isph", 100, 0.015, 0.02); }
 
 // WCSPH cavity Re = 100 at 30 x 30 to steady state. The continuity equation must see walls at rest:
-// with the lid's sliding velocity in it, the velocity jump where the lid ends drove a density source
-// that compressed the cavity by 18% and gave 4.5% / 5.7% (Shepard's metric); measured now 0.50% / 0.71%
-// (Shepard's: 2.2% / 0.7%; earlier runs spread over 1.9-2.1% / 0.5-1.0%: output and checkpoint cadence
-// re-order particles, and round-off grows over 7000 steps).
+// with the lid's sliding velocity in it, the velocity jump where the lid ends drives a density source
+// that compresses the cavity (docs/verification/lid_driven_cavity.md, "Design measurements").
 //
 // The box holds a fixed mass in a fixed volume, so its mean density cannot change (a conservation
-// law). Without -closed_volume the continuity equation's truncation error compressed it by 3.1% by
-// steady state (measured, RMS 2.0% / 0.9% all the same); with it, 0.013%. The bound, 0.1%, allows
-// for the difference between the mean density and the total volume that is constrained, of the order
-// of the squared density variations (Ma^2 = 1e-2 squared).
+// law); without -closed_volume the continuity equation's truncation error compresses it
+// (docs/verification/lid_driven_cavity.md, "WCSPH in a closed box keeps its volume"). The bound, 0.1%,
+// allows for the difference between the mean density and the total volume that is constrained, of the
+// order of the squared density variations (Ma^2 = 1e-2 squared).
 TEST(Walls, WcsphCavityRe100MatchesGhiaAndKeepsItsVolume) {
   const auto s = expect_steady_cavity("cavity_wcsph_30", "wcsph", 100, 0.015, 0.02);
   ASSERT_FALSE(s.is_null());
@@ -73,9 +69,7 @@ TEST(Walls, WcsphCavityRe100MatchesGhiaAndKeepsItsVolume) {
 
 // -lid_corners symmetric: both corner blocks at U/2. Run to t = 20 (past the transient, not to the
 // steady-state stop, which fires before the errors settle), the profiles also averaged over t = 12-20.
-// Measured 0.45 % and 0.33 % against Ghia at t = 20, 0.43 % and 0.32 % for the averaged profiles
-// (0.49 % and 0.68 % against a finite-difference solution, whose v is 0.5 % off Ghia's; with
-// -ppe_wall_velocity prescribed, the default before, 0.49 % and 0.05 % against Ghia); 1 % bounds that,
+// The 1 % bound holds the measured errors (docs/verification/lid_driven_cavity.md, "Design measurements"),
 // where a corner block that drove the cavity wrongly would not.
 TEST(Walls, IsphCavityWithSymmetricLidCornersMatchesGhia) {
   const auto r = run_sph("cavity_isph_30_symmetric", "-case lid_driven_cavity -nx 30 -re 100 -lid_corners symmetric "
@@ -91,18 +85,19 @@ TEST(Walls, IsphCavityWithSymmetricLidCornersMatchesGhia) {
 // leave through the lid/side-wall corner (a health-check failure); the run must reach steady state
 // inside the box. Ghia's Re = 1000 centreline values have RMS 0.41 (u) and 0.31 (v), so 15% still
 // separates a cavity with the right vortex from a stagnant or wrong one. The boundary layers span about
-// one particle at nx 30 and the vortex is too weak (measured 8.9 % and 10.2 %; 4.3 % and 5.3 % at
-// nx 50, 0.59 % and 0.43 % at nx 100, docs/verification/lid_driven_cavity.md).
+// one particle at nx 30 and the vortex is too weak (docs/verification/lid_driven_cavity.md, "Against
+// Ghia et al. (1982), run to steady state").
 TEST(Walls, IsphCavityRe1000StaysInsideAndApproachesGhia) {
   const auto s = expect_steady_cavity("cavity_isph_30_re1000", "isph", 1000, 0.15, 0.15);
   ASSERT_FALSE(s.is_null());
   EXPECT_EQ(s["models"]["ppe_source"]["wall_velocity"], "zero");
 }
 
-// -ppe_wall_velocity prescribed (the default before): the PPE source sees the lid's velocity, whose jump
-// at the fixed downstream corner block reads as a compression that drives the vortex harder, a
-// first-order error that at Re 1000 and nx 30-50 offsets part of the under-resolved vortex's weakness
-// (measured 4.6 % and 4.1 % at nx 30). The run must stay inside the box and reach steady state.
+// -ppe_wall_velocity prescribed: the PPE source sees the lid's velocity, whose jump at the fixed
+// downstream corner block reads as a compression that drives the vortex harder, a first-order error
+// that on coarse grids at Re 1000 offsets part of the under-resolved vortex's weakness
+// (docs/verification/lid_driven_cavity.md, "Against Ghia et al. (1982), run to steady state"). The run
+// must stay inside the box and reach steady state.
 TEST(Walls, IsphCavityRe1000WithThePrescribedWallVelocityInTheSourceStaysInside) {
   const auto r = run_sph("cavity_isph_30_re1000_prescribed", "-case lid_driven_cavity -nx 30 -re 1000 "
                                                              "-ppe_wall_velocity prescribed -output_interval 0 "
@@ -117,12 +112,9 @@ TEST(Walls, IsphCavityRe1000WithThePrescribedWallVelocityInTheSourceStaysInside)
 // The cubic cavity (-dim 3) at Re = 100 to steady state, against the finite-difference reference
 // (cases/lid_driven_cavity/data/README.md: grid-converged, uncertain by 5e-4 U). Its interior centreline
 // values have RMS 0.22 (u) and 0.14 (v), so a stagnant or wrongly driven cavity fails by far. At nx 12
-// and 16 (4 096 fluid and 9 728 wall particles, about 450 steps; nx 20 takes 8 minutes on one core) the
-// boundary layers, about Re^-1/2 = 0.1 thick, span 1.2-1.6 particles and the vortex is too weak (v by 24 %
-// and 14 % in a least-squares fit to the reference), a deficit that falls at second order: measured
-// 3.36 % and 3.65 % at nx 12, 1.95 % and 2.11 % at nx 16, orders 1.89 and 1.91. (With -ppe_wall_velocity
-// prescribed, the default before, 1.34 % and 1.17 % at nx 16: the lid's corner term in the source
-// offsets part of the deficit, docs/verification/lid_driven_cavity_3d.md.) The test asserts the order, and a bound at nx 16.
+// and 16 the boundary layers, about Re^-1/2 = 0.1 thick, span 1.2-1.6 particles and the vortex is too
+// weak, a deficit that falls at second order (docs/verification/lid_driven_cavity_3d.md, "Re = 100" and
+// "Design measurements"). The test asserts the order, and a bound at nx 16.
 TEST(Walls, IsphCubicCavityRe100ConvergesToTheReference) {
   const char* options = "-case lid_driven_cavity -dim 3 -re 100 -output_interval 0 -checkpoint_interval 0 -nx ";
   const auto coarse = run_sph("cavity3d_isph_12", std::string(options) + "12");

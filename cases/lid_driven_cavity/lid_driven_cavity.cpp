@@ -98,27 +98,25 @@ template <int D> void LidDrivenCavity<D>::create(Particles<D>& P, Domain<D>& dom
         // Where the lid meets a side wall, the wall velocity jumps from U to 0 inside the kernel support
         // of the corner fluid, and a discrete divergence (the ISPH pressure source) reads the jump as a
         // line of wall divergence +-U/dx. With both corner blocks fixed that is an expansion at the
-        // upstream corner (x = 0), a mass sink that drew fluid particles through the gap between lid and
-        // corner block at Re = 1000. So the upstream corner block moves with the lid (the jump there lies
+        // upstream corner (x = 0), a mass sink that draws fluid particles through the gap between lid and
+        // corner block at high Re. So the upstream corner block moves with the lid (the jump there lies
         // across y = 1, a shear, as in the continuum problem) and the downstream one stays fixed (a
-        // compression, which raises the stagnation pressure in that corner). Moving both failed at
-        // Re = 100 within 75 steps: the moving downstream corner block dragged a particle out along
-        // y = 1. In 3D the lid stops at the end walls z = 0, 1: the jump there lies across z, a shear
-        // that has no divergence. WCSPH's continuity equation sees walls at rest (see solvers/wcsph),
-        // so none of this changes its density; ISPH's source now sees them at rest too by default
-        // (-ppe_wall_velocity zero), and the blocks then enter only the viscous term. The choices here
-        // were made, and measured, with the source seeing the walls' velocities (prescribed).
+        // compression, which raises the stagnation pressure in that corner); a moving downstream block
+        // drags particles out along y = 1 (docs/verification/lid_driven_cavity.md, "The lid's corners"
+        // and "Design measurements"). In 3D the lid stops at the end walls z = 0, 1: the jump there lies
+        // across z, a shear that has no divergence. WCSPH's continuity equation sees walls at rest (see
+        // solvers/wcsph), so none of this changes its density; ISPH's source sees them at rest too by
+        // default (-ppe_wall_velocity zero), and the blocks then enter only the viscous term. The choices
+        // here were made with the source seeing the walls' velocities (prescribed).
         const bool lid = j >= n && i < n && inside_depth;
         Vector<D> v = Vector<D>::Zero();
         if (lid) v[0] = U_;
         // -lid_corners symmetric: each wall particle takes the boundary value of the nearest point of the
         // fluid's boundary; for the corner blocks that point is the corner itself, where the lid's value
-        // and the side wall's meet, so they take the mean of the two. Measured (ISPH Re 100, settled,
-        // against a finite-difference solution): u 0.15 % at nx 50 against 0.46 % (upstream), v 0.09 %
-        // against 0.42 %, and 0.08 / 0.06 % at nx 100: the upstream block had been the cavity's largest
-        // error. Not the default: the jump U -> U/2 inside the lid's wall layer is a divergence that
-        // ISPH's pressure source read (prescribed), and at Re 1000 (nx 50) it drew a particle out at the
-        // upstream corner; with the walls at rest in the source its gain is gone (nx 30: 0.49 / 0.68 %).
+        // and the side wall's meet, so they take the mean of the two. Not the default: with the prescribed
+        // source the jump U -> U/2 inside the lid's wall layer draws a particle out at Re 1000, and with the
+        // walls at rest in the source its gain is gone (docs/verification/lid_driven_cavity.md, "The lid's
+        // corners").
         if (symmetric_corners_ && j >= n && (i < 0 || i >= n)) v[0] = 0.5 * U_;
         all.add(x, v, mass, rho0_, 0.0, fluid ? kFluid : kWall);
       }

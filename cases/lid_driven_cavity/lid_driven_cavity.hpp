@@ -55,7 +55,8 @@ template <int D> class LidDrivenCavity : public Case<D> {
 
   // -profile_average_from T: the profiles at the reference's points averaged over the steps that start
   // at t >= T, each weighted by its dt. A steady cavity's particles keep circulating, so its instantaneous
-  // profile carries particle-scale noise (0.2 % of U step to step at nx 50); the average does not.
+  // profile carries particle-scale noise (docs/verification/lid_driven_cavity.md, "Design measurements");
+  // the average does not.
   struct ProfileAverage {
     double weight = 0.0;       // the time averaged over
     std::vector<double> u, v;  // sums of dt times the profile

@@ -96,8 +96,8 @@ void TaylorGreen::create(Particles<2>& P, Domain<2>& domain) const {
 std::map<std::string, double> TaylorGreen::errors(const Particles<2>& P, double t) const {
   // velocity() and pressure() per particle, with their decay factors taken once and the pressure's
   // cos 2kx = 1 - 2 sin^2 kx from the velocity's sines: two sine-cosine pairs a particle instead of
-  // four trigonometric calls and two exponentials (the per-step diagnostics of a WCSPH run at 1e5
-  // particles: 0.85x the time). The same fields to round-off.
+  // four trigonometric calls and two exponentials, which makes the per-step diagnostics cheaper
+  // (docs/performance.md, "Design measurements"). The same fields to round-off.
   const double a = U_ * std::exp(decay_rate() * t), k = 2.0 * M_PI, p_amp = -0.25 * rho0_ * a * a;
   struct Shape {
     double s0, c0, s1, c1;

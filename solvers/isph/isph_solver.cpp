@@ -119,8 +119,8 @@ template <int D> void IsphSolver<D>::setup(Scene<D>& scene) {
   ppe_.use_nonsymmetric(walls_ || scene.physics.free_surface || operators_ == OperatorSet::Consistent);
   free_surface_model_.setup();
   // In a closed domain fluid meets walls at the speed of its flow along them, not head on, and the
-  // impact term only adds the noise of the walls' normals at corners (the cavity at Re 100, nx 50: RMS
-  // errors 2.0 / 2.0 % against 0.40 / 0.45 % without it).
+  // impact term only adds the noise of the walls' normals at corners (docs/verification/free_surface.md,
+  // "Design measurements").
   wall_impact_ = walls_ && (wall_impact_option_ < 0 ? scene.physics.free_surface : wall_impact_option_ > 0);
   scene.neighbourhood.update(P, true);
 }
@@ -206,9 +206,8 @@ std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences(const std::vecto
   // component, the only part the constraint needs, is zero. With the prescribed velocities the cavity's
   // lid beside the fixed downstream corner block is a jump U -> 0 that the divergence reads as a
   // compression of order U/dx there: it raises that corner's stagnation pressure and drives the vortex
-  // harder, a first-order error (Re 100: 0.45 / 0.43 % against a finite-difference solution at nx 50,
-  // 0.28 / 0.19 % at rest) that at Re 1000 and nx 30-50 happens to offset the under-resolved vortex's
-  // weakness (docs/verification/lid_driven_cavity.md, "Why the best corner depends on Re").
+  // harder, a first-order error that on coarse grids at Re 1000 happens to offset the under-resolved
+  // vortex's weakness (docs/verification/lid_driven_cavity.md, "Why the best corner depends on Re").
   std::vector<std::vector<Vector<D>>> at_rest;
   std::vector<const std::vector<Vector<D>>*> us = fields;
   if (source_walls_at_rest_ && walls_) {
@@ -228,7 +227,8 @@ std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences(const std::vecto
   div = divergences_corrected(P, nl, K, us, Rows::Fluid, nodes_.empty() ? nullptr : &nodes_);
   // With p = 0 on the surface particles (-free_surface_condition particle) the corrected divergence
   // next to them extrapolates u into the empty half of the cut support and amplifies the noise of
-  // those unconstrained particles (the dam break blew up, nx 40, t = 1.44): the plain one is used there.
+  // those unconstrained particles, which blew up the dam break (docs/verification/dam_break.md, "ISPH at
+  // nx 40, a blow-up found and fixed"): the plain one is used there.
   // Surface nodes complete the cut support instead, and divergences_corrected takes them in.
   if (!near_surface.empty())
     for (std::size_t f = 0; f < us.size(); ++f) {
@@ -267,8 +267,8 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
   // Scale separation where a free surface cuts the support: with p = 0 on the surface particles,
   // nothing (their rows ignore the source); with surface nodes, the surface particles' rows take it,
   // and their particle-scale noise divided by tau, every step, made violent flows blow up sooner at
-  // a smaller step (a dam break hitting a block, nx 40: t = 1.8 at CFL 0.2, 1.2 at 0.1). The average
-  // over the fluid part of the support separates it there.
+  // a smaller step (docs/verification/free_surface.md, "The causes, and how each was found"). The
+  // average over the fluid part of the support separates it there.
   const bool average_cut = nodes;
   // The velocity u^n = P.v that the last projection made divergence-free has, at the particles' new
   // positions, a particle-scale divergence (div u^n minus its kernel average) that the projection
@@ -281,9 +281,9 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
   const bool remove_particle_scale = particle_divergence_rate_ >= 0 && solves_ > 0 && kept < 1.0;
   // The walls' pressure rows carry the hydrostatic head (Adami et al. 2012), the normal pressure
   // gradient that holds the fluid against gravity. Seen at rest by the source, the walls would count
-  // the closing kick's gravity increment tau g as a compression too, and the fluid's weight twice:
-  // still water was pushed up at its first step (1e-3 of its free-fall speed) and its level rose 3 %
-  // by t = 20. So in the source the walls move with tau g.
+  // the closing kick's gravity increment tau g as a compression too, and the fluid's weight twice,
+  // which pushes still water up (docs/verification/free_surface.md, "The causes, and how each was
+  // found"). So in the source the walls move with tau g.
   const Vector<D> wall_gravity = tau * phys.gravity;
   // div u* and, for the particle-scale part below, div u^n: one pass over the pairs for both.
   std::vector<std::vector<double>> divergences =
@@ -425,8 +425,8 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   nh.update(P);
   nh.halo().update(u_half);
   // The consistent Laplacian's factors at x^{n+1} serve the closing kick's viscous term and the PPE:
-  // gathered in the viscous term's pass where there is one (a pass of their own was 3 % of a step,
-  // Taylor-Green 2D at 1e5 particles), else in a pass of their own.
+  // gathered in the viscous term's pass where there is one, which saves a pass (docs/performance.md,
+  // "Design measurements"), else in a pass of their own.
   std::vector<LaplacianCorrection<D>> corrections;
   const bool consistent = operators_ == OperatorSet::Consistent;
 

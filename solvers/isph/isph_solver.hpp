@@ -12,31 +12,29 @@
 //   shifting (LindShifting) with Taylor corrections of u, p and pm to the shifted positions.
 // The projection fixes only the step's mean pressure pm (the impulse dt pm that makes u^{n+1}
 // divergence-free); taking psi itself as p^{n+1} = 2 pm - p^n would carry any error of p^n into the
-// next step with its sign flipped, a mode that never decays (measured: l1_pressure 1.3e-2 against
-// 7e-3 at CFL 0.2, Taylor-Green nx 64). The mean pressures have no memory of p^n, and extrapolating
-// them to t^{n+1} is second order. The first step has no p^n: it projects with dt instead of dt/2
-// and takes p^1 = pm^{1/2} = psi.
+// next step with its sign flipped, a mode that never decays (docs/verification/taylor_green.md, "Design
+// measurements"). The mean pressures have no memory of p^n, and extrapolating them to t^{n+1} is second
+// order. The first step has no p^n: it projects with dt instead of dt/2 and takes p^1 = pm^{1/2} = psi.
 //
-// Why this form: the projection used to be made at x* = x^n + dt u^n with the whole pressure impulse
-// there (pressure at the end of the step, viscosity at its start: first order in dt), which on
-// Taylor-Green made a time error 5x the spatial one at CFL 0.2 once the operators were consistent.
+// Why this form: a projection at x* = x^n + dt u^n with the whole pressure impulse there (pressure at the
+// end of the step, viscosity at its start) is first order in dt, and with consistent operators that time
+// error dominates (docs/verification/taylor_green.md, "History").
 //
 // Operators (-operators): by default the consistent Laplacian (src/sph/consistent_laplacian.hpp) for
 // the viscous term and the PPE, the corrected divergence for the PPE source and the corrected
 // gradient for the pressure force: all exact for linear (the Laplacian: quadratic) fields on any
 // particle distribution, so the projection leaves no first-order divergence of its own making that
-// the next step must remove again (a second-order one it does: below). `-operators classic` keeps the Morris viscous term, the Cummins & Rudman PPE and
-// the plain divergence: a symmetric PPE (CG), kept for comparison only (Taylor-Green nx 64, CFL 0.2:
-// 1.5e-2 against 1.0e-3; see docs/verification/taylor_green.md).
+// the next step must remove again (a second-order one it does: below). `-operators classic` keeps the
+// Morris viscous term, the Cummins & Rudman PPE and the plain divergence: a symmetric PPE (CG), kept for
+// comparison only, being far less accurate (docs/verification/taylor_green.md, "Design measurements").
 //
 // The projection is approximate: the consistent Laplacian L is not the corrected divergence of the
 // corrected gradient D G. On the resolved scales they differ at second order in h, and one projection
 // leaves the divergence tau (L - D G) psi in u^{n+1}, which the next step removes again: an error of
-// order dt h^2 in u, first order in dt (Taylor-Green nx 32: the vortex's amplitude error -1.4e-3 at
-// CFL 0.2 against +7.0e-3 as dt -> 0, halving with dt). -projection_corrections K solves the same
-// matrix K more times with the kernel average of the remaining divergence (its resolved part) and
-// corrects again: each pass shrinks that divergence by the relative size of L - D G (~7 % on the
-// Taylor-Green pressure mode at nx 32), so the time error is second order again (project()).
+// order dt h^2 in u, first order in dt. -projection_corrections K solves the same matrix K more times
+// with the kernel average of the remaining divergence (its resolved part) and corrects again: each pass
+// shrinks that divergence by the relative size of L - D G, so the time error is second order again
+// (project(); docs/verification/taylor_green.md, "ISPH's time error" and "Design measurements").
 // The source div u* / tau also divides by tau the particle-scale divergence that u^n keeps at the new
 // positions and that no projection removes, a pressure noise growing as 1/dt;
 // -ppe_particle_divergence_rate removes it at a rate per unit time instead (default 10 U/h: all of it

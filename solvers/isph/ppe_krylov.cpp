@@ -80,10 +80,8 @@ PetscErrorCode set_boomeramg_options(PC pc, const std::vector<std::pair<const ch
 // In 3D a PPE row has about 110 neighbours instead of 20, and BoomerAMG's default (Falgout coarsening,
 // classical interpolation, strong threshold 0.25) spends half the pressure solve in its set-up, which
 // is made anew every solve. HMIS coarsening with ext+i interpolation, strong threshold 0.5 and one
-// level of aggressive coarsening takes twice the iterations and a fifth of the set-up: the pressure
-// solve in 0.58x the time on the Beltrami cube (nx 40, first steps; bench/run_bench.py --suite amg),
-// 0.39x over a whole Beltrami run (nx 24, t 1) and 0.52x on the 3D dam break (nx 10), same results to
-// the solver tolerance. In 2D these sets do not pay (0.78-2.8x the default's time, docs/pressure-solve.md), so this is
+// level of aggressive coarsening takes twice the iterations and a fifth of the set-up, a faster solve
+// with the same results; in 2D it does not pay (docs/pressure-solve.md, "BoomerAMG in 3D"). So this is
 // the 3D default only, and only when the user sets none of these four options.
 template <int D> void PressurePoisson<D>::aggressive_coarsening_in_3d() {
   if (D != 3) return;
@@ -105,8 +103,9 @@ template <int D> void PressurePoisson<D>::aggressive_coarsening_in_3d() {
 
 // Right preconditioning for the non-symmetric matrix: the tolerance then applies to the true residual.
 // With left preconditioning it applies to the preconditioned one, which the near-null constant mode of
-// a regularised periodic system (see assemble) inflates by 1/eps: the solution was then only good to
-// 1e-4 (GMRES; BiCGStab at -ksp_rtol 1e-10 was 7e-6 off), and 1 and 2 ranks differed by that much.
+// a regularised periodic system (see assemble) inflates by 1/eps, which left the solution far less
+// accurate than the tolerance and dependent on the rank count (docs/pressure-solve.md, "Design
+// measurements").
 // Only for the KSP types that offer both sides, and unless -ksp_pc_side says otherwise.
 template <int D> void PressurePoisson<D>::right_preconditioning() {
   PetscBool user_side = PETSC_FALSE, both_sides = PETSC_FALSE;
@@ -120,11 +119,10 @@ template <int D> void PressurePoisson<D>::right_preconditioning() {
 }
 
 // CG needs a symmetric positive definite preconditioner. BoomerAMG's default coarse solve, Gaussian
-// elimination, is not one on the singular coarse matrix of a periodic domain: Taylor-Green nx 128,
-// -operators classic, -ksp_rtol 1e-12 stopped with DIVERGED_INDEFINITE_PC at step 7. So under a
-// CG-type KSP the coarse level is relaxed with the symmetric-SOR/Jacobi of the other levels, unless
-// the user chose a coarse or an all-level relaxation: that run then reached step 77 (stopping at a
-// residual of 9e-11, near the round-off floor), at no cost in iterations or time at rtol 1e-8.
+// elimination, is not one on the singular coarse matrix of a periodic domain (CG stops with
+// DIVERGED_INDEFINITE_PC). So under a CG-type KSP the coarse level is relaxed with the
+// symmetric-SOR/Jacobi of the other levels, unless the user chose a coarse or an all-level relaxation;
+// it costs no iterations (docs/pressure-solve.md, "The coarse level under CG").
 template <int D> void PressurePoisson<D>::symmetric_coarse_solve() {
   PetscBool cg = PETSC_FALSE, user = PETSC_FALSE, user_all = PETSC_FALSE;
   SPH_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(ksp_), &cg, KSPCG, KSPPIPECG, KSPGROPPCG,

@@ -17,11 +17,9 @@ namespace {
 
 // The owned fluid particle nearest the centre of the fluid's bounding box (-1 if another rank owns
 // it); ties go to the smallest label. Every quantity is an exact min/max over the ranks, so the choice
-// does not depend on the partition. Why the middle: before the pinned equation was restored
-// (spread_pinned_residual), the particle with the smallest label, in a corner of the lattice, took
-// the whole residual and the cubic cavity at Re 400 (nx 16) drove it out through the walls at
-// t = 2.3; an interior particle is held by neighbours on all sides should the restoring solve be
-// loose.
+// does not depend on the partition. Why the middle: an interior particle is held by neighbours on all
+// sides should the restoring solve (spread_pinned_residual) be loose, where a corner one was driven out
+// through the walls (docs/verification/lid_driven_cavity_3d.md, "History").
 template <int D> long central_fluid_particle(const Particles<D>& P) {
   const std::size_t n = P.n_owned;
   double lo[D], hi[D];
@@ -92,8 +90,8 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   //  - Periodic domains (the consistent Laplacian) add eps * mean(diag) to the diagonal instead. With
   //    p = c 1 + q, the constant part c absorbs the part of b outside the range, which the q part
   //    then sees spread evenly over all rows; q is changed by O(eps) and c is removed afterwards.
-  //    A pin would put all of that part on one particle as a point source: measured on Taylor-Green,
-  //    the pinned particle's pressure sat 0.03-0.1 below its neighbours'.
+  //    A pin would put all of that part on one particle as a point source (docs/pressure-solve.md,
+  //    "Design measurements").
   pinned_ = -1;
   closed_ = nonsymmetric_ && !any_dirichlet && any_wall;
   regularised_ = nonsymmetric_ && !any_dirichlet && !any_wall;
@@ -105,14 +103,13 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   SPH_PETSC(KSPDestroy(&ksp_));
   rows_.build(P, nh.list(), K, body_force, dirichlet_, pinned_, consistent, nodes, impact);
   // A new KSP for each new matrix, made from the options database: every option, viewers included,
-  // then acts on every solve. Keeping one KSP saved no measurable set-up time (the preconditioner is
-  // rebuilt for each new matrix either way), and some preconditioners cannot be set up again on
-  // another matrix (hypre's Euclid hung after a re-partition on 2 ranks; GAMG refused a coarse level
-  // of another size after KSPReset).
+  // then acts on every solve. Keeping one KSP saves no set-up time (the preconditioner is rebuilt for
+  // each new matrix either way), and some preconditioners cannot be set up again on another matrix
+  // (docs/pressure-solve.md, "Design measurements").
   // Made first: its preconditioner decides which matrix that is built from.
   create_ksp();
-  // BoomerAMG only: a one-level preconditioner loses by it (ILU(0) of the lumped matrix took 1.7x the
-  // GMRES iterations on the cavity at nx 50). A row's own diagonal decides what it drops, which would
+  // BoomerAMG only: a one-level preconditioner loses by it (docs/pressure-solve.md, "The preconditioner's
+  // matrix"). A row's own diagonal decides what it drops, which would
   // make the preconditioner of a symmetric matrix non-symmetric, and CG needs a symmetric one:
   // symmetric matrices keep theirs whole. Taken before the matrices are made: an MPIAIJ view
   // renumbers its off-diagonal columns in place.
@@ -146,12 +143,12 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
 // A closed domain's equations are not all satisfiable: the discrete source has a part outside the
 // matrix's range (the left null vector y is not known: the wall rows and the consistent Laplacian
 // make A non-symmetric). The mean removed by remove_net_source is most of it, not all. With one
-// equation dropped for the pin, the rest lands on the pinned particle as a point source: measured on
-// the cavity (Re 100, nx 50), a pressure spike of 0.013 rho U^2 above its neighbours (5 times their
-// spread), which moved the centreline profiles by up to 2e-3 U and the RMS errors by up to 0.2
-// points depending on where the pin was. So the pinned equation is restored instead: p' = p - lambda z,
-// where A z = e (1 on the fluid rows but the pinned one), satisfies every fluid row up to the same
-// even source lambda, the pinned one included, when lambda = (a_k . p - b_k) / (a_k . z - 1).
+// equation dropped for the pin, the rest lands on the pinned particle as a point source, a pressure spike
+// that makes the results depend on where the pin is (docs/verification/lid_driven_cavity.md, "The walls
+// at rest in the source, and the closed domain's pinned pressure"). So the pinned equation is restored
+// instead: p' = p - lambda z, where A z = e (1 on the fluid rows but the pinned one), satisfies every
+// fluid row up to the same even source lambda, the pinned one included, when
+// lambda = (a_k . p - b_k) / (a_k . z - 1).
 // z costs one solve per matrix, shared by the step's solves.
 template <int D> void PressurePoisson<D>::prepare_spread() {
   SPH_PETSC(VecDuplicate(x_, &pinned_equation_));
@@ -205,8 +202,8 @@ template <int D> void PressurePoisson<D>::spread_pinned_residual(double pinned_r
 // leaves it: the mass-weighted sources must add up to zero, or no pressure satisfies them all. Wall
 // ends (where a lid meets a corner) and round-off leave a net source; with one equation dropped for
 // the pinned particle, all of it would land on that particle as a point source, whose pressure
-// spike (a jump of 90 between it and its neighbours, lid-driven cavity Re 100 at nx 100) expelled it
-// through the wall. So the net source is spread evenly over the fluid rows instead.
+// spike can expel it through the wall (docs/verification/lid_driven_cavity.md, "Design measurements").
+// So the net source is spread evenly over the fluid rows instead.
 template <int D>
 double PressurePoisson<D>::remove_net_source(const std::vector<double>& source, const std::vector<double>& mass,
                                              PetscScalar* b, PetscInt n) const {

@@ -124,11 +124,9 @@ template <int D> class PressurePoisson {
   std::vector<char> dirichlet_;  // rows with p = 0
   PpeRows rows_;                 // the matrix rows, and the right-hand side of wall rows
   PpeRows pc_rows_;              // P_'s rows
-  // -ppe_pc_drop_tol (see assemble and lump_weak_entries). The default: Taylor-Green nx 316 (lattice),
-  // -perturbation 0.2 at nx 128, the cavity at nx 50, the dam break at nx 40 and the Beltrami cube at
-  // nx 24 took 0.46, 0.70, 0.62, 0.55 and 0.23 of the pressure solve's time with the whole matrix;
-  // 0.01 saved less in each; 0.05 was within 5 % of it on the lattice and with walls but slower on
-  // the disordered particles and in 3D (docs/pressure-solve.md).
+  // -ppe_pc_drop_tol (see assemble and lump_weak_entries). The default is the fastest pressure solve
+  // across 2D and 3D scenes, lattices and disordered particles (docs/pressure-solve.md, "The
+  // preconditioner's matrix").
   double pc_drop_tol_ = 0.02;
 };
 

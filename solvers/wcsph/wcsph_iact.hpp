@@ -88,8 +88,8 @@ template <int D> struct RatesInputs {
 // Adds pair (i, j) to i's sums: pressure (corrected sums or the symmetric force) with artificial
 // viscosity, viscosity (the consistent Laplacian's moments, finished after the loop, or Morris),
 // continuity (corrected sums or the plain form) and delta-SPH density diffusion. Always inlined into
-// the pair loop, so that the sums stay in registers (not inlined, the 2D WCSPH forces took 1.03x the
-// time of the loop-body version; inlined, 0.97x).
+// the pair loop, so that the sums stay in registers: out of line it is slower than the loop body it
+// replaced (docs/performance.md, "Design measurements").
 template <int D>
 [[gnu::always_inline]] inline void add_rates_pair(const RatesInputs<D>& in, RateSums<D>& s, int i, int j, const PairGeometry<D>& g) {
   const Particles<D>& P = in.P;
@@ -113,12 +113,13 @@ template <int D>
     // Walls count as at rest here: every wall is fixed or slides along itself (the cavity lid), so
     // no mass crosses it, and the sliding velocity must stay out of the density. Where the lid ends
     // at a fixed corner block its velocity jumps from U to 0 inside the kernel support, and the
-    // discrete divergence reads that jump as a source of order U/dx. Integrated in time by this
-    // equation, it compressed the whole cavity (density +18% at Re 100, nx 30; errors 4.5% / 5.7%
-    // instead of 1.9% / 0.5%). ISPH keeps v_w in its pressure source: the projection does not
-    // accumulate the source, which there raises the stagnation pressure in the downstream corner and
-    // drives the vortex harder, a first-order error that at Re 1000 and nx 50 cancels most of the
-    // scheme's under-resolution (docs/verification/lid_driven_cavity.md, "Why the best corner depends on Re").
+    // discrete divergence reads that jump as a source of order U/dx, which this equation integrates in
+    // time into a compression of the whole cavity (docs/verification/lid_driven_cavity.md, "Design
+    // measurements"). ISPH's pressure source can keep v_w (-ppe_wall_velocity prescribed): the projection
+    // does not accumulate the source, which there raises the stagnation pressure in the downstream corner
+    // and drives the vortex harder, a first-order error that on coarse grids at Re 1000 cancels most of
+    // the scheme's under-resolution (docs/verification/lid_driven_cavity.md, "Why the best corner depends
+    // on Re").
     const Vector<D> u_j = P.kind[j] == kWall ? Vector<D>::Zero() : Vector<D>(P.v[j]);
     if (in.corrected_continuity) s.grad_u += difference_vector_gradient_term(Vj, P.v[i], u_j, g);
     else s.drho += continuity_pair(P.rho[i], Vj, Vector<D>(P.v[i] - u_j), g);

@@ -142,9 +142,8 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
   // An incompressible start is not a weakly compressible flow: the particles carry their pressure,
   // which the incompressible field changes along their paths (Dp/Dt), so without the compressive
   // velocity that makes the continuity equation follow it the start rings with sound of pressure
-  // O(Mach) times the flow's. Under c0 ~ 1/h that was an O(h) pressure error (Taylor-Green, mean over
-  // t <= 0.04: l1_pressure at order 1.25 from nx 128 to 256, 1.93 with the prepared start; docs/verification/taylor_green.md,
-  // WCSPH with particle-scale delta-SPH).
+  // O(Mach) times the flow's. Under c0 ~ 1/h that is an O(h) pressure error, which the prepared start
+  // removes (docs/verification/taylor_green.md, "WCSPH with particle-scale delta-SPH").
   if (prepared_start_) {
     if (!scene.physics.slow_manifold_velocity)
       throw Error("-prepared_start needs a case that gives its start's slow-manifold velocity (taylor_green "
@@ -192,8 +191,8 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
 // square sets a pressure scale (Morris, Fox & Zhu 1997, eq. 4.1): the flow speed U (dynamic pressure
 // rho U^2), the body-force head sqrt(|g| H) with H the fluid's extent along g (rho g H), and the
 // viscous sqrt(nu U / L) with L its smallest extent (mu U / L, which dominates at low Reynolds
-// number). With U alone a Stokes flow driven by a body force was compressed: the periodic cylinder
-// array (scripts/make-scene cylinders, U_ref = 0.1, g = 1) gave 43% too little drag at c0 = 1.
+// number). With U alone a Stokes flow driven by a body force is compressed and its drag too low
+// (docs/user-guide.md, "Drag of a periodic array of cylinders").
 template <int D> double WcsphSolver<D>::speed_scale() {
   const Particles<D>& P = scene_->particles;
   const Physics<D>& phys = scene_->physics;
@@ -276,7 +275,8 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   // The corrected divergence goes with the corrected pressure gradient. The symmetric gradient's
   // discrete adjoint is the plain divergence: together they exchange energy exactly between pressure
   // work and compression. Mixed with the corrected divergence (a free surface, where auto picks the
-  // symmetric gradient) the dam-break front ran 22% ahead of Martin & Moyce instead of 9% (nx 20, T 3).
+  // symmetric gradient) the dam-break front runs far ahead of the experiment (docs/verification/dam_break.md,
+  // "Design measurements").
   const bool corrected_continuity = consistent && corrected_gradient && continuity;
   // Sums finished after the pair loop: the moment matrix of the kernel-gradient correction, the
   // velocity gradient of the corrected continuity equation and the pressure-difference sum.
@@ -293,8 +293,8 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   if (diffusion_ == DensityDiffusion::Fourtakas) in.hydrostatic_density_gradient = eos_.rho0 * phys.gravity / (eos_.c0 * eos_.c0);
   const bool consistent_viscous = consistent && phys.viscous();
   // Each particle's sums live in locals while its pairs are visited, and are stored once. The
-  // consistent viscous Laplacian is gathered in the same loop as the rest: with its factors in a pass
-  // of their own, a step took 1.07-1.14x the time (bench/run_bench.py, 2D and 3D at 1e4-1e5 particles).
+  // consistent viscous Laplacian is gathered in the same loop as the rest, which saves a pass over the
+  // pairs (docs/performance.md, "Design measurements").
   // The viscous Laplacian's smoothing error removed (src/sph/laplacian_smoothing.hpp) needs its
   // factors and values after the loop; the free surface cuts the supports, where it is left off.
   const bool smoothing = consistent_viscous && viscous_laplacian_ == ViscousLaplacian::Fourth && !phys.free_surface;
@@ -341,10 +341,9 @@ template <int D> void WcsphSolver<D>::compute_rates() {
 // change, however compressible the fluid. The discrete continuity equation does not know that: its
 // divergence (corrected or plain) is not the time derivative of any volume of the particle set, and on
 // disordered particles its volume integral has a bias of the size of the truncation error, the same
-// sign for as long as the flow lasts. Integrated, the cavity at Re 1000 compressed by 5% at steady
-// state (nx 30), mostly from the interior, not the walls (measured: 1.1e-3 of the 1.5e-3 volume rate at
-// nx 40), and independent of dt (nx 30, t 3: +0.27%, +0.31%, +0.28% at CFL 0.25, 0.125, 0.4). The net
-// rate, which no flow in the box can have, is taken out as a uniform compression rate, as ISPH spreads a
+// sign for as long as the flow lasts, mostly from the interior and independent of dt
+// (docs/verification/lid_driven_cavity.md, "WCSPH in a closed box keeps its volume"). The net rate,
+// which no flow in the box can have, is taken out as a uniform compression rate, as ISPH spreads a
 // closed domain's net PPE source evenly over its rows.
 template <int D> void WcsphSolver<D>::remove_net_volume_rate() {
   const Particles<D>& P = scene_->particles;

@@ -19,12 +19,9 @@ enum class DensityMethod { Continuity, Summation };
 // noise, at the rate delta c0 pi^2 / h; on the resolved flow it is a diffusivity delta h c0, first
 // order in h at fixed c0 and delta. particle: the Molteni-Colagrossi term acting on rho minus its
 // kernel (Shepard) average, the part of rho that varies on the particle scale, so that the resolved
-// density is diffused O(h^2) less and delta need not fall with h. Measured on Taylor-Green (Re 100,
-// 2 % disordered start, c0 = 10, 20, 40, 80 U at nx 32 ... 256, mean over t 0.2-0.3): the velocity's
-// shape error 1.16e-3, 2.09e-4, 4.79e-5, 1.21e-5 (orders 2.5, 2.1, 2.0) and l1_pressure 2.7e-2 ...
-// 1.1e-3 (1.8, 1.5, 1.3) with delta 0.1; Molteni with delta ~ h^2: 1.33e-3, 2.12e-4, 9.56e-5, 5.8e-5
-// (2.7, 1.2, 0.7), pressure not converging (2.2e-2, 1.1e-2, 1.1e-2). docs/verification/taylor_green.md, "WCSPH with
-// particle-scale delta-SPH". Needs supports of fluid only: scenes with walls or a free surface are refused.
+// density is diffused O(h^2) less and delta need not fall with h: with c0 ~ 1/h WCSPH then converges at
+// second order where Molteni's term with delta ~ h^2 does not (docs/verification/taylor_green.md, "WCSPH
+// with particle-scale delta-SPH"). Needs supports of fluid only: scenes with walls or a free surface are refused.
 enum class DensityDiffusion { None, Molteni, Antuono, Particle, Fourtakas };
 enum class WcsphGradient { Auto, Corrected, Symmetric };
 

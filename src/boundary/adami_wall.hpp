@@ -33,8 +33,8 @@ template <int D> struct AdamiWall {
     std::size_t current = 0;
     for_each_pair_in_order(P, nl, K, [&](int w, int f, const PairGeometry<D>& g) {
       // A neighbour at the edge of the support can weigh exactly 0 (r / h rounds to the support): it
-      // adds nothing, and a wall whose only fluid neighbours were such would divide 0 by 0 (3D dam break,
-      // nx 10: NaN velocities at step 1).
+      // adds nothing, and a wall whose only fluid neighbours were such would divide 0 by 0
+      // (docs/verification/dam_break.md, "Design measurements").
       if (P.kind[f] != kFluid || g.W == 0.0) return;
       while (current < static_cast<std::size_t>(w)) s.offset[++current] = s.fluid.size();
       s.fluid.push_back(f);

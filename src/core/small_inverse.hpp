@@ -3,7 +3,7 @@
 // one per particle and step) by Gauss-Jordan elimination with partial pivoting, on fixed-size Eigen
 // rows that the compiler unrolls. Eigen's PartialPivLU<Matrix<double, 5, 5>>::inverse() runs its
 // general kernels (a run-time-sized LU, then a triangular solve and GEMM packing for the identity's
-// columns), which cost 15 % of a 2D WCSPH step (perf, Taylor-Green 1e5 particles) for 250 flops.
+// columns), a large share of a step for 250 flops (docs/performance.md, "Before it").
 #include <cmath>
 
 #include <Eigen/Dense>

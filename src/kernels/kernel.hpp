@@ -61,7 +61,7 @@ template <int D> class Kernel {
 };
 
 // The shape functions are defined here, not in kernel.cpp, so that the pair loops inline them: out of
-// line, the calls cost 11-13% of a 2D WCSPH or ISPH step (measured, bench/run_bench.py).
+// line the calls are a tenth of a step (docs/performance.md, "Design measurements").
 namespace detail {
 constexpr double kernel_gaussian_cut = 3.0;
 inline double kernel_pos(double x) { return x > 0.0 ? x : 0.0; }

@@ -25,8 +25,7 @@ template <int D> struct PointCloud {
 // to kMaxRun points instead of one each. A run ends where its box would grow beyond the search radius,
 // so scattered points (an unordered start) fall back to short runs, down to one point, not to long
 // candidate lists. The lists are exact whatever the runs are: the same neighbours in the same (index)
-// order. Measured at 1e5 particles, one thread, against a search per point: a 2D rebuild took 0.36x
-// the time (runs of up to 16: 0.43x, 64: 0.37x), a 3D one 0.47x.
+// order, in about half the time of a search per point or less (docs/performance.md, "Design measurements").
 template <int D>
 void NeighbourList<D>::build(const std::vector<Vector<D>>& x, std::size_t n_query, double radius) {
   using Cloud = PointCloud<D>;

@@ -176,7 +176,8 @@ template <int D> class NeighbourCountCheck {
     const double rc2 = support * support;
     const std::ptrdiff_t rows = static_cast<std::ptrdiff_t>(std::min(P.n_owned, nl.size()));
     // Threaded: the sums are of whole numbers, exact in any order, so every thread count gives the
-    // same figures (a serial pass was 2 % of a one-thread WCSPH step, more of a threaded one).
+    // same figures, and a serial pass costs a visible share of a step (docs/performance.md, "Design
+    // measurements").
 #pragma omp parallel for schedule(static) reduction(+ : sum, count) reduction(min : fewest)
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
       const std::size_t i = static_cast<std::size_t>(r);

@@ -8,7 +8,7 @@
 // move, its error is O(1) in the particle disorder and does not shrink with h. In the ISPH projection
 // that error makes the Laplacian differ from the divergence of the gradient that corrects the
 // velocity, so every step leaves a divergence that the next one removes again: an error per step,
-// not per unit time (measured on Taylor-Green: the error rose as dt fell).
+// not per unit time, which grows as dt falls (docs/verification/taylor_green.md, "History").
 //
 // With r = x_j - x_i, e = r / |r| and g_ij = -V_j W'(r) / |r| > 0 (the Morris weight), the operator
 //   lap f_i = sum_j w_ij (f_j - f_i),   w_ij = 2 g_ij (e^T A_i e + c_i . e),
@@ -22,9 +22,9 @@
 // particle. Where the neighbourhood cannot span the quadratics, or the solution would make a weight
 // negative (one-sided neighbourhoods at a free surface), the Morris weights are kept.
 //
-// Fatehi & Manzari instead keep c = 0 and subtract the first moments times the corrected gradient;
-// measured on a jittered lattice (0.15 dx) that leaves an O(disorder^2) error that stops falling
-// (3.7e-2, 1.8e-2, 1.4e-2 at nx 20, 40, 80) where this form keeps converging.
+// Fatehi & Manzari instead keep c = 0 and subtract the first moments times the corrected gradient,
+// which leaves an O(disorder^2) error that stops falling where this form keeps converging
+// (docs/pressure-solve.md, "Design measurements").
 //
 // Rows sum to zero (constants are in the null space) but w_ij != w_ji: a PPE built on it is not
 // symmetric.
@@ -111,8 +111,8 @@ template <int D> struct LaplacianSystem {
       for (int b = a; b < D; ++b, ++q) rhs(q) = a == b ? 1.0 : 0.0;  // sum_j 2 g e^T.. r r = 2 I -> I after /2
     // The exact 1-norm condition number from the inverse: a singular or near-singular S (a
     // neighbourhood that cannot span the quadratics) shows as rcond < 1e-10 or NaN. Partial pivoting
-    // and the exact inverse cost less than full pivoting and Eigen's iterative rcond estimate (a 2D
-    // WCSPH step: 0.85x the time, measured).
+    // and the exact inverse cost less than full pivoting and Eigen's iterative rcond estimate
+    // (docs/performance.md, "Design measurements").
     Eigen::Matrix<double, n, n, Eigen::RowMajor> inv;
     if (!invert_partial_pivot<n>(S, inv)) return false;
     const double rcond = 1.0 / (S.cwiseAbs().colwise().sum().maxCoeff() * inv.cwiseAbs().colwise().sum().maxCoeff());

@@ -4,9 +4,9 @@
 //
 // Two fits, chosen by name (-profile_interpolation):
 //  - shepard: f(x) = sum_f f_f W_f / sum_f W_f, W_f = W(x - x_f). Exact for constants only: where the
-//    support is cut by a wall, or the particles around x are not symmetric, it is biased by O(h grad f).
-//    Measured on the cavity (Re 100, ISPH nx 25, settled): 3.3 % RMS in u against a finite-difference
-//    solution where the linear fit gives 0.7 %, most of it at the points beside the lid.
+//    support is cut by a wall, or the particles around x are not symmetric, it is biased by O(h grad f),
+//    most of a coarse cavity's error (docs/verification/lid_driven_cavity.md, "How the profiles are read
+//    off the particles").
 //  - linear: moving least squares, f(y) ~ a + b.(y - x)/h fitted with the weights W_f; the value is a.
 //    Exact for linear fields wherever the support holds D + 1 particles not on one hyperplane, next to
 //    walls too, so its error is second order (h^2 f''), the order of the schemes it measures.

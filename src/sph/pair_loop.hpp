@@ -156,8 +156,8 @@ void for_each_particle_pairs(const Particles<D>& P, const NeighbourList<D>& nl, 
 
 // Per-particle sums: out[i] = zero + the f(sum, i, j, geometry) contributions of i's pairs, in list
 // order, threaded like for_each_pair. The sum lives in a local while i's pairs are visited, so it stays
-// in registers instead of being stored to out[i] at every pair (ISPH forces 0.97x; the same pattern
-// in WCSPH's rates and the shifting loop: a WCSPH step 0.93x). Acc may be a struct of several sums.
+// in registers instead of being stored to out[i] at every pair (docs/performance.md, "Design
+// measurements"). Acc may be a struct of several sums.
 template <int D, class Acc, class SumFn>
 std::vector<Acc> sum_over_pairs(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const Acc& zero,
                                 SumFn&& f, Rows rows = Rows::All) {

@@ -6,9 +6,9 @@ namespace sph {
 
 // F_ij = r_ij . grad_i W_ij / (|r_ij|^2 + eta^2): the radial factor of the Morris et al. (1997) /
 // Cummins & Rudman (1999) Laplacians (negative inside the support). eta only guards r -> 0.
-// Morris' eta = 0.1 h biases every pair by eta^2/r^2: measured on a lattice with h = 1.5 dx this is a
-// 1.2% error of the Laplacian that does not shrink with resolution (it stalled the convergence of
-// the PPE solution), so eta = 0.01 h is used (bias ~1e-4).
+// Morris' eta = 0.1 h biases every pair by eta^2/r^2, an error of the Laplacian that does not shrink
+// with resolution and stalls the PPE solution's convergence, so eta = 0.01 h is used (bias ~1e-4;
+// docs/pressure-solve.md, "Design measurements").
 constexpr double morris_eta_over_h = 0.01;
 template <int D> inline double morris_factor(const PairGeometry<D>& g, double h) {
   constexpr double eta2 = morris_eta_over_h * morris_eta_over_h;

@@ -5,14 +5,9 @@
 // shifted positions.
 //
 // D = A h U dt (Lind et al. 2012; U the largest particle speed, largest_speed): a shift per unit time, so that
-// the total shift over a time interval does not depend on how many steps cut it. An earlier version
-// shifted by D = A h^2 per step and recorded that this worked better; it did only because the
-// projection's operators were inconsistent and made an error per step of their own (fixed: see
-// solvers/isph/isph_solver.hpp). Measured on Taylor-Green, Re 100, ISPH nx 64 (l1_velocity at
-// CFL 0.2 / 0.1 / 0.05): per step 1.10e-3 / 1.44e-3 / 1.58e-3, rising as dt falls; per unit time
-// 1.10e-3 / 1.23e-3 / 1.26e-3, approaching the spatial error. With A = 2 the shift at CFL 0.2 is
-// the former A h^2 = 0.4 h^2 per step. The explicit update is stable for D <= 0.5 h^2 per step
-// (measured: 0.8 h^2 blew up), which the solvers add to their time-step limit (max_dt).
+// the total shift over a time interval does not depend on how many steps cut it: a shift per step
+// (A h^2) made the error grow as dt fell. The explicit update is stable for D <= 0.5 h^2 per step, which
+// the solvers add to their time-step limit (max_dt) (docs/verification/taylor_green.md, "Design measurements").
 //   grad C_i = sum_j V_j [1 + R (W_ij / W(dx))^n] grad_i W_ij  (R = 0.2, n = 4: the tensile-instability
 //   term of Monaghan 2000 that Lind et al. add to stop pairing).
 #include <algorithm>
@@ -36,12 +31,9 @@ namespace sph {
 // particles at its strain rate, which does not. D = A h^2 |S_i| dt (strain; S_i the particle's
 // strain-rate tensor, |.| the Frobenius norm) restores at a rate proportional to the local strain rate
 // at every resolution, and shifts nothing where the flow does not deform (a rigid rotation, a fluid at
-// rest). Measured on Taylor-Green (ISPH, Re 100, t 1, CFL 0.05; l1_velocity at nx 32 / 64 / 128):
-// speed 4.10e-3 / 1.24e-3 / 3.67e-4, over 90 % of it a decay rate that is too slow and grows linearly
-// in time, the part that depends on A converging at order 1.6 (A = 2 and 1 at nx 32, 64; A < 1 blew
-// up at t ~ 0.2 at nx 32 and 64); strain 3.09e-3 / 7.05e-4 / 3.81e-4: less decay bias, but the
-// initial square lattice rearranges at t ~ 0.2 with an error burst of 2.2e-3 / 1.2e-3 / 5.2e-4 (order
-// ~1) that the speed form suppresses. Neither is second order in h yet; speed stays the default.
+// rest). speed stays the default: strain has less decay bias but lets the start's square lattice
+// rearrange with a first-order error burst that speed suppresses, and neither is second order in h yet
+// (docs/verification/taylor_green.md, "What limits ISPH's order" and "Design measurements").
 enum class ShiftRate { Speed, Strain };
 inline const char* const shift_rate_names[] = {"speed", "strain"};
 inline const char* const shift_rate_help =
@@ -50,15 +42,12 @@ inline const char* const shift_rate_help =
 // Which part of grad C particles shift along (-shift_scales). The kernel sum C is not 1 on a uniform
 // but anisotropic arrangement, and the flow's strain makes such arrangements systematically: C then has
 // a smooth, resolved-scale part of O(1) in h, and shifting along its gradient (D = A h U dt) moves
-// mass at the flow's scale by O(h), which fixed particle volumes do not account for. Measured on
-// Taylor-Green (ISPH, Re 100, t 1, CFL 0.05, nx 32 / 64 / 128): the shift's kinetic-energy input
-// 2.9e-3 / 1.8e-3 / 9.0e-4 (first order), which the projection takes back only in part (net
-// -7.8e-4 / +9e-7 / +1.3e-4 against the viscous term's own deficit of 2.4e-3 / 6.0e-4 / 1.5e-4, second
-// order), so the error converged at 1.75. particle: shift along grad C minus its kernel (Shepard)
+// mass at the flow's scale by O(h), which fixed particle volumes do not account for: a first-order
+// energy input that keeps ISPH's order under 2. particle: shift along grad C minus its kernel (Shepard)
 // average over the fluid, the particle-scale part that disorder makes and shifting is for; the resolved
-// part left is O(h^2) smaller. Its energy input is then 8.7e-4 / 9.3e-5 / 9.2e-6 (third order). Not the
-// default yet: it restores disorder a few particles wide more weakly, and the start lattice's
-// rearrangement at nx 32 grows a little (docs/verification/taylor_green.md, "What limits ISPH's order").
+// part left is O(h^2) smaller, and its energy input third order. Not the default yet: it restores
+// disorder a few particles wide more weakly, and the start lattice's rearrangement on coarse grids grows
+// a little (docs/verification/taylor_green.md, "What limits ISPH's order" and "Design measurements").
 enum class ShiftScales { All, Particle };
 inline const char* const shift_scales_names[] = {"all", "particle"};
 inline const char* const shift_scales_help =
@@ -69,11 +58,9 @@ inline const char* const shift_coefficient_help =
     "strain caps D at 0.5 h^2)";
 
 // The largest particle speed over all ranks, moving walls included (a lid sets its flow's speed): the
-// speed that -shift_rate speed shifts at. With the case's reference speed instead, a fluid at rest was
+// speed that -shift_rate speed shifts at. With the case's reference speed instead, a fluid at rest is
 // shifted too, and the square lattice it starts on (a saddle of the shift's potential, which favours a
-// hexagonal one) rearranged: still water drifted 1.3 (ISPH) to 3 (WCSPH) spacings by t = 20, and WCSPH's
-// leaked through its floor at t = 17 (40 particles a unit). Taylor-Green errors at t = 1 move by a few
-// per cent, down (docs/verification/free_surface.md).
+// hexagonal one) rearranges (docs/verification/free_surface.md, "Design measurements").
 template <int D> double largest_speed(const Particles<D>& P) {
   double u2 = 0.0;
   for (std::size_t i = 0; i < P.n_owned; ++i) u2 = std::max(u2, P.v[i].squaredNorm());
@@ -111,8 +98,8 @@ struct LindShifting {
 
 // g_i minus its kernel average (src/sph/kernel_average.hpp): the part of grad C that varies on the
 // particle scale. Only where the kernel support is all fluid: next to a wall or a free surface the
-// resolved part of grad C is the boundary's own signal, which keeps particles off walls (without it the
-// cavity at Re 1000, nx 50, lost a particle through a wall at t = 7.5), and g_i is kept whole.
+// resolved part of grad C is the boundary's own signal, which keeps particles off walls, and g_i is kept
+// whole (docs/verification/lid_driven_cavity.md, "Design measurements").
 template <int D>
 void remove_kernel_average(const Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, std::vector<Vector<D>>& g,
                            const std::vector<char>* surface) {
@@ -131,7 +118,7 @@ void remove_kernel_average(const Particles<D>& P, Neighbourhood<D>& nh, const Ke
 // uncorrected gradients of u and of the scalars. As separate operators (correction_matrices,
 // vector_gradient_corrected, gradient_corrected) these were one loop each, and traversing the pairs,
 // not the arithmetic, is the cost: the fused loop gives each sum bitwise the same terms in the same
-// order (tests/test_operators.cpp), at 0.4x the time.
+// order (tests/test_operators.cpp), in less time (docs/performance.md, "Design measurements").
 template <int D>
 void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, const LindShifting& model,
                      double dx, double U, double dt, const std::vector<std::vector<double>*>& scalars = {},
@@ -188,8 +175,8 @@ void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, 
     }
   }
   // On the surface particles shift along it only (Lind et al. 2012); beside it never outwards: there
-  // the cut support's grad C points into the fluid as well, and shifting moved the layer below the
-  // surface into it, lifting a fluid at rest (still water rose 3 % in t = 20).
+  // the cut support's grad C points into the fluid as well, and shifting would move the layer below the
+  // surface into it, lifting a fluid at rest (docs/verification/free_surface.md, "Design measurements").
   if (surface)
     for (std::size_t i = 0; i < n; ++i) {
       const double outward = normal[i].dot(dr[i]);
