@@ -26,10 +26,9 @@ template <int D> void run_in_dim(const RunOptions& names) {
   control.t_end = scene_case->default_t_end();
   read_run_control(control, scene_case->steady_tolerance(), D);
   const KernelChoice kernel = read_kernel_options();
-  const std::string output_dir =
-      control.output_dir[0] ? std::string(control.output_dir)
-                            : "out/" + scene_case->output_name() + "-" + names.solver_name + "-" +
-                                  std::to_string(scene_case->resolution());
+  const std::string output_dir = control.output_dir[0] ? std::string(control.output_dir)
+                                                       : "out/" + scene_case->output_name() + "-" + names.solver_name +
+                                                             "-" + std::to_string(scene_case->resolution());
   check_unused_options(option_owners(names));
   check_valueless_options(valueless, option_owners(names));
   run_time_loop<D>({*scene_case, *solver, names.case_name, names.solver_name, control, kernel, output_dir,
@@ -53,10 +52,13 @@ std::vector<OptionOwner> option_owners(const RunOptions& chosen) {
     owners.push_back({"-solver " + name, [name] { create_solver<2>(name)->set_from_options(); }, reads_late,
                       name == chosen.solver_name});
   }
-  owners.push_back({"", [] {  // run control and kernel: read by every run
+  owners.push_back({"",
+                    [] {  // run control and kernel: read by every run
                       read_run_control_block();
                       read_kernel_options();
-                    }, {}, true});
+                    },
+                    {},
+                    true});
   return owners;
 }
 
@@ -66,8 +68,7 @@ void print_all_options(int) {
   for (const OptionOwner& o : option_owners(RunOptions{})) {
     try {
       o.read();
-    } catch (const Error&) {
-    }
+    } catch (const Error&) {}
   }
 }
 

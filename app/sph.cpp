@@ -4,7 +4,6 @@
 //   ./build/sph -case taylor_green -solver isph -nx 64 -re 100 -t_end 1
 //   ./build/sph -options_file cases/taylor_green.opts -ksp_type gmres -ksp_monitor
 #include <petscsys.h>
-
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -29,8 +28,8 @@ PetscErrorCode read_names(sph::RunOptions* o, PetscInt* dim, PetscBool* dim_set)
   for (const auto& s : sph::solver_names()) solvers.push_back(s.c_str());
   PetscInt c = 0, s = 0;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Scene and scheme", "sph");
-  PetscCall(PetscOptionsEList("-case", "Scene to run", "", cases.data(), static_cast<PetscInt>(cases.size()), cases[0], &c,
-                              nullptr));
+  PetscCall(PetscOptionsEList("-case", "Scene to run", "", cases.data(), static_cast<PetscInt>(cases.size()), cases[0],
+                              &c, nullptr));
   PetscCall(PetscOptionsEList("-solver", "Time-stepping scheme", "", solvers.data(),
                               static_cast<PetscInt>(solvers.size()), solvers[0], &s, nullptr));
   PetscCall(PetscOptionsInt("-dim", "Spatial dimension (default: the case's own)", "", *dim, dim, dim_set));

@@ -3,11 +3,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <string>
-
 #include <iterator>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "src/io/checkpoint.hpp"
 
@@ -23,8 +21,8 @@ struct RunResult {
 inline RunResult run_sph(const std::string& tag, const std::string& args) {
   const std::string dir = std::string(SPH_BINARY_DIR) + "/test-output/" + tag;
   std::filesystem::remove_all(dir);
-  const std::string cmd = std::string(SPH_EXECUTABLE) + " " + args + " -progress 0 -output_dir " + dir +
-                          " > " + dir + ".log 2>&1";
+  const std::string cmd =
+      std::string(SPH_EXECUTABLE) + " " + args + " -progress 0 -output_dir " + dir + " > " + dir + ".log 2>&1";
   std::filesystem::create_directories(std::string(SPH_BINARY_DIR) + "/test-output");
   const int status = std::system(cmd.c_str());
   RunResult r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, nullptr, dir};

@@ -61,7 +61,8 @@ TEST(Beltrami, ExactSolutionSolvesTheNavierStokesEquations) {
 // never below it, and above it by at most what the grid can miss (|u|^2 is flat at its maximum, so a
 // half spacing h misses at most about |d2 |u|^2| h^2 / 8 ~ 1e-2).
 TEST(Beltrami, SpeedScaleIsTheMaximumSpeed) {
-  for (const auto& abc : {std::array<double, 3>{1, 1, 1}, std::array<double, 3>{1, 0.6, 0.3}, std::array<double, 3>{0, 0, 2}}) {
+  for (const auto& abc :
+       {std::array<double, 3>{1, 1, 1}, std::array<double, 3>{1, 0.6, 0.3}, std::array<double, 3>{0, 0, 2}}) {
     const double U = sph::beltrami_max_speed(abc[0], abc[1], abc[2]);
     double grid_max = 0.0;
     const int n = 96;

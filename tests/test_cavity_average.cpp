@@ -86,8 +86,9 @@ TEST(CavityAverage, IsNotMeasuredBeforeItsWindowAndSaysWhy) {
 // errors, and the timeseries, of the uninterrupted run (A straight to t = 0.2; B stops at step 20,
 // t = 0.1; C resumes B).
 TEST(CavityAverage, CarriesOverARestartExactly) {
-  const std::string common = "-case lid_driven_cavity -nx 10 -solver isph -profile_average_from 0.05 -steady_tol 0 "
-                             "-t_end 0.2 -dt 0.005 -output_interval 0.05 -checkpoint_interval 0.1";
+  const std::string common =
+      "-case lid_driven_cavity -nx 10 -solver isph -profile_average_from 0.05 -steady_tol 0 "
+      "-t_end 0.2 -dt 0.005 -output_interval 0.05 -checkpoint_interval 0.1";
   const auto a = sph::testing::run_sph("cavity_average_a", common);
   const auto b = sph::testing::run_sph("cavity_average_b", common + " -max_steps 20");
   ASSERT_EQ(a.exit_code, 0);

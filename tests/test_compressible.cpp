@@ -50,9 +50,9 @@ TEST(ExactRiemann, ToroTest1StarRegion) {
 
 TEST(ExactRiemann, ToroTests2To5StarRegion) {
   const ToroCase cases[] = {
-      {{1.0, -2.0, 0.4}, {1.0, 2.0, 0.4}, 0.00189, 0.0, 0.02185, 0.02185},                        // two rarefactions
-      {{1.0, 0.0, 1000.0}, {1.0, 0.0, 0.01}, 460.894, 19.5975, 0.57506, 5.99924},                 // strong shock
-      {{1.0, 0.0, 0.01}, {1.0, 0.0, 100.0}, 46.0950, -6.19633, 5.99242, 0.57511},                 // mirrored
+      {{1.0, -2.0, 0.4}, {1.0, 2.0, 0.4}, 0.00189, 0.0, 0.02185, 0.02185},         // two rarefactions
+      {{1.0, 0.0, 1000.0}, {1.0, 0.0, 0.01}, 460.894, 19.5975, 0.57506, 5.99924},  // strong shock
+      {{1.0, 0.0, 0.01}, {1.0, 0.0, 100.0}, 46.0950, -6.19633, 5.99242, 0.57511},  // mirrored
       {{5.99924, 19.5975, 460.894}, {5.99242, -6.19633, 46.0950}, 1691.64, 8.68975, 14.2823, 31.0426},  // collision
   };
   int k = 2;
@@ -96,14 +96,13 @@ TEST(ExactRiemann, SampledSodSolutionIsConsistent) {
   EXPECT_EQ(rs.at(0.1, 0.0).rho, R.rho);
 }
 
-TEST(ExactRiemann, RefusesVacuum) {
-  EXPECT_THROW(ExactRiemann({1.0, -20.0, 0.4}, {1.0, 20.0, 0.4}, 1.4), sph::Error);
-}
+TEST(ExactRiemann, RefusesVacuum) { EXPECT_THROW(ExactRiemann({1.0, -20.0, 0.4}, {1.0, 20.0, 0.4}, 1.4), sph::Error); }
 
 // ------------------------------------------------------------------------------------------------
 // Pair physics.
 
-template <int D> sph::VariableHPair<D> make_pair(const sph::Vector<D>& rij, const sph::Kernel<D>& Ki, const sph::Kernel<D>& Kj) {
+template <int D>
+sph::VariableHPair<D> make_pair(const sph::Vector<D>& rij, const sph::Kernel<D>& Ki, const sph::Kernel<D>& Kj) {
   sph::VariableHPair<D> g;
   g.rij = rij, g.r = rij.norm();
   g.Wi = Ki.W(g.r), g.dWi = Ki.dWdr(g.r), g.Wj = Kj.W(g.r), g.dWj = Kj.dWdr(g.r);
@@ -159,7 +158,8 @@ TEST(CompressibleIact, PairExchangesAreAntisymmetricWithDifferentH) {
     const V avi = cs::viscous_acceleration(mj, Pij, gij), avj = cs::viscous_acceleration(mi, Pji, gji);
     EXPECT_LT((mi * avi + mj * avj).norm(), 1e-15 * (mi * avi).norm());
     const double av_work = mi * vi.dot(avi) + mj * vj.dot(avj);
-    const double av_heat = mi * cs::viscous_heating(mj, Pij, V(vi - vj), gij) + mj * cs::viscous_heating(mi, Pji, V(vj - vi), gji);
+    const double av_heat =
+        mi * cs::viscous_heating(mj, Pij, V(vi - vj), gij) + mj * cs::viscous_heating(mi, Pji, V(vj - vi), gji);
     EXPECT_LT(av_work, 0.0);  // dissipative
     EXPECT_NEAR(av_work + av_heat, 0.0, 1e-14);
   }
@@ -240,8 +240,9 @@ TEST(Sod, ConvergesToExactRiemannSolution) {
 }
 
 TEST(Sod, SummaryListsActiveModels) {
-  const auto r = run_sph("sod_models", "-case sod -solver compressible -nx 80 -t_end 0.02 -av monaghan -balsara "
-                                       "-av_switch morris_monaghan -conductivity 0");
+  const auto r = run_sph("sod_models",
+                         "-case sod -solver compressible -nx 80 -t_end 0.02 -av monaghan -balsara "
+                         "-av_switch morris_monaghan -conductivity 0");
   ASSERT_EQ(r.exit_code, 0);
   const auto& m = r.summary["models"];
   EXPECT_EQ(m["artificial_viscosity"]["model"], "MonaghanAV");
@@ -252,8 +253,8 @@ TEST(Sod, SummaryListsActiveModels) {
   EXPECT_EQ(m["equation_of_state"]["gamma"], 1.4);
   EXPECT_EQ(m["smoothing_length"]["model"], "GradH");
   EXPECT_EQ(m["smoothing_length"]["eta"], 1.3);  // Wendland C2, the program's default kernel
-  for (const char* key : {"l1_density", "l1_velocity", "l1_pressure", "plateau_density_rel", "plateau_pressure_rel",
-                          "shock_position"})
+  for (const char* key :
+       {"l1_density", "l1_velocity", "l1_pressure", "plateau_density_rel", "plateau_pressure_rel", "shock_position"})
     EXPECT_TRUE(r.summary["errors"].contains(key)) << key;
   const auto d = run_sph("sod_default_models", "-case sod -solver compressible -nx 80 -t_end 0.02");
   ASSERT_EQ(d.exit_code, 0);
@@ -327,8 +328,9 @@ TEST(ToyStar, EnergyErrorIsSecondOrderInTimeWithoutViscosity) {
 // A run resumed from a checkpoint continues bit for bit: the thermal state, smoothing lengths (the
 // Newton start), alphas, leapfrog rates and search radius travel with the checkpoint.
 TEST(Compressible, RestartMatchesUninterruptedRunExactly) {
-  const std::string common = "-case sod -solver compressible -nx 80 -t_end 0.04 -dt 0.001 -output_interval 0.01 "
-                             "-checkpoint_interval 0.02 -av_switch morris_monaghan -balsara";
+  const std::string common =
+      "-case sod -solver compressible -nx 80 -t_end 0.04 -dt 0.001 -output_interval 0.01 "
+      "-checkpoint_interval 0.02 -av_switch morris_monaghan -balsara";
   const auto a = run_sph("compressible_restart_a", common);
   const auto b = run_sph("compressible_restart_b", common + " -max_steps 20");
   ASSERT_EQ(a.exit_code, 0);

@@ -86,9 +86,9 @@ TEST(ConsistentLaplacian, ExactForLinearAndNearlyExactForQuadraticFieldsOnDisord
     el = std::max(el, std::abs(ll[i]));
   }
   std::printf("quadratic field, jitter 0.25 dx: consistent %.2e, Morris %.2e; linear field: %.2e\n", eq, em, el);
-  EXPECT_LT(el, 1e-8);   // exact: the corrected gradient is exact for linear f
-  EXPECT_LT(eq, 0.02);   // only the gradient's O(disorder^2) error is left
-  EXPECT_GT(em, 0.1);    // the Morris form is O(1) wrong here: the reason for the consistent one
+  EXPECT_LT(el, 1e-8);  // exact: the corrected gradient is exact for linear f
+  EXPECT_LT(eq, 0.02);  // only the gradient's O(disorder^2) error is left
+  EXPECT_GT(em, 0.1);   // the Morris form is O(1) wrong here: the reason for the consistent one
 }
 
 // The one-pass form (factors gathered beside the moments, used by WCSPH's rates and both of ISPH's

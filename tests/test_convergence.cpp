@@ -1,5 +1,6 @@
 // Convergence in dt and in h on the Taylor-Green vortex (Re = 100, t = 1) against its exact solution,
-// at resolutions that fit CI. The tables of docs/verification/taylor_green.md (cases/studies/taylor_green*.yaml) go further.
+// at resolutions that fit CI. The tables of docs/verification/taylor_green.md (cases/studies/taylor_green*.yaml) go
+// further.
 //
 // What used to fail: ISPH's error grew as dt fell (nx 64: 2.2e-3, 1.5e-3, 3.7e-3 at CFL 0.2, 0.1,
 // 0.05), because the projection's operators were inconsistent and shifting was defined per step;
@@ -48,15 +49,16 @@ TEST(Convergence, IsphErrorApproachesALimitAsDtFalls) {
   double u[3], p[3];
   const double cfl[] = {0.1, 0.05, 0.025};
   for (int k = 0; k < 3; ++k) {
-    const nlohmann::json e = taylor_green_errors("conv_isph_dt" + std::to_string(k), "-solver isph -nx 32 -cfl " + std::to_string(cfl[k]));
+    const nlohmann::json e =
+        taylor_green_errors("conv_isph_dt" + std::to_string(k), "-solver isph -nx 32 -cfl " + std::to_string(cfl[k]));
     ASSERT_FALSE(e.is_null());
     u[k] = e["l1_velocity"].get<double>(), p[k] = e["l1_pressure"].get<double>();
   }
-  std::printf("ISPH nx 32, CFL 0.1 / 0.05 / 0.025: l1_velocity %.3e %.3e %.3e, l1_pressure %.3e %.3e %.3e\n", u[0], u[1],
-              u[2], p[0], p[1], p[2]);
+  std::printf("ISPH nx 32, CFL 0.1 / 0.05 / 0.025: l1_velocity %.3e %.3e %.3e, l1_pressure %.3e %.3e %.3e\n", u[0],
+              u[1], u[2], p[0], p[1], p[2]);
   EXPECT_LT(std::abs(u[2] - u[1]), 0.5 * std::abs(u[1] - u[0]));  // no error per step: the changes shrink
   EXPECT_LT(std::abs(u[2] - u[1]), 0.03 * u[2]);                  // to a few per cent of the error
-  EXPECT_LT(std::abs(p[1] - p[0]), 0.02 * p[1]);                    // the pressure: no error per step
+  EXPECT_LT(std::abs(p[1] - p[0]), 0.02 * p[1]);                  // the pressure: no error per step
   EXPECT_LT(std::abs(p[2] - p[1]), 0.02 * p[2]);
 }
 
@@ -72,21 +74,24 @@ TEST(Convergence, IsphCorrectionPassMakesTheTimeErrorSecondOrder) {
     const double cfl[] = {0.1, 0.05, 0.025, 0.0125};
     for (int k = 0; k < 4; ++k) {
       const std::string tag = "conv_isph_pass" + std::to_string(passes) + "_" + std::to_string(k);
-      const auto r = run_sph(tag, "-case taylor_green -solver isph -nx 32 -re 100 -t_end 0.05 -output_interval 0 "
-                                  "-checkpoint_interval 0 -projection_corrections " + std::to_string(passes) +
-                                      " -cfl " + std::to_string(cfl[k]));
+      const auto r = run_sph(tag,
+                             "-case taylor_green -solver isph -nx 32 -re 100 -t_end 0.05 -output_interval 0 "
+                             "-checkpoint_interval 0 -projection_corrections " +
+                                 std::to_string(passes) + " -cfl " + std::to_string(cfl[k]));
       EXPECT_EQ(r.exit_code, 0) << tag;
       a[k] = r.summary.is_null() ? NAN : r.summary["errors"]["amplitude_rel"].get<double>();
     }
     const double d1 = a[1] - a[0], d2 = a[2] - a[1], d3 = a[3] - a[2];
-    std::printf("ISPH nx 32, t 0.05, %d correction passes, CFL 0.1 ... 0.0125: amplitude_rel %.4e %.4e %.4e %.4e, "
-                "ratios of successive changes %.2f %.2f\n", passes, a[0], a[1], a[2], a[3], d2 / d1, d3 / d2);
+    std::printf(
+        "ISPH nx 32, t 0.05, %d correction passes, CFL 0.1 ... 0.0125: amplitude_rel %.4e %.4e %.4e %.4e, "
+        "ratios of successive changes %.2f %.2f\n",
+        passes, a[0], a[1], a[2], a[3], d2 / d1, d3 / d2);
     return std::pair<double, double>{d2 / d1, d3 / d2};
   };
   const auto with_pass = ratios(1), without = ratios(0);
-  EXPECT_LT(with_pass.first, 0.375);   // order above 1.4
+  EXPECT_LT(with_pass.first, 0.375);  // order above 1.4
   EXPECT_LT(with_pass.second, 0.375);
-  EXPECT_GT(without.first, 0.4);       // the cause: without the pass, first order
+  EXPECT_GT(without.first, 0.4);  // the cause: without the pass, first order
   EXPECT_GT(without.second, 0.4);
 }
 
@@ -141,17 +146,19 @@ TEST(Convergence, WcsphParticleScaleDiffusionConvergesAsTheMachNumberFalls) {
   const char* c0[] = {"10", "20"};
   for (int k = 0; k < 2; ++k) {
     const std::string tag = "conv_wcsph_particle_diffusion_" + std::to_string(nx[k]);
-    const auto r = run_sph(tag, "-case taylor_green -solver wcsph -re 100 -t_end 0.3 -perturbation 0.02 -output_interval 0 "
-                                "-checkpoint_interval 0 -density_diffusion particle -delta 0.1 -nx " +
-                                    std::to_string(nx[k]) + " -c0_factor " + c0[k]);
+    const auto r = run_sph(tag,
+                           "-case taylor_green -solver wcsph -re 100 -t_end 0.3 -perturbation 0.02 -output_interval 0 "
+                           "-checkpoint_interval 0 -density_diffusion particle -delta 0.1 -nx " +
+                               std::to_string(nx[k]) + " -c0_factor " + c0[k]);
     EXPECT_EQ(r.exit_code, 0) << tag;
     shape[k] = time_mean(r.output_dir, "l1_velocity_shape", 0.2, 0.3);
     pressure[k] = time_mean(r.output_dir, "l1_pressure", 0.2, 0.3);
   }
-  std::printf("WCSPH, c0 ~ 1/h, particle-scale delta-SPH, nx 32 / 64, mean over t 0.2-0.3: l1_velocity_shape %.3e "
-              "%.3e (order %.2f), l1_pressure %.3e %.3e (order %.2f)\n",
-              shape[0], shape[1], std::log2(shape[0] / shape[1]), pressure[0], pressure[1],
-              std::log2(pressure[0] / pressure[1]));
+  std::printf(
+      "WCSPH, c0 ~ 1/h, particle-scale delta-SPH, nx 32 / 64, mean over t 0.2-0.3: l1_velocity_shape %.3e "
+      "%.3e (order %.2f), l1_pressure %.3e %.3e (order %.2f)\n",
+      shape[0], shape[1], std::log2(shape[0] / shape[1]), pressure[0], pressure[1],
+      std::log2(pressure[0] / pressure[1]));
   EXPECT_GE(std::log2(shape[0] / shape[1]), 1.8);
   EXPECT_GE(std::log2(pressure[0] / pressure[1]), 1.4);
 }

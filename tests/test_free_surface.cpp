@@ -32,8 +32,9 @@ TEST(DamBreak, IsphFrontFollowsMartinMoyce) {
 TEST(DamBreak, FrontFollowsMartinMoyceIn3D) {
   for (const char* run : {"isph -nx 10", "wcsph -nx 8"}) {
     const std::string solver(run);
-    const auto r = run_sph("dam_break_3d_" + solver.substr(0, solver.find(' ')),
-                           "-case dam_break -dim 3 -solver " + solver + " -t_end 1.77 -output_interval 0 -checkpoint_interval 0");
+    const auto r =
+        run_sph("dam_break_3d_" + solver.substr(0, solver.find(' ')),
+                "-case dam_break -dim 3 -solver " + solver + " -t_end 1.77 -output_interval 0 -checkpoint_interval 0");
     ASSERT_EQ(r.exit_code, 0) << run << ": " << r.summary.dump();
     EXPECT_EQ(r.summary["dim"], 3);
     EXPECT_EQ(r.summary["status"], "completed");

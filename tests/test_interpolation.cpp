@@ -42,8 +42,7 @@ std::vector<V2> centrelines(int m) {
   return pts;
 }
 
-template <class Field>
-double max_error(int nx, Field u, ProbeInterpolation fit, const std::vector<V2>& pts) {
+template <class Field> double max_error(int nx, Field u, ProbeInterpolation fit, const std::vector<V2>& pts) {
   const sph::Particles<2> P = walled_box(nx, u);
   const sph::Kernel<2> K(sph::KernelType::WendlandC2, 1.5 / nx);  // the cavity metric's kernel
   const std::vector<V2> got = sph::probe_velocity(P, K, pts, fit);

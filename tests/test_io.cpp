@@ -103,9 +103,8 @@ template <int D> Particles<D> make_particles(int n) {
 }
 
 // Checks a read-back frame against the owned particles and the extra field (exact: the files are binary).
-template <int D>
-void expect_frame_matches(vtkPolyData* poly, const Particles<D>& P, const std::string& extra_name,
-                          const std::vector<double>& extra, double time) {
+template <int D> void expect_frame_matches(vtkPolyData* poly, const Particles<D>& P, const std::string& extra_name,
+                                           const std::vector<double>& extra, double time) {
   ASSERT_NE(poly, nullptr);
   const vtkIdType n = static_cast<vtkIdType>(P.n_owned);
   ASSERT_EQ(poly->GetNumberOfPoints(), n);
@@ -213,7 +212,8 @@ template <int D> void round_trip_frame(const std::string& test_name, int n) {
       vtkDataArray* id = all->GetPointData()->GetArray("id");
       ASSERT_NE(id, nullptr);
       std::set<long long> ids;
-      for (vtkIdType i = 0; i < all->GetNumberOfPoints(); ++i) ids.insert(static_cast<long long>(id->GetComponent(i, 0)));
+      for (vtkIdType i = 0; i < all->GetNumberOfPoints(); ++i)
+        ids.insert(static_cast<long long>(id->GetComponent(i, 0)));
       EXPECT_EQ(ids.size(), static_cast<std::size_t>(P.n_global));
       EXPECT_EQ(*ids.begin(), 1000);
       EXPECT_EQ(*ids.rbegin(), 1000 + static_cast<long long>(P.n_global) - 1);

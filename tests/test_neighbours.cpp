@@ -112,9 +112,8 @@ template <int D> std::array<int, 3> shift_of(const Domain<D>& dom, const Vector<
 }
 
 // Pairs within `radius` of owned particle i, from the neighbour list at the current positions.
-template <int D>
-std::vector<Pair> pairs_from_list(const Particles<D>& P, const NeighbourList<D>& nl, const Domain<D>& dom,
-                                  double radius) {
+template <int D> std::vector<Pair> pairs_from_list(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                   const Domain<D>& dom, double radius) {
   std::vector<Pair> pairs;
   for (std::size_t i = 0; i < P.n_owned; ++i)
     for (const int* it = nl.begin(i); it != nl.end(i); ++it) {
@@ -130,8 +129,7 @@ std::vector<Pair> pairs_from_list(const Particles<D>& P, const NeighbourList<D>&
 // Brute force over every owned source k and every periodic image x_k + s L (s integer along periodic
 // axes, unbounded: per axis, every s whose image could lie within the radius is tried; no assumption
 // about which images the halo should make).
-template <int D>
-std::vector<Pair> pairs_brute_force(const Particles<D>& P, const Domain<D>& dom, double radius) {
+template <int D> std::vector<Pair> pairs_brute_force(const Particles<D>& P, const Domain<D>& dom, double radius) {
   std::vector<Pair> pairs;
   const Vector<D> L = dom.length();
   for (std::size_t i = 0; i < P.n_owned; ++i)

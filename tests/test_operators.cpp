@@ -54,8 +54,10 @@ struct KernelCase {
   KernelType type;
   double h_over_dx;
 };
-const KernelCase kCases[] = {{KernelType::WendlandC2, 1.5}, {KernelType::CubicSpline, 1.5},
-                             {KernelType::QuinticSpline, 1.0}, {KernelType::WendlandC4, 1.5},
+const KernelCase kCases[] = {{KernelType::WendlandC2, 1.5},
+                             {KernelType::CubicSpline, 1.5},
+                             {KernelType::QuinticSpline, 1.0},
+                             {KernelType::WendlandC4, 1.5},
                              {KernelType::Gaussian, 1.1}};
 
 // nx^2 particles at cell centres of the periodic unit square, m = rho0 dx^2, rho = rho0, with ghosts
@@ -143,21 +145,33 @@ LatticeConstants lattice_constants(const Lattice& L) {
 }
 
 enum Op {
-  kGradDiff, kGradSym, kGradCorr, kVecGradCorr, kDiv, kLapScalar, kLapVector, kDensity,  // raw errors
-  kGradDiffScaled, kGradSymScaled, kDivScaled, kLapScalarScaled, kLapVectorScaled, kDensityScaled,
+  kGradDiff,
+  kGradSym,
+  kGradCorr,
+  kVecGradCorr,
+  kDiv,
+  kLapScalar,
+  kLapVector,
+  kDensity,  // raw errors
+  kGradDiffScaled,
+  kGradSymScaled,
+  kDivScaled,
+  kLapScalarScaled,
+  kLapVectorScaled,
+  kDensityScaled,
   kNumOps
 };
-const char* kOpNames[kNumOps] = {"gradient_difference", "gradient_symmetric", "gradient_corrected",
-                                 "vector_gradient_corrected", "divergence", "laplacian_morris scalar",
-                                 "laplacian_morris vector", "density_summation",
-                                 "gradient_difference vs (1+eM)", "gradient_symmetric vs (1+eM)",
-                                 "divergence vs (1+eM)", "laplacian scalar vs (1+eL)",
-                                 "laplacian vector vs (1+eL)", "density vs (1+e0)"};
+const char* kOpNames[kNumOps] = {
+    "gradient_difference",          "gradient_symmetric",   "gradient_corrected",
+    "vector_gradient_corrected",    "divergence",           "laplacian_morris scalar",
+    "laplacian_morris vector",      "density_summation",    "gradient_difference vs (1+eM)",
+    "gradient_symmetric vs (1+eM)", "divergence vs (1+eM)", "laplacian scalar vs (1+eL)",
+    "laplacian vector vs (1+eL)",   "density vs (1+e0)"};
 
 struct Measurement {
-  std::vector<double> err[kNumOps];   // relative max-norm error at nx = 20, 40, 80
+  std::vector<double> err[kNumOps];  // relative max-norm error at nx = 20, 40, 80
   std::vector<LatticeConstants> constants;
-  std::vector<double> max_div_solenoidal;  // max |div u_tg| (exact value 0)
+  std::vector<double> max_div_solenoidal;             // max |div u_tg| (exact value 0)
   std::vector<double> L_offdiag, L_aniso, L_minus_I;  // correction matrices on the lattice
   std::vector<double> rho_spread;                     // max-min of uniform-mass density / rho0
   double order(int op, std::size_t k) const { return std::log2(err[op][k] / err[op][k + 1]); }
@@ -182,8 +196,8 @@ Measurement measure(const KernelCase& kc) {
     M.L_offdiag.push_back(offdiag), M.L_aniso.push_back(aniso), M.L_minus_I.push_back(minus_I);
     // Uniform masses: the same density at every particle.
     const auto rho_u = density_summation(L.P, L.nl(), L.K);
-    M.rho_spread.push_back((*std::max_element(rho_u.begin(), rho_u.end()) -
-                            *std::min_element(rho_u.begin(), rho_u.end())) / kRho0);
+    M.rho_spread.push_back(
+        (*std::max_element(rho_u.begin(), rho_u.end()) - *std::min_element(rho_u.begin(), rho_u.end())) / kRho0);
 
     auto scaled_v = [](auto g, double s) { return [g, s](const V2& x) { return V2(s * g(x)); }; };
     auto scaled_s = [](auto g, double s) { return [g, s](const V2& x) { return s * g(x); }; };
@@ -231,8 +245,7 @@ const Measurement& measurement(const KernelCase& kc) {
 
 std::string label(const KernelCase& kc) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%s (h = %.1f dx)", kernel_names()[static_cast<int>(kc.type)].c_str(),
-                kc.h_over_dx);
+  std::snprintf(buf, sizeof buf, "%s (h = %.1f dx)", kernel_names()[static_cast<int>(kc.type)].c_str(), kc.h_over_dx);
   return buf;
 }
 
@@ -251,7 +264,7 @@ void expect_second_order(const KernelCase& kc, int op) {
   const Measurement& M = measurement(kc);
   for (std::size_t k = 0; k < 2; ++k)
     EXPECT_GE(M.order(op, k), kMinOrder) << label(kc) << " " << kOpNames[op] << ": errors " << M.err[op][0] << ", "
-                                          << M.err[op][1] << ", " << M.err[op][2];
+                                         << M.err[op][1] << ", " << M.err[op][2];
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -340,13 +353,13 @@ struct Patch {
 TEST(OperatorDisordered, MomentsResolveByTheSmallestEigenvalue) {
   using T2 = Tensor<2>;
   EXPECT_TRUE(moments_resolve<2>(T2::Identity()));
-  EXPECT_TRUE(moments_resolve<2>(0.5 * T2::Identity()));  // a flat free surface
+  EXPECT_TRUE(moments_resolve<2>(0.5 * T2::Identity()));                      // a flat free surface
   EXPECT_FALSE(moments_resolve<2>((T2() << 1.0, 0.0, 0.0, 0.1).finished()));  // a sheet along x
   EXPECT_FALSE(moments_resolve<2>((T2() << 0.6, 0.5, 0.5, 0.6).finished()));  // 0.1 and 1.1
   EXPECT_TRUE(moments_resolve<2>((T2() << 0.5, 0.4, 0.4, 0.9).finished()));   // 0.253: past Gershgorin's 0.1
   // Its own eigenvalues are both 1; its symmetric part's are 0.1 and 1.9.
   EXPECT_FALSE(moments_resolve<2>((T2() << 1.0, 1.8, 0.0, 1.0).finished()));
-  EXPECT_FALSE(moments_resolve<3>(Tensor<3>::Zero()));                         // alone
+  EXPECT_FALSE(moments_resolve<3>(Tensor<3>::Zero()));  // alone
   EXPECT_FALSE(moments_resolve<2>(T2::Constant(std::nan(""))));
 }
 
@@ -372,8 +385,8 @@ TEST(OperatorDisordered, CorrectedGradientsExactForLinearFields) {
       eg = std::max(eg, (g[i] - a).norm() / a.norm());
       eG = std::max(eG, (G[i] - A.transpose()).norm() / A.norm());
     }
-    std::printf("%-32s linear field: corrected gradient error %.2e, vector gradient error %.2e\n",
-                label(kc).c_str(), eg, eG);
+    std::printf("%-32s linear field: corrected gradient error %.2e, vector gradient error %.2e\n", label(kc).c_str(),
+                eg, eG);
     EXPECT_LT(eg, 1e-10) << label(kc);
     EXPECT_LT(eG, 1e-10) << label(kc);
   }
@@ -491,7 +504,9 @@ TEST(PairLoop, BatchesHoldExactlyThePairsOfABruteForceSearch) {
     int j;
     double r, W, dWdr;
     V2 gradW;
-    bool operator==(const Seen& o) const { return j == o.j && r == o.r && W == o.W && dWdr == o.dWdr && gradW == o.gradW; }
+    bool operator==(const Seen& o) const {
+      return j == o.j && r == o.r && W == o.W && dWdr == o.dWdr && gradW == o.gradW;
+    }
   };
   for (const KernelCase& kc : kCases) {
     SCOPED_TRACE(label(kc));
@@ -556,8 +571,10 @@ TEST(OperatorDisordered, FluidRowsEqualAllRowsAtTheFluid) {
     f[i] = f_s(S.P.x[i]);
     u[i] = V2(f_s(S.P.x[i]), -0.5 * f_s(V2(S.P.x[i][1], S.P.x[i][0])));
   }
-  const auto g_all = gradient_corrected(S.P, S.nl(), S.K, f), g_fluid = gradient_corrected(S.P, S.nl(), S.K, f, Rows::Fluid);
-  const auto d_all = divergence_corrected(S.P, S.nl(), S.K, u), d_fluid = divergence_corrected(S.P, S.nl(), S.K, u, Rows::Fluid);
+  const auto g_all = gradient_corrected(S.P, S.nl(), S.K, f),
+             g_fluid = gradient_corrected(S.P, S.nl(), S.K, f, Rows::Fluid);
+  const auto d_all = divergence_corrected(S.P, S.nl(), S.K, u),
+             d_fluid = divergence_corrected(S.P, S.nl(), S.K, u, Rows::Fluid);
   const auto l_all = laplacian_consistent_one_pass(S.P, S.nl(), S.K, u);
   const auto l_fluid = laplacian_consistent_one_pass(S.P, S.nl(), S.K, u, Rows::Fluid);
   int walls = 0;
@@ -655,7 +672,7 @@ TEST(Shifting, FusedPairLoopEqualsTheSeparateOperators) {
     dr[i] += (P.m[j] / P.rho[j] * (1.0 + model.R * integer_power(g.W / W_dx, model.n))) * g.gradW;
   });
   const double U = 1.0, dt = 0.2 * S.K.h() / U;  // D = A h U dt at CFL 0.2
-  std::vector<V2> normal(n, V2::Zero());  // outward: along -grad C
+  std::vector<V2> normal(n, V2::Zero());         // outward: along -grad C
   for (std::size_t i = 0; i < n; ++i)
     if (surface[i]) normal[i] = -dr[i].normalized();
   for (auto& d : dr) d *= -model.coefficient(S.K.h(), U, dt);
@@ -763,7 +780,8 @@ TEST(Shifting, ParticleScalesLeaveAResolvedShearedLatticeAlone) {
     const double all = mean_norm(shifts_with(ShiftScales::All, nx[k], sheared));
     const double particle = mean_norm(shifts_with(ShiftScales::Particle, nx[k], sheared));
     ratio[k] = particle / all;
-    std::printf("sheared lattice nx %d: mean shift all %.3e, particle %.3e (ratio %.3e)\n", nx[k], all, particle, ratio[k]);
+    std::printf("sheared lattice nx %d: mean shift all %.3e, particle %.3e (ratio %.3e)\n", nx[k], all, particle,
+                ratio[k]);
   }
   EXPECT_LT(ratio[0], 0.1);
   EXPECT_GT(std::log2(ratio[0] / ratio[1]), 1.5);  // the resolved part left falls faster than h

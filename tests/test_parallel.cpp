@@ -101,7 +101,8 @@ TEST(Partition, KeepsEveryParticleOnceBalancedAndContiguousAlongTheCurve) {
   }
   // Along the curve: keys increase within a rank and from one rank to the next.
   Vector<2> lo = Vector<2>::Constant(1e300), hi = -lo;
-  for (std::size_t k = 0; k < ids.size(); ++k) lo = lo.cwiseMin(Vector<2>(x[2 * k], x[2 * k + 1])), hi = hi.cwiseMax(Vector<2>(x[2 * k], x[2 * k + 1]));
+  for (std::size_t k = 0; k < ids.size(); ++k)
+    lo = lo.cwiseMin(Vector<2>(x[2 * k], x[2 * k + 1])), hi = hi.cwiseMax(Vector<2>(x[2 * k], x[2 * k + 1]));
   std::vector<std::uint64_t> keys;
   for (std::size_t k = 0; k < ids.size(); ++k) keys.push_back(morton_key<2>(Vector<2>(x[2 * k], x[2 * k + 1]), lo, hi));
   EXPECT_TRUE(std::is_sorted(keys.begin(), keys.end()));
@@ -123,7 +124,8 @@ TEST(Partition, MortonKeysInterleaveTheAxes) {
 }
 
 // Every pair within the support, as (id_i, id_j, rounded separation vector), from the halo and lists.
-template <int D> std::set<std::vector<long long>> pairs_found(const Particles<D>& P, const Neighbourhood<D>& nh, double rc) {
+template <int D>
+std::set<std::vector<long long>> pairs_found(const Particles<D>& P, const Neighbourhood<D>& nh, double rc) {
   std::set<std::vector<long long>> found;
   const NeighbourList<D>& nl = nh.list();
   for (std::size_t i = 0; i < P.n_owned; ++i)

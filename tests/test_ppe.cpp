@@ -22,7 +22,10 @@ struct PeriodicLattice {
       : kernel(KernelType::WendlandC2, 1.5 / nx), nh(make_domain(), 3.0 / nx, 0.0), dx(1.0 / nx) {
     domain = make_domain();
     unsigned seed = 12345;
-    auto rnd = [&] { seed = seed * 1103515245u + 12345u; return ((seed >> 8) & 0xffff) / 65535.0 - 0.5; };
+    auto rnd = [&] {
+      seed = seed * 1103515245u + 12345u;
+      return ((seed >> 8) & 0xffff) / 65535.0 - 0.5;
+    };
     for (int k = 0; k < nx * nx; ++k) {
       Vector<2> x((k % nx + 0.5) * dx, (k / nx + 0.5) * dx);
       x += jitter * dx * Vector<2>(rnd(), rnd());

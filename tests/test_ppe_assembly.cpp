@@ -55,14 +55,18 @@ struct Scene2 {
   // Moves the fluid particles by up to `amount` dx (reproducibly), as a step would between assemblies.
   void disorder(double amount) {
     unsigned seed = 2024;
-    auto rnd = [&] { seed = seed * 1103515245u + 12345u; return ((seed >> 8) & 0xffff) / 65535.0 - 0.5; };
+    auto rnd = [&] {
+      seed = seed * 1103515245u + 12345u;
+      return ((seed >> 8) & 0xffff) / 65535.0 - 0.5;
+    };
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (P.kind[i] == kFluid) P.x[i] += amount * dx * Vector<2>(rnd(), rnd());
     nh.update(P);
   }
 };
 
-void expect_no_mallocs(const char* what, PressurePoisson<2>& ppe, Scene2& s, const std::vector<char>* dirichlet = nullptr) {
+void expect_no_mallocs(const char* what, PressurePoisson<2>& ppe, Scene2& s,
+                       const std::vector<char>* dirichlet = nullptr) {
   ppe.assemble(s.P, s.nh, s.kernel, Vector<2>(0.0, -1.0), dirichlet);
   const AssemblyInfo info = info_of(ppe.matrix());
   std::printf("%s: N = %zu, mallocs %g, nonzeros used %g of %g allocated\n", what, s.P.n_owned, info.mallocs,

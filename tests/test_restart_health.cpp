@@ -16,8 +16,8 @@ using sph::testing::run_sph;
 // Run A goes straight to t = 0.2; run B stops at step 20 (t = 0.1, where a checkpoint is due);
 // run C resumes B's checkpoint to t = 0.2. C's final checkpoint and time series must equal A's.
 void expect_restart_is_exact(const std::string& solver, double dt, const std::string& scene = "taylor_green -nx 16") {
-  const std::string common = "-case " + scene + " -solver " + solver + " -t_end " + std::to_string(40 * dt) +
-                             " -dt " + std::to_string(dt) + " -output_interval " + std::to_string(10 * dt) +
+  const std::string common = "-case " + scene + " -solver " + solver + " -t_end " + std::to_string(40 * dt) + " -dt " +
+                             std::to_string(dt) + " -output_interval " + std::to_string(10 * dt) +
                              " -checkpoint_interval " + std::to_string(20 * dt);
   std::string tag = solver + "_" + scene;  // one folder per scene: ctest runs these side by side
   for (char& ch : tag)
@@ -44,7 +44,9 @@ void expect_restart_is_exact(const std::string& solver, double dt, const std::st
 TEST(Restart, IsphMatchesUninterruptedRunExactly) { expect_restart_is_exact("isph", 0.005); }
 TEST(Restart, WcsphMatchesUninterruptedRunExactly) { expect_restart_is_exact("wcsph", 0.001); }
 // The free-surface flags carry over a restart (the hysteresis of -free_surface_exit_threshold).
-TEST(Restart, IsphFreeSurfaceMatchesUninterruptedRunExactly) { expect_restart_is_exact("isph", 0.01, "dam_break -nx 12"); }
+TEST(Restart, IsphFreeSurfaceMatchesUninterruptedRunExactly) {
+  expect_restart_is_exact("isph", 0.01, "dam_break -nx 12");
+}
 // 3D: the periodic cube, and the free surface between walls.
 TEST(Restart, Isph3DMatchesUninterruptedRunExactly) { expect_restart_is_exact("isph", 0.02, "beltrami -nx 8"); }
 TEST(Restart, Isph3DFreeSurfaceMatchesUninterruptedRunExactly) {
@@ -54,7 +56,8 @@ TEST(Restart, Isph3DFreeSurfaceMatchesUninterruptedRunExactly) {
 TEST(Restart, MismatchedCheckpointIsRefused) {
   const auto b = run_sph("restart_src", "-case taylor_green -nx 16 -t_end 0.02");
   ASSERT_EQ(b.exit_code, 0);
-  const auto c = run_sph("restart_bad", "-case taylor_green -nx 20 -t_end 0.04 -restart " + b.output_dir + "/checkpoint.bin");
+  const auto c =
+      run_sph("restart_bad", "-case taylor_green -nx 20 -t_end 0.04 -restart " + b.output_dir + "/checkpoint.bin");
   EXPECT_NE(c.exit_code, 0);
 }
 
@@ -89,7 +92,8 @@ TEST(Health, ParticleThroughAWallStopsTheRun) {
     FAIL() << "no error";
   } catch (const sph::Error& e) {
     // The message names the first such particle (smallest label) and where it is.
-    EXPECT_NE(std::string(e.what()).find("fluid particle 1 near (1.5, -0.01) left the box"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("fluid particle 1 near (1.5, -0.01) left the box"), std::string::npos)
+        << e.what();
   }
 }
 
@@ -102,14 +106,16 @@ TEST(Health, EnergyGrowthStopsTheRun) {
     sph::check_health(b.P, b.domain, 1.9);
     FAIL() << "no error";
   } catch (const sph::Error& e) {
-    EXPECT_NE(std::string(e.what()).find("fluid particle 2 near (0.6, 0.5) the fastest at speed 3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("fluid particle 2 near (0.6, 0.5) the fastest at speed 3"), std::string::npos)
+        << e.what();
   }
 }
 
 TEST(Health, BlowUpEndsWithFailedSummaryAndFinalFrame) {
   // A time step ten times the acoustic limit (forced past the start-up refusal): WCSPH must blow up,
   // and the run must say so.
-  const auto r = run_sph("blowup", "-case taylor_green -solver wcsph -nx 16 -t_end 1 -dt 0.02 -dt_force 1 -output_interval 0.5");
+  const auto r =
+      run_sph("blowup", "-case taylor_green -solver wcsph -nx 16 -t_end 1 -dt 0.02 -dt_force 1 -output_interval 0.5");
   EXPECT_NE(r.exit_code, 0);
   ASSERT_FALSE(r.summary.is_null());
   EXPECT_EQ(r.summary["status"], "failed");
@@ -118,7 +124,8 @@ TEST(Health, BlowUpEndsWithFailedSummaryAndFinalFrame) {
 }
 
 TEST(Health, DivergedPressureSolveStopsTheRun) {
-  const auto r = run_sph("ksp_diverged", "-case taylor_green -nx 16 -t_end 0.1 -ksp_type cg -pc_type none -ksp_max_it 2");
+  const auto r =
+      run_sph("ksp_diverged", "-case taylor_green -nx 16 -t_end 0.1 -ksp_type cg -pc_type none -ksp_max_it 2");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.summary["status"], "failed");
   EXPECT_NE(r.summary["failure"].get<std::string>().find("did not converge"), std::string::npos);

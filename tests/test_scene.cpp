@@ -2,7 +2,6 @@
 // file is the built-in dam break, to round-off; the periodic array of cylinders gives the Stokes drag
 // of Sangani & Acrivos (1982).
 #include <gtest/gtest.h>
-
 #include <vtkDataArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -122,7 +121,8 @@ double sangani_acrivos_drag() {
 
 TEST(Scene, CylinderArrayDragMatchesSanganiAcrivos) {
   const std::string file = make_scene("cylinders_30.vtp", "cylinders --nx 30");
-  const auto r = run_sph("cylinders_scene", "-case scene -scene_file " + file + " -t_end 0.5 -output_interval 0 -threads 1");
+  const auto r =
+      run_sph("cylinders_scene", "-case scene -scene_file " + file + " -t_end 0.5 -output_interval 0 -threads 1");
   ASSERT_EQ(r.exit_code, 0);
   const double reference = sangani_acrivos_drag(), K = steady_drag(r);
   EXPECT_NEAR(reference, 30.30, 0.01);

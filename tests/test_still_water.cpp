@@ -21,7 +21,8 @@ using sph::testing::run_sph;
 // (scripts/make-scene still_water --nx 20) drifted 1.5 dx (ISPH) and 3.4 dx (WCSPH), and its level
 // rose 2.7 % and 10 %; at 40 a unit WCSPH leaked through its floor at t = 17.
 void expect_still(const std::string& solver) {
-  const auto r = run_sph("still_water_" + solver, "-case still_water -solver " + solver + " -nx 20 -t_end 20 -output_interval 0");
+  const auto r =
+      run_sph("still_water_" + solver, "-case still_water -solver " + solver + " -nx 20 -t_end 20 -output_interval 0");
   ASSERT_EQ(r.exit_code, 0) << r.summary.dump();
   const auto& e = r.summary["errors"];
   std::printf("%s still water t = 20: hydrostatic_l1_rel %.2e, max_drift_dx %.3f, level_rel %.2e\n", solver.c_str(),
@@ -41,8 +42,8 @@ struct DropErrors {
   double a, b;
 };
 DropErrors drop(const std::string& solver, int nx) {
-  const auto r = run_sph("drop_" + solver + std::to_string(nx),
-                         "-case elliptical_drop -solver " + solver + " -nx " + std::to_string(nx) + " -output_interval 0");
+  const auto r = run_sph("drop_" + solver + std::to_string(nx), "-case elliptical_drop -solver " + solver + " -nx " +
+                                                                    std::to_string(nx) + " -output_interval 0");
   EXPECT_EQ(r.exit_code, 0) << r.summary.dump();
   if (r.summary.is_null() || !r.summary["errors"].contains("semi_axis_rel")) return {NAN, NAN};
   const auto& e = r.summary["errors"];

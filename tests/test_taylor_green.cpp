@@ -53,7 +53,8 @@ TEST(TaylorGreen, IsphMatchesAnalyticDecayAndConverges) {
             std::abs(coarse.summary["errors"]["amplitude_rel"].get<double>()));
   // AMG keeps the iteration count flat under refinement: the mean over the steps (the largest is one
   // step's, the first's: 16, 20, 20 at nx 32, 48, 64).
-  EXPECT_LE(fine.summary["ksp"]["iterations_mean"].get<double>(), coarse.summary["ksp"]["iterations_mean"].get<double>() + 1.0);
+  EXPECT_LE(fine.summary["ksp"]["iterations_mean"].get<double>(),
+            coarse.summary["ksp"]["iterations_mean"].get<double>() + 1.0);
 }
 
 // ISPH's kinetic-energy budget (summary.json conservation.energy_budget) closes: the energy at the
@@ -69,13 +70,14 @@ struct EnergyBudgetRun {
   double start, end, viscous, pressure, body_force, shifting, exact_viscous;
 };
 EnergyBudgetRun energy_budget_run(int nx, const std::string& tag, const std::string& extra) {
-  const auto r = run_sph("tgv_energy_" + tag + "_" + std::to_string(nx),
-                         "-case taylor_green -solver isph -re 100 -t_end 1 -output_interval 0 -checkpoint_interval 0 -nx " +
-                             std::to_string(nx) + " " + extra);
+  const auto r =
+      run_sph("tgv_energy_" + tag + "_" + std::to_string(nx),
+              "-case taylor_green -solver isph -re 100 -t_end 1 -output_interval 0 -checkpoint_interval 0 -nx " +
+                  std::to_string(nx) + " " + extra);
   EXPECT_EQ(r.exit_code, 0);
   const auto& b = r.summary["conservation"]["energy_budget"];
   EnergyBudgetRun e{b["kinetic_energy_start"], b["kinetic_energy_end"], b["viscous"], b["pressure"],
-                    b["body_force"], b["shifting"], 0.0};
+                    b["body_force"],           b["shifting"],           0.0};
   // The integral of E over the run, by the trapezoidal rule over the steps (timeseries.csv: step, t,
   // dt, kinetic_energy, ...; one row per step, the first after step 1).
   std::ifstream in(r.output_dir + "/timeseries.csv");
@@ -118,8 +120,8 @@ TEST(TaylorGreen, IsphEnergyBudgetClosesAndItsViscousShareConverges) {
 
   const EnergyBudgetRun p16 = energy_budget_run(16, "particle", "-shift_scales particle"),
                         p32 = energy_budget_run(32, "particle", "-shift_scales particle");
-  std::printf("shifting's share, particle scales: %.3e (nx 16), %.3e (nx 32), order %.2f\n", p16.shifting,
-              p32.shifting, std::log2(p16.shifting / p32.shifting));
+  std::printf("shifting's share, particle scales: %.3e (nx 16), %.3e (nx 32), order %.2f\n", p16.shifting, p32.shifting,
+              std::log2(p16.shifting / p32.shifting));
   EXPECT_GT(std::log2(p16.shifting / p32.shifting), 1.5);
 }
 
@@ -133,7 +135,8 @@ TEST(TaylorGreen, SummaryCarriesRequiredFields) {
   EXPECT_EQ(r.summary["dim"], 2);
   for (const char* key : {"type", "pc_type", "iterations_mean", "iterations_max"})
     EXPECT_TRUE(r.summary["ksp"].contains(key)) << key;
-  for (const char* key : {"l1_velocity", "linf_velocity", "decay_rel", "amplitude_rel", "l1_velocity_shape", "l1_pressure"})
+  for (const char* key :
+       {"l1_velocity", "linf_velocity", "decay_rel", "amplitude_rel", "l1_velocity_shape", "l1_pressure"})
     EXPECT_TRUE(r.summary["errors"].contains(key)) << key;
   EXPECT_TRUE(r.summary["models"].contains("shifting"));
   EXPECT_TRUE(r.summary["models"].contains("viscosity"));
@@ -146,8 +149,9 @@ TEST(TaylorGreen, SummaryCarriesRequiredFields) {
 // a margin of 1.2-1.4 for it: this run, in the regime where that limit sets every step, must stay
 // stable and match the exact decay (measured 2.9e-3; the second-order operator 6.8e-2).
 TEST(TaylorGreen, IsphViscousStepLimitHoldsForTheFourthOrderLaplacian) {
-  const auto r = run_sph("tgv_re10_fourth", "-case taylor_green -solver isph -nx 32 -re 10 -t_end 1 -output_interval 0 "
-                                            "-checkpoint_interval 0");
+  const auto r = run_sph("tgv_re10_fourth",
+                         "-case taylor_green -solver isph -nx 32 -re 10 -t_end 1 -output_interval 0 "
+                         "-checkpoint_interval 0");
   ASSERT_EQ(r.exit_code, 0);
   EXPECT_EQ(r.summary["status"], "completed");
   EXPECT_LT(r.summary["errors"]["l1_velocity"].get<double>(), 1e-2);
@@ -186,7 +190,8 @@ TEST(TaylorGreen, SlowManifoldVelocityIsTheGradientThatFollowsThePressure) {
       worst_curl = std::max(worst_curl, std::abs(curl));
       scale = std::max(scale, std::abs(target));
     }
-  std::printf("slow-manifold velocity: |div - target| %.2e, |curl| %.2e, target scale %.2e\n", worst_div, worst_curl, scale);
+  std::printf("slow-manifold velocity: |div - target| %.2e, |curl| %.2e, target scale %.2e\n", worst_div, worst_curl,
+              scale);
   // Central differences over e = 1e-4 of fields with wavenumbers up to 6 pi: relative error ~ 1e-6. The
   // decay part of the target is a quarter of it, the advection part the rest: either one wrong fails.
   ASSERT_GT(scale, 1e-3);

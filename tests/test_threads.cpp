@@ -45,8 +45,7 @@ template <int D> Results<D> compute(int threads, int n_side) {
   for (int k = 0; k < total; ++k) {
     Vector<D> x;
     for (int d = 0, r = k; d < D; ++d, r /= n_side) x[d] = (r % n_side + 0.5) * dx + jitter(gen);
-    P.add(x, Vector<D>::Zero(), std::pow(dx, D), 1.0 + 0.1 * jitter(gen) / dx, 0.0,
-          k % 11 == 0 ? kWall : kFluid);
+    P.add(x, Vector<D>::Zero(), std::pow(dx, D), 1.0 + 0.1 * jitter(gen) / dx, 0.0, k % 11 == 0 ? kWall : kFluid);
     P.gid.back() = k;
   }
   P.n_global = total;

@@ -36,8 +36,8 @@ TEST(Walls, WcsphPoiseuilleMatchesSeriesSolution) {
 
 // Runs the cavity at 30 x 30 to steady state and bounds its centreline RMS errors against Ghia.
 nlohmann::json expect_steady_cavity(const char* label, const char* solver, int re, double bound_u, double bound_v) {
-  const auto r = run_sph(label, std::string("-case lid_driven_cavity -nx 30 -solver ") + solver + " -re " +
-                                    std::to_string(re));
+  const auto r =
+      run_sph(label, std::string("-case lid_driven_cavity -nx 30 -solver ") + solver + " -re " + std::to_string(re));
   EXPECT_EQ(r.exit_code, 0);
   if (r.exit_code != 0) return {};
   EXPECT_TRUE(r.summary["steady_state_reached"].get<bool>());
@@ -72,12 +72,14 @@ TEST(Walls, WcsphCavityRe100MatchesGhiaAndKeepsItsVolume) {
 // The 1 % bound holds the measured errors (docs/verification/lid_driven_cavity.md, "Design measurements"),
 // where a corner block that drove the cavity wrongly would not.
 TEST(Walls, IsphCavityWithSymmetricLidCornersMatchesGhia) {
-  const auto r = run_sph("cavity_isph_30_symmetric", "-case lid_driven_cavity -nx 30 -re 100 -lid_corners symmetric "
-                                                     "-steady_tol 0 -t_end 20 -profile_average_from 12 "
-                                                     "-output_interval 0 -checkpoint_interval 0");
+  const auto r = run_sph("cavity_isph_30_symmetric",
+                         "-case lid_driven_cavity -nx 30 -re 100 -lid_corners symmetric "
+                         "-steady_tol 0 -t_end 20 -profile_average_from 12 "
+                         "-output_interval 0 -checkpoint_interval 0");
   ASSERT_EQ(r.exit_code, 0);
   EXPECT_EQ(r.summary["parameters"]["lid_corners"], "symmetric");
-  for (const char* name : {"centreline_rms_u", "centreline_rms_v", "centreline_rms_u_averaged", "centreline_rms_v_averaged"})
+  for (const char* name :
+       {"centreline_rms_u", "centreline_rms_v", "centreline_rms_u_averaged", "centreline_rms_v_averaged"})
     EXPECT_LT(error(r, name), 0.01) << name;
 }
 
@@ -99,9 +101,10 @@ TEST(Walls, IsphCavityRe1000StaysInsideAndApproachesGhia) {
 // (docs/verification/lid_driven_cavity.md, "Against Ghia et al. (1982), run to steady state"). The run
 // must stay inside the box and reach steady state.
 TEST(Walls, IsphCavityRe1000WithThePrescribedWallVelocityInTheSourceStaysInside) {
-  const auto r = run_sph("cavity_isph_30_re1000_prescribed", "-case lid_driven_cavity -nx 30 -re 1000 "
-                                                             "-ppe_wall_velocity prescribed -output_interval 0 "
-                                                             "-checkpoint_interval 0");
+  const auto r = run_sph("cavity_isph_30_re1000_prescribed",
+                         "-case lid_driven_cavity -nx 30 -re 1000 "
+                         "-ppe_wall_velocity prescribed -output_interval 0 "
+                         "-checkpoint_interval 0");
   ASSERT_EQ(r.exit_code, 0);
   EXPECT_EQ(r.summary["models"]["ppe_source"]["wall_velocity"], "prescribed");
   EXPECT_TRUE(r.summary["steady_state_reached"].get<bool>());
@@ -135,8 +138,9 @@ TEST(Walls, IsphCubicCavityRe100ConvergesToTheReference) {
 // 0.172, 0.176 and 0.288, 0.240).
 TEST(Walls, CubicCavityReadsItsReferenceTables) {
   for (const char* re : {"400", "1000"}) {
-    const auto r = run_sph(std::string("cavity3d_tables_") + re, std::string("-case lid_driven_cavity -dim 3 -nx 8 -re ") + re +
-                                                                     " -max_steps 1 -output_interval 0 -checkpoint_interval 0");
+    const auto r =
+        run_sph(std::string("cavity3d_tables_") + re, std::string("-case lid_driven_cavity -dim 3 -nx 8 -re ") + re +
+                                                          " -max_steps 1 -output_interval 0 -checkpoint_interval 0");
     ASSERT_EQ(r.exit_code, 0) << re;
     EXPECT_GT(error(r, "centreline_rms_u"), 0.15) << re;
     EXPECT_LT(error(r, "centreline_rms_u"), 0.30) << re;

@@ -32,16 +32,18 @@ TEST(Wcsph, TaylorGreenMatchesAnalyticDecay) {
 // same geometry on both sides: total momentum is conserved to round-off (shifting is off: its Taylor
 // correction is not a pairwise exchange).
 TEST(Wcsph, ConservesMomentumToRoundOff) {
-  const auto r = run_sph("wcsph_momentum", "-case taylor_green -solver wcsph -nx 24 -t_end 0.2 -shifting 0 "
-                                           "-av_alpha 0.1 -density_diffusion none -pressure_gradient symmetric "
-                                           "-operators classic");
+  const auto r = run_sph("wcsph_momentum",
+                         "-case taylor_green -solver wcsph -nx 24 -t_end 0.2 -shifting 0 "
+                         "-av_alpha 0.1 -density_diffusion none -pressure_gradient symmetric "
+                         "-operators classic");
   ASSERT_EQ(r.exit_code, 0);
   EXPECT_LT(r.summary["conservation"]["momentum_drift"].get<double>(), 1e-13);
 }
 
 TEST(Wcsph, DensityOptionsAreReported) {
-  const auto r = run_sph("wcsph_options", "-case taylor_green -solver wcsph -nx 16 -t_end 0.02 -density_diffusion antuono "
-                                          "-av_alpha 0.02");
+  const auto r = run_sph("wcsph_options",
+                         "-case taylor_green -solver wcsph -nx 16 -t_end 0.02 -density_diffusion antuono "
+                         "-av_alpha 0.02");
   ASSERT_EQ(r.exit_code, 0);
   EXPECT_EQ(r.summary["models"]["density_diffusion"]["model"], "Antuono");
   EXPECT_EQ(r.summary["models"]["artificial_viscosity"]["alpha"], 0.02);
@@ -82,9 +84,9 @@ double foot_pressure_period(const std::string& dir) {
 
 TEST(Wcsph, DamBreakPressureRingsAtTheQuarterWavePeriod) {
   for (const double factor : {10.0, 20.0}) {
-    const auto r = run_sph("dam_break_ringing_" + std::to_string(static_cast<int>(factor)),
-                           "-case dam_break -solver wcsph -nx 16 -t_end 1.5 -output_interval 0 -c0_factor " +
-                               std::to_string(factor));
+    const auto r = run_sph(
+        "dam_break_ringing_" + std::to_string(static_cast<int>(factor)),
+        "-case dam_break -solver wcsph -nx 16 -t_end 1.5 -output_interval 0 -c0_factor " + std::to_string(factor));
     ASSERT_EQ(r.exit_code, 0);
     const double c0 = r.summary["models"]["equation_of_state"]["c0"].get<double>();
     EXPECT_NEAR(foot_pressure_period(r.output_dir), 4.0 / c0, 0.1 * 4.0 / c0) << "c0 = " << c0;

@@ -100,8 +100,9 @@ void Beltrami::create(Particles<3>& P, Domain<3>& domain) const {
 }
 
 std::map<std::string, double> Beltrami::errors(const Particles<3>& P, double t) const {
-  return exact_flow_errors(P, U_ * std::exp(-viscosity() * t), rho0_, [&](const Vector<3>& x) { return velocity(x, t); },
-                           [&](const Vector<3>& x) { return pressure(x, t); });
+  return exact_flow_errors(
+      P, U_ * std::exp(-viscosity() * t), rho0_, [&](const Vector<3>& x) { return velocity(x, t); },
+      [&](const Vector<3>& x) { return pressure(x, t); });
 }
 
 nlohmann::json Beltrami::parameters() const {

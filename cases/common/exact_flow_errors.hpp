@@ -49,12 +49,9 @@ std::map<std::string, double> exact_flow_errors(const Particles<D>& P, double am
   }
   MPI_Allreduce(MPI_IN_PLACE, local, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   const double p_scale = 0.5 * rho0 * amp * amp;
-  return {{"l1_velocity", sum[0] / sum[1] / amp},
-          {"linf_velocity", mx[0] / amp},
-          {"decay_rel", std::abs(mx[1] - amp) / amp},
-          {"amplitude_rel", a - 1.0},
-          {"l1_velocity_shape", local[1] / sum[1] / amp},
-          {"l1_pressure", local[0] / sum[1] / p_scale}};
+  return {{"l1_velocity", sum[0] / sum[1] / amp},         {"linf_velocity", mx[0] / amp},
+          {"decay_rel", std::abs(mx[1] - amp) / amp},     {"amplitude_rel", a - 1.0},
+          {"l1_velocity_shape", local[1] / sum[1] / amp}, {"l1_pressure", local[0] / sum[1] / p_scale}};
 }
 
 }  // namespace sph

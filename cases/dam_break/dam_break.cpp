@@ -6,14 +6,15 @@
 #include <sstream>
 
 #include "cases/common/lattice.hpp"
+#include "cases/common/reference_data.hpp"
 #include "cases/common/wall_options.hpp"
 #include "src/core/options.hpp"
-#include "cases/common/reference_data.hpp"
 
 namespace sph {
 
 namespace {
-PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* a, PetscReal* g, PetscReal* re, PetscReal* rho0) {
+PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* a, PetscReal* g, PetscReal* re,
+                            PetscReal* rho0) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Dam break (-case dam_break)", "Case");
   PetscCall(PetscOptionsInt("-nx", "Particles across the column width a", "", *nx, nx, nullptr));
@@ -115,7 +116,8 @@ template <int D> std::map<std::string, double> DamBreak<D>::errors(const Particl
   const double T = t / time_scale(), Z = front(P) / a_;
   const double scale = rho0_ * g_ * a_;
   if (history_.empty() || T > history_.back().T)
-    history_.push_back({T, Z, foot_pressure(P, 0.0) / scale, foot_pressure(P, 4.0 * a_) / scale, column_height(P) / a_});
+    history_.push_back(
+        {T, Z, foot_pressure(P, 0.0) / scale, foot_pressure(P, 4.0 * a_) / scale, column_height(P) / a_});
   // Mean relative error at the experimental points reached so far (linear interpolation in time).
   const Table exp = reference_table("martin_moyce_1952.csv");
   const std::vector<double> Te = exp.column("T"), Ze = exp.column("Z");
@@ -153,7 +155,8 @@ template <int D> void DamBreak<D>::write_outputs(const Particles<D>& P, double t
   std::ofstream out(dir + "/front_position.csv");
   out.precision(10);
   out << "T,Z,P_foot,P_far,H\n";
-  for (const auto& [T, Z, P_foot, P_far, H] : history_) out << T << "," << Z << "," << P_foot << "," << P_far << "," << H << "\n";
+  for (const auto& [T, Z, P_foot, P_far, H] : history_)
+    out << T << "," << Z << "," << P_foot << "," << P_far << "," << H << "\n";
 }
 
 template <int D> nlohmann::json DamBreak<D>::parameters() const {

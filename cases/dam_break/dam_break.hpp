@@ -33,15 +33,15 @@ template <int D> class DamBreak : public Case<D> {
   double front(const Particles<D>& P) const;  // surge-front position x
   double foot_pressure(const Particles<D>& P, double x0) const;
   double column_height(const Particles<D>& P) const;
-  double time_scale() const;                  // sqrt(a / (2 g)): T = t / time_scale
+  double time_scale() const;  // sqrt(a / (2 g)): T = t / time_scale
 
   PetscInt nx_ = 20, wall_layers_ = 4;
   PetscReal a_ = 1.0, g_ = 1.0, re_ = 1000.0, rho0_ = 1.0;
   struct Record {
     double T, Z, P, P_far, H;  // time, front position, foot pressures / (rho0 g a) left and far, column height / a
   };
-  mutable std::vector<Record> history_;  // as the run advances
-  mutable double first_measured_T_ = 0.0;                    // earliest experimental point used
+  mutable std::vector<Record> history_;    // as the run advances
+  mutable double first_measured_T_ = 0.0;  // earliest experimental point used
 };
 
 }  // namespace sph

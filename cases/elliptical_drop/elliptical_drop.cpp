@@ -83,13 +83,16 @@ std::pair<double, double> EllipticalDrop::semi_axes(double t) const {
 std::map<std::string, double> EllipticalDrop::errors(const Particles<2>& P, double t) const {
   double sums[3] = {0.0, 0.0, 0.0};  // sum m x^2, sum m y^2, sum m (the drop's centre stays at the origin)
   for (std::size_t i = 0; i < P.n_owned; ++i)
-    if (P.kind[i] == kFluid) sums[0] += P.m[i] * P.x[i][0] * P.x[i][0], sums[1] += P.m[i] * P.x[i][1] * P.x[i][1], sums[2] += P.m[i];
+    if (P.kind[i] == kFluid)
+      sums[0] += P.m[i] * P.x[i][0] * P.x[i][0], sums[1] += P.m[i] * P.x[i][1] * P.x[i][1], sums[2] += P.m[i];
   MPI_Allreduce(MPI_IN_PLACE, sums, 3, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   const double x2 = sums[0] / sums[2], y2 = sums[1] / sums[2];
   if (x2_0_ < 0.0) x2_0_ = x2, y2_0_ = y2;  // the first call is at t = 0
   const double a = R_ * std::sqrt(x2 / x2_0_), b = R_ * std::sqrt(y2 / y2_0_);
   const auto [a_ref, b_ref] = semi_axes(t);
-  return {{"semi_axis_a", a}, {"semi_axis_rel", std::abs(a - a_ref) / a_ref}, {"semi_axis_b_rel", std::abs(b - b_ref) / b_ref}};
+  return {{"semi_axis_a", a},
+          {"semi_axis_rel", std::abs(a - a_ref) / a_ref},
+          {"semi_axis_b_rel", std::abs(b - b_ref) / b_ref}};
 }
 
 nlohmann::json EllipticalDrop::parameters() const {

@@ -130,13 +130,25 @@ template <int D> bool LidDrivenCavity<D>::has_reference() const {
 template <int D> typename LidDrivenCavity<D>::Reference LidDrivenCavity<D>::reference() const {
   const std::string re = std::to_string(static_cast<int>(re_));
   if constexpr (D == 2)
-    return {"ghia1982_u_vertical_centreline.csv", "ghia1982_v_horizontal_centreline.csv", "u_Re" + re, "v_Re" + re,
-            "ghia", "ghia1982"};
+    return {"ghia1982_u_vertical_centreline.csv",
+            "ghia1982_v_horizontal_centreline.csv",
+            "u_Re" + re,
+            "v_Re" + re,
+            "ghia",
+            "ghia1982"};
   if (re_ == 1000.0)
-    return {"albensoeder2005_u_vertical_centreline.csv", "albensoeder2005_v_horizontal_centreline.csv",
-            "u_Re" + re, "v_Re" + re, "albensoeder", "albensoeder2005"};
-  return {"cavity3d_fd_u_vertical_centreline.csv", "cavity3d_fd_v_horizontal_centreline.csv", "u_Re" + re,
-          "v_Re" + re, "reference", "finite_difference"};
+    return {"albensoeder2005_u_vertical_centreline.csv",
+            "albensoeder2005_v_horizontal_centreline.csv",
+            "u_Re" + re,
+            "v_Re" + re,
+            "albensoeder",
+            "albensoeder2005"};
+  return {"cavity3d_fd_u_vertical_centreline.csv",
+          "cavity3d_fd_v_horizontal_centreline.csv",
+          "u_Re" + re,
+          "v_Re" + re,
+          "reference",
+          "finite_difference"};
 }
 
 template <int D> Vector<D> LidDrivenCavity<D>::centreline_point(double along, int axis) const {
@@ -154,7 +166,8 @@ template <int D> typename LidDrivenCavity<D>::Profiles LidDrivenCavity<D>::refer
   return pr;
 }
 
-template <int D> typename LidDrivenCavity<D>::Profiles LidDrivenCavity<D>::centreline_profiles(const Particles<D>& P) const {
+template <int D>
+typename LidDrivenCavity<D>::Profiles LidDrivenCavity<D>::centreline_profiles(const Particles<D>& P) const {
   Profiles pr = reference_profiles();
   std::vector<Vector<D>> pts;
   for (double y : pr.y_u) pts.push_back(centreline_point(y, 1));
@@ -182,9 +195,9 @@ template <int D> std::pair<double, double> LidDrivenCavity<D>::rms_errors(const 
   return {rms(pr.y_u, pr.u_ref, pr.u_sph, false), rms(pr.x_v, pr.v_ref, pr.v_sph, true)};
 }
 
-template <int D>
-const typename LidDrivenCavity<D>::Profiles& LidDrivenCavity<D>::profiles_at(const Particles<D>& P, double t,
-                                                                            Profiles& scratch) const {
+template <int D> const typename LidDrivenCavity<D>::Profiles& LidDrivenCavity<D>::profiles_at(const Particles<D>& P,
+                                                                                              double t,
+                                                                                              Profiles& scratch) const {
   if (t == last_t_ && !last_.y_u.empty()) return last_;  // accumulate() read them at this step already
   scratch = centreline_profiles(P);
   return scratch;
@@ -270,7 +283,8 @@ template <int D> void LidDrivenCavity<D>::write_outputs(const Particles<D>& P, d
   const bool averaged = averaging() && average_.weight > 0.0;
   const Profiles avg = averaged ? averaged_profiles() : Profiles{};
   cr << "profile,coordinate,sph," << ref.source << (averaging() ? ",sph_averaged" : "") << "\n";
-  auto row = [&](const char* name, double c, double sph, double ref, const std::vector<double>& avg_sph, std::size_t k) {
+  auto row = [&](const char* name, double c, double sph, double ref, const std::vector<double>& avg_sph,
+                 std::size_t k) {
     cr << name << "," << c << "," << sph << "," << ref;
     if (averaging()) cr << ",";
     if (averaged) cr << avg_sph[k];
@@ -281,9 +295,14 @@ template <int D> void LidDrivenCavity<D>::write_outputs(const Particles<D>& P, d
 }
 
 template <int D> nlohmann::json LidDrivenCavity<D>::parameters() const {
-  return {{"nx", nx_}, {"re", re_}, {"U", U_}, {"rho0", rho0_}, {"wall_layers", wall_layers_},
+  return {{"nx", nx_},
+          {"re", re_},
+          {"U", U_},
+          {"rho0", rho0_},
+          {"wall_layers", wall_layers_},
           {"profile_interpolation", probe_interpolation_names[static_cast<int>(interpolation_)]},
-          {"lid_corners", lid_corners_names[symmetric_corners_ ? 1 : 0]}, {"profile_average_from", average_from_}};
+          {"lid_corners", lid_corners_names[symmetric_corners_ ? 1 : 0]},
+          {"profile_average_from", average_from_}};
 }
 
 template class LidDrivenCavity<2>;

@@ -43,7 +43,8 @@ double Poiseuille::velocity(double y, double t) const {
   double u = F / (2.0 * v) * y * (1.0 - y);
   for (int n = 0; n < 200; ++n) {
     const double k = 2 * n + 1;
-    const double term = 4.0 * F / (v * std::pow(M_PI * k, 3)) * std::sin(k * M_PI * y) * std::exp(-k * k * M_PI * M_PI * v * t);
+    const double term =
+        4.0 * F / (v * std::pow(M_PI * k, 3)) * std::sin(k * M_PI * y) * std::exp(-k * k * M_PI * M_PI * v * t);
     u -= term;
     if (std::abs(term) < 1e-16 * U_) break;
   }

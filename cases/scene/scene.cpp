@@ -45,24 +45,32 @@ template <int D> std::array<bool, D> parse_axes(const std::string& text) {
 PetscErrorCode read_options(SceneOptions* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Scene from a file (-case scene)", "Case");
-  PetscCall(PetscOptionsString("-scene_file", "VTK XML PolyData (.vtp) scene: point arrays kind (0 fluid, 1 fixed wall, 2 "
+  PetscCall(PetscOptionsString("-scene_file",
+                               "VTK XML PolyData (.vtp) scene: point arrays kind (0 fluid, 1 fixed wall, 2 "
                                "moving wall), velocity, pressure; parameters as field data",
                                "", o->path, o->path, sizeof(o->path), nullptr));
   PetscCall(PetscOptionsReal("-scene_dx", "Particle spacing (overrides the file's field data dx)", "", o->dx, &o->dx,
                              &o->dx_set));
-  PetscCall(PetscOptionsRealArray("-scene_box", "Box xmin,xmax,ymin,ymax[,zmin,zmax] (overrides field data box; default: "
+  PetscCall(PetscOptionsRealArray("-scene_box",
+                                  "Box xmin,xmax,ymin,ymax[,zmin,zmax] (overrides field data box; default: "
                                   "the particles' bounding box grown by dx/2)",
                                   "", o->box, &o->box_n, &o->box_set));
-  PetscCall(PetscOptionsString("-scene_periodic", "Periodic axes, e.g. x or x,y, or none (overrides field data periodic)",
-                               "", o->periodic, o->periodic, sizeof(o->periodic), &o->periodic_set));
-  PetscCall(PetscOptionsRealArray("-gravity", "Body force per unit mass gx,gy[,gz] (overrides field data gravity; default 0)",
-                                  "", o->gravity, &o->gravity_n, &o->gravity_set));
-  PetscCall(PetscOptionsReal("-nu", "Kinematic viscosity (overrides field data nu; default 0)", "", o->nu, &o->nu, &o->nu_set));
-  PetscCall(PetscOptionsReal("-rho0", "Density (overrides field data rho0; default 1)", "", o->rho0, &o->rho0, &o->rho0_set));
-  PetscCall(PetscOptionsReal("-U", "Reference speed (overrides field data U; default: the largest particle speed or the "
+  PetscCall(PetscOptionsString("-scene_periodic",
+                               "Periodic axes, e.g. x or x,y, or none (overrides field data periodic)", "", o->periodic,
+                               o->periodic, sizeof(o->periodic), &o->periodic_set));
+  PetscCall(PetscOptionsRealArray("-gravity",
+                                  "Body force per unit mass gx,gy[,gz] (overrides field data gravity; default 0)", "",
+                                  o->gravity, &o->gravity_n, &o->gravity_set));
+  PetscCall(PetscOptionsReal("-nu", "Kinematic viscosity (overrides field data nu; default 0)", "", o->nu, &o->nu,
+                             &o->nu_set));
+  PetscCall(
+      PetscOptionsReal("-rho0", "Density (overrides field data rho0; default 1)", "", o->rho0, &o->rho0, &o->rho0_set));
+  PetscCall(PetscOptionsReal("-U",
+                             "Reference speed (overrides field data U; default: the largest particle speed or the "
                              "free-fall speed over the fluid's height)",
                              "", o->U, &o->U, &o->U_set));
-  PetscCall(PetscOptionsBool("-free_surface", "Free surface (overrides field data free_surface; default: on when some fluid "
+  PetscCall(PetscOptionsBool("-free_surface",
+                             "Free surface (overrides field data free_surface; default: on when some fluid "
                              "particle lies on an open face of the scene)",
                              "", o->free_surface, &o->free_surface, &o->free_surface_set));
   PetscOptionsEnd();
@@ -74,7 +82,8 @@ PetscErrorCode read_options(SceneOptions* o) {
 template <int D> void SceneCase<D>::set_from_options() {
   opt_.box_n = 6, opt_.gravity_n = 3;
   SPH_PETSC(read_options(&opt_));
-  if (!opt_.path[0]) throw Error("-case scene needs -scene_file FILE (a VTK .vtp scene; scripts/make-scene writes examples)");
+  if (!opt_.path[0])
+    throw Error("-case scene needs -scene_file FILE (a VTK .vtp scene; scripts/make-scene writes examples)");
   file_ = read_scene_file(opt_.path);
   if (file_.dim != D)
     throw Error(file_.error("holds " + std::to_string(file_.dim) + "D points (" +
@@ -109,7 +118,8 @@ template <int D> void SceneCase<D>::resolve_parameters() {
                               " values; give " + shape));
     for (double value : it->second)
       if (!std::isfinite(value))
-        throw Error(file_.error(std::string("field data '") + name + "' holds " + number(value) + "; give a finite number"));
+        throw Error(
+            file_.error(std::string("field data '") + name + "' holds " + number(value) + "; give a finite number"));
     return &it->second;
   };
   auto scalar = [&](const char* name, PetscBool set, double opt, double fallback) {
@@ -130,7 +140,8 @@ template <int D> void SceneCase<D>::resolve_parameters() {
   if (opt_.box_set) {
     if (opt_.box_n != 2 * D)
       throw Error("-scene_box needs " + std::to_string(2 * D) + " values for this " + std::to_string(D) +
-                  "D scene (xmin,xmax,ymin,ymax" + (D == 3 ? ",zmin,zmax" : "") + "), got " + std::to_string(opt_.box_n));
+                  "D scene (xmin,xmax,ymin,ymax" + (D == 3 ? ",zmin,zmax" : "") + "), got " +
+                  std::to_string(opt_.box_n));
     box_values.assign(opt_.box, opt_.box + 2 * D);
     box = &box_values;
   } else {
@@ -145,8 +156,8 @@ template <int D> void SceneCase<D>::resolve_parameters() {
     for (int a = 0; a < D; ++a) {
       box_.lo[a] = (*box)[2 * a], box_.hi[a] = (*box)[2 * a + 1];
       if (!(box_.hi[a] > box_.lo[a]))
-        throw Error((opt_.box_set ? std::string("-scene_box") : file_.error("field data 'box'")) + " has max <= min along " +
-                    "xyz"[a] + "; give xmin,xmax,ymin,ymax" + (D == 3 ? ",zmin,zmax" : ""));
+        throw Error((opt_.box_set ? std::string("-scene_box") : file_.error("field data 'box'")) +
+                    " has max <= min along " + "xyz"[a] + "; give xmin,xmax,ymin,ymax" + (D == 3 ? ",zmin,zmax" : ""));
     }
   } else {
     for (int a = 0; a < D; ++a) {
@@ -177,7 +188,8 @@ template <int D> void SceneCase<D>::resolve_parameters() {
     for (int a = 0; a < D; ++a) physics_.gravity[a] = (*g)[a];
   }
   if (opt_.free_surface_set) physics_.free_surface = opt_.free_surface;
-  else if (const std::vector<double>* f = field("free_surface", 1, "one (0 or 1)")) physics_.free_surface = (*f)[0] != 0.0;
+  else if (const std::vector<double>* f = field("free_surface", 1, "one (0 or 1)"))
+    physics_.free_surface = (*f)[0] != 0.0;
   free_surface_given_ = opt_.free_surface_set || file_.field.count("free_surface");
 
   // Reference speed: given, else the fastest particle or the fall over the fluid's height.
@@ -188,20 +200,23 @@ template <int D> void SceneCase<D>::resolve_parameters() {
     Vector<D> v, x;
     for (int a = 0; a < D; ++a) v[a] = file_.v[i][a], x[a] = file_.x[i][a];
     U = std::max(U, v.norm());
-    if (file_.kind[i] == kSceneFluid && g > 0) lo = std::min(lo, x.dot(physics_.gravity) / g), hi = std::max(hi, x.dot(physics_.gravity) / g);
+    if (file_.kind[i] == kSceneFluid && g > 0)
+      lo = std::min(lo, x.dot(physics_.gravity) / g), hi = std::max(hi, x.dot(physics_.gravity) / g);
   }
   if (g > 0) U = std::max(U, std::sqrt(2.0 * g * (hi - lo + dx_)));
   physics_.U = opt_.U_set ? opt_.U : scalar("U", PETSC_FALSE, 0.0, U);
   if (!(physics_.U > 0))
-    throw Error(opt_.U_set || file_.field.count("U") ? "the reference speed U must be positive (got " + number(physics_.U) + ")"
-                                                 : file_.error("sets no reference speed and nothing moves (no velocity, no "
-                                                               "gravity); add field data 'U' or pass -U"));
+    throw Error(opt_.U_set || file_.field.count("U")
+                    ? "the reference speed U must be positive (got " + number(physics_.U) + ")"
+                    : file_.error("sets no reference speed and nothing moves (no velocity, no "
+                                  "gravity); add field data 'U' or pass -U"));
 }
 
 // Walls keep their place: a moving wall (kind 2) only slides along itself, its velocity the no-slip
 // condition's. A velocity towards or away from the fluid beside it (within 25 degrees of the normal
 // that the fluid within 3 dx gives) would be ignored: the particle would neither move nor push.
-template <int D> void SceneCase<D>::check_moving_walls(const PointGrid<D>& grid, const std::vector<Vector<D>>& x) const {
+template <int D>
+void SceneCase<D>::check_moving_walls(const PointGrid<D>& grid, const std::vector<Vector<D>>& x) const {
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (file_.kind[i] != kSceneMovingWall) continue;
     Vector<D> v;
@@ -231,7 +246,8 @@ template <int D> void SceneCase<D>::check_particles_in_box() const {
         for (int b = 0; b < D; ++b) p[b] = file_.x[i][b];
         throw Error(file_.error("particle " + std::to_string(i) + " at " + point<D>(p) + " lies outside the box [" +
                                 number(box_.lo[a]) + ", " + number(box_.hi[a]) + (box_.periodic[a] ? ")" : "]") +
-                                " along " + "xyz"[a] + "; enlarge the box (field data 'box' or -scene_box) or move the particle"));
+                                " along " + "xyz"[a] +
+                                "; enlarge the box (field data 'box' or -scene_box) or move the particle"));
       }
     }
 }
@@ -269,7 +285,8 @@ template <int D> nlohmann::json SceneCase<D>::parameters() const {
   for (int k : file_.kind) ++counts[k];
   std::vector<double> box;
   std::vector<int> periodic;
-  for (int a = 0; a < D; ++a) box.push_back(box_.lo[a]), box.push_back(box_.hi[a]), periodic.push_back(box_.periodic[a]);
+  for (int a = 0; a < D; ++a)
+    box.push_back(box_.lo[a]), box.push_back(box_.hi[a]), periodic.push_back(box_.periodic[a]);
   return {{"scene_file", file_.path},
           {"scene_checksum", checksum},
           {"dx", dx_},

@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "src/run/case.hpp"
 #include "cases/scene/scene_file.hpp"
 #include "cases/scene/scene_geometry.hpp"
+#include "src/run/case.hpp"
 
 namespace sph {
 

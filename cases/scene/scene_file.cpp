@@ -96,7 +96,8 @@ SceneFile read_scene_file(const std::string& path) {
   vtkPointData* pd = poly->GetPointData();
   vtkDataArray* kind = pd->GetArray("kind");
   if (!kind || kind->GetNumberOfComponents() != 1)
-    throw Error(s.error("has no point array 'kind' (one value per particle: 0 fluid, 1 fixed wall, 2 moving wall); add it"));
+    throw Error(
+        s.error("has no point array 'kind' (one value per particle: 0 fluid, 1 fixed wall, 2 moving wall); add it"));
   check_array_names(s, pd);
   vtkDataArray* vel = pd->GetArray("velocity");
   if (vel && (vel->GetNumberOfComponents() < 2 || vel->GetNumberOfComponents() > 3))
@@ -130,7 +131,8 @@ SceneFile read_scene_file(const std::string& path) {
       for (int a = 0; a < vel->GetNumberOfComponents(); ++a) s.v[i][a] = vel->GetComponent(i, a);
     if (pres) s.p[i] = pres->GetComponent(i, 0);
     if (!std::isfinite(s.v[i][0]) || !std::isfinite(s.v[i][1]) || !std::isfinite(s.v[i][2]) || !std::isfinite(s.p[i]))
-      throw Error(s.error("particle " + std::to_string(i) + " has a velocity or pressure that is not a number; fix it"));
+      throw Error(
+          s.error("particle " + std::to_string(i) + " has a velocity or pressure that is not a number; fix it"));
   }
   if (fluid == 0) throw Error(s.error("has no fluid particle (kind 0); a scene needs fluid to move"));
   s.dim = flat ? 2 : 3;

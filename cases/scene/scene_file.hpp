@@ -19,11 +19,11 @@ enum SceneKind : int { kSceneFluid = 0, kSceneFixedWall = 1, kSceneMovingWall = 
 struct SceneFile {
   std::string path;
   int dim = 2;
-  std::vector<std::array<double, 3>> x, v;  // positions; velocities (zero without the array)
-  std::vector<double> p;                     // pressures (zero without the array)
-  std::vector<int> kind;                     // SceneKind
+  std::vector<std::array<double, 3>> x, v;           // positions; velocities (zero without the array)
+  std::vector<double> p;                             // pressures (zero without the array)
+  std::vector<int> kind;                             // SceneKind
   std::map<std::string, std::vector<double>> field;  // numeric field data arrays, by name
-  std::uint64_t checksum = 0;                // 64-bit FNV-1a of the file's bytes: the scene's identity
+  std::uint64_t checksum = 0;                        // 64-bit FNV-1a of the file's bytes: the scene's identity
 
   // "scene file 'PATH': " + what, for one-line errors.
   std::string error(const std::string& what) const;

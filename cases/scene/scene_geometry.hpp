@@ -94,9 +94,11 @@ template <int D> class PointGrid {
 constexpr double kFaceShare = 0.75;
 
 // Neighbour counts within 2 dx (all kinds, self included).
-template <int D> std::vector<int> neighbour_counts(const PointGrid<D>& grid, const std::vector<Vector<D>>& x, double dx) {
+template <int D>
+std::vector<int> neighbour_counts(const PointGrid<D>& grid, const std::vector<Vector<D>>& x, double dx) {
   std::vector<int> count(x.size(), 0);
-  for (std::size_t i = 0; i < x.size(); ++i) grid.for_each_within(x[i], 2.0 * dx * (1 + 1e-9), [&](int, const Vector<D>&) { ++count[i]; });
+  for (std::size_t i = 0; i < x.size(); ++i)
+    grid.for_each_within(x[i], 2.0 * dx * (1 + 1e-9), [&](int, const Vector<D>&) { ++count[i]; });
   return count;
 }
 
@@ -109,7 +111,7 @@ template <int D> bool has_open_fluid_face(const std::vector<int>& count, const s
 }
 
 struct WallThickness {
-  double thickness = 0.0;  // 0: no walls
+  double thickness = 0.0;    // 0: no walls
   std::size_t particle = 0;  // where the thinnest wall was measured
 };
 
@@ -119,9 +121,9 @@ struct WallThickness {
 // a walk which leaves a thick wall sideways near a corner does not count), the wall is (1 + the
 // consecutive steps that land within half a cell diagonal of a wall particle) dx thick. Walls of L
 // lattice layers measure L dx. Capped at 16 dx.
-template <int D>
-WallThickness measure_wall_thickness(const PointGrid<D>& grid, const std::vector<Vector<D>>& x, const std::vector<int>& kind,
-                                     const std::vector<int>& count, double dx) {
+template <int D> WallThickness measure_wall_thickness(const PointGrid<D>& grid, const std::vector<Vector<D>>& x,
+                                                      const std::vector<int>& kind, const std::vector<int>& count,
+                                                      double dx) {
   const int full = *std::max_element(count.begin(), count.end());
   const double near = 0.5 * std::sqrt(double(D)) * dx * 1.05, reach = 2.0 * dx * (1 + 1e-9);
   const int cap = 16;

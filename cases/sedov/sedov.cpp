@@ -26,16 +26,17 @@ PetscErrorCode read_options(RawOptions* o) {
                              nullptr));
   PetscCall(PetscOptionsReal("-p_ambient", "Pressure of the cold gas (the exact solution has 0)", "", o->p_ambient,
                              &o->p_ambient, nullptr));
-  PetscCall(PetscOptionsReal("-deposit_h", "Smoothing length of the cubic-spline weights that spread the energy over "
-                             "the central particles, in particle spacings (support 2 deposit_h)", "", o->deposit_h,
-                             &o->deposit_h, nullptr));
+  PetscCall(PetscOptionsReal("-deposit_h",
+                             "Smoothing length of the cubic-spline weights that spread the energy over "
+                             "the central particles, in particle spacings (support 2 deposit_h)",
+                             "", o->deposit_h, &o->deposit_h, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
 
-constexpr double box = 1.0;             // side of the periodic box, centred on the blast
-constexpr double ring_width = 0.5;      // of the radial profile, in particle spacings
-constexpr double l1_extent = 1.2;       // l1 norms over r < 1.2 R
+constexpr double box = 1.0;                     // side of the periodic box, centred on the blast
+constexpr double ring_width = 0.5;              // of the radial profile, in particle spacings
+constexpr double l1_extent = 1.2;               // l1 norms over r < 1.2 R
 const double cone_cos = std::cos(M_PI / 16.0);  // half-angle of the axis / diagonal cones
 
 double nan() { return std::numeric_limits<double>::quiet_NaN(); }
@@ -71,7 +72,9 @@ void SedovBlast::create(Particles<2>& P, Domain<2>& domain) const {
   domain.periodic = {true, true};
   const double dx = spacing(), m = rho0_ * dx * dx;
   const long n = static_cast<long>(nx_) * nx_;
-  auto position = [&](long k) { return Vector<2>(-0.5 * box + (k % nx_ + 0.5) * dx, -0.5 * box + (k / nx_ + 0.5) * dx); };
+  auto position = [&](long k) {
+    return Vector<2>(-0.5 * box + (k % nx_ + 0.5) * dx, -0.5 * box + (k / nx_ + 0.5) * dx);
+  };
   // Energy weights over the whole lattice (every rank), so the shares sum to E whatever the rank count.
   const Kernel<2> deposit(KernelType::CubicSpline, deposit_h_ * dx);
   double weight_sum = 0.0;
@@ -99,7 +102,8 @@ SedovBlast::RadialProfile SedovBlast::radial_profile(const Particles<2>& P, doub
     const std::size_t k = static_cast<std::size_t>(r / prof.dr);
     if (k >= rings) continue;
     const Vector<2> n = r > 0.0 ? Vector<2>(P.x[i] / r) : Vector<2>(1.0, 0.0);
-    const double axis = std::max(std::abs(n[0]), std::abs(n[1])), diagonal = (std::abs(n[0]) + std::abs(n[1])) / M_SQRT2;
+    const double axis = std::max(std::abs(n[0]), std::abs(n[1])),
+                 diagonal = (std::abs(n[0]) + std::abs(n[1])) / M_SQRT2;
     if ((cone == 1 && axis < cone_cos) || (cone == 2 && diagonal < cone_cos)) continue;
     s[4 * k] += 1.0, s[4 * k + 1] += P.rho[i], s[4 * k + 2] += P.v[i].dot(n), s[4 * k + 3] += P.p[i];
   }
@@ -180,8 +184,8 @@ void SedovBlast::write_outputs(const Particles<2>& P, double t, const std::strin
     const SedovSolution::State e = ex.at(prof.r(k), t);
     rings.row({prof.r(k), prof.count[k], prof.rho[k], prof.vr[k], prof.p[k], e.rho, e.v, e.p});
   }
-  CsvWriter shock(dir + "/shock.csv", {"t", "radius_exact", "radius", "radius_axes", "radius_diagonals",
-                                       "peak_density", "post_shock_density_exact"});
+  CsvWriter shock(dir + "/shock.csv", {"t", "radius_exact", "radius", "radius_axes", "radius_diagonals", "peak_density",
+                                       "post_shock_density_exact"});
   shock.row({t, R, all.radius, axes.radius, diagonals.radius, all.peak, ex.post_shock_density()});
 }
 

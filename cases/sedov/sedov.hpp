@@ -25,8 +25,8 @@
 #include <memory>
 #include <vector>
 
-#include "src/run/case.hpp"
 #include "cases/sedov/sedov_solution.hpp"
+#include "src/run/case.hpp"
 
 namespace sph {
 

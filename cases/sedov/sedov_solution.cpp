@@ -15,7 +15,7 @@ namespace {
 // 4000 steps leave 1.4e-4); below xi_min the central power laws phi = xi/gamma,
 // psi ~ xi^(nu/(gamma-1)), pi = const carry the profile to the centre.
 constexpr double ln_xi_min = -5.0;
-}
+}  // namespace
 
 double SedovSolution::geometry_factor(int nu) {
   switch (nu) {
@@ -105,9 +105,7 @@ SedovSolution::Profile SedovSolution::profile(double xi) const {
   return {phi, std::exp(ln_psi), std::exp(ln_pi)};
 }
 
-double SedovSolution::shock_radius(double t) const {
-  return xi0_ * std::pow(E_ * t * t / rho0_, 1.0 / (nu_ + 2.0));
-}
+double SedovSolution::shock_radius(double t) const { return xi0_ * std::pow(E_ * t * t / rho0_, 1.0 / (nu_ + 2.0)); }
 
 double SedovSolution::shock_speed(double t) const { return 2.0 / (nu_ + 2.0) * shock_radius(t) / t; }
 

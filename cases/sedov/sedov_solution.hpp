@@ -16,12 +16,11 @@
 // it), together with the energy integral
 //   I = int_0^1 (psi phi^2 / 2 + pi / (gamma - 1)) xi^(nu-1) d xi,
 // which fixes xi0 through E = sigma_nu rho0 Rdot^2 R^nu I, i.e. xi0 = (sigma_nu delta^2 I)^(-1/(nu+2)),
-// sigma = 2 (a slab: both sides of the plane; Kamm's planar problem counts one), 2 pi, 4 pi. (Kamm & Timmes 2007, LA-UR-07-2849, evaluate
-// Sedov's closed-form parametric solution instead; for gamma = 1.4 this integration reproduces Kamm's
-// standard problems, R = 1 at t = 1 for the spherical E = 0.851072 and R = 0.75 for the cylindrical
-// E = 0.311357, to 3e-8 and 8e-6: xi0 = 1.0040 for nu = 2, 1.0328 for nu = 3; tests/test_sedov.cpp.)
-// Between the grid points the profile is interpolated by cubic Hermite polynomials in s with the
-// ODE's own slopes (error ~ ds^4).
+// sigma = 2 (a slab: both sides of the plane; Kamm's planar problem counts one), 2 pi, 4 pi. (Kamm & Timmes 2007,
+// LA-UR-07-2849, evaluate Sedov's closed-form parametric solution instead; for gamma = 1.4 this integration reproduces
+// Kamm's standard problems, R = 1 at t = 1 for the spherical E = 0.851072 and R = 0.75 for the cylindrical E =
+// 0.311357, to 3e-8 and 8e-6: xi0 = 1.0040 for nu = 2, 1.0328 for nu = 3; tests/test_sedov.cpp.) Between the grid
+// points the profile is interpolated by cubic Hermite polynomials in s with the ODE's own slopes (error ~ ds^4).
 #include <array>
 #include <vector>
 

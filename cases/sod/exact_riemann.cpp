@@ -45,7 +45,7 @@ ExactRiemann::ExactRiemann(const GasState& left, const GasState& right, double g
   auto star_density = [&](const GasState& K) {
     const double ratio = p_star_ / K.p;
     return ratio > 1.0 ? K.rho * (ratio + g6) / (g6 * ratio + 1.0)  // shock, Toro eq. 4.50
-                       : K.rho * std::pow(ratio, 1.0 / gamma_);    // rarefaction, eq. 4.53
+                       : K.rho * std::pow(ratio, 1.0 / gamma_);     // rarefaction, eq. 4.53
   };
   rho_star_L_ = star_density(L_);
   rho_star_R_ = star_density(R_);

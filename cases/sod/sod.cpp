@@ -18,8 +18,10 @@ struct RawOptions {
 PetscErrorCode read_options(RawOptions* o, int dim) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Sod shock tube (-case sod)", "Case");
-  PetscCall(PetscOptionsInt("-nx", "Particles per unit length of the left (dense) state; the 1D tube [-1,1) holds "
-                            "nx (1 + rho_right/rho_left) particles", "", o->nx, &o->nx, nullptr));
+  PetscCall(PetscOptionsInt("-nx",
+                            "Particles per unit length of the left (dense) state; the 1D tube [-1,1) holds "
+                            "nx (1 + rho_right/rho_left) particles",
+                            "", o->nx, &o->nx, nullptr));
   if (dim > 1)
     PetscCall(PetscOptionsInt("-ny", "Particle layers across the tube in the left state (2D/3D)", "", o->ny, &o->ny,
                               nullptr));
@@ -28,8 +30,10 @@ PetscErrorCode read_options(RawOptions* o, int dim) {
   PetscCall(PetscOptionsReal("-p_left", "Pressure for x < 0", "", o->p_l, &o->p_l, nullptr));
   PetscCall(PetscOptionsReal("-rho_right", "Density for x > 0", "", o->rho_r, &o->rho_r, nullptr));
   PetscCall(PetscOptionsReal("-p_right", "Pressure for x > 0", "", o->p_r, &o->p_r, nullptr));
-  PetscCall(PetscOptionsReal("-plateau_margin", "Particle spacings next to the contact and the shock left out of the "
-                             "plateau errors", "", o->margin, &o->margin, nullptr));
+  PetscCall(PetscOptionsReal("-plateau_margin",
+                             "Particle spacings next to the contact and the shock left out of the "
+                             "plateau errors",
+                             "", o->margin, &o->margin, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -150,7 +154,8 @@ template <int D> std::map<std::string, double> SodShockTube<D>::errors(const Par
   MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, PETSC_COMM_WORLD);
   for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
   std::vector<double> all(displs[size - 1] + counts[size - 1]);
-  MPI_Allgatherv(front.data(), count, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, PETSC_COMM_WORLD);
+  MPI_Allgatherv(front.data(), count, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE,
+                 PETSC_COMM_WORLD);
   std::vector<std::pair<double, double>> xr;
   for (std::size_t k = 0; k + 1 < all.size(); k += 2) xr.emplace_back(all[k], all[k + 1]);
   std::sort(xr.begin(), xr.end());
@@ -183,11 +188,12 @@ template <int D> nlohmann::json SodShockTube<D>::parameters() const {
                    {"dx_left", L.dx},
                    {"dx_right", R.dx},
                    {"plateau_margin", plateau_margin_},
-                   {"exact", {{"p_star", exact_->p_star()},
-                              {"u_star", exact_->u_star()},
-                              {"rho_star_left", exact_->rho_star_left()},
-                              {"rho_star_right", exact_->rho_star_right()},
-                              {"shock_speed", exact_->right_head_speed()}}}};
+                   {"exact",
+                    {{"p_star", exact_->p_star()},
+                     {"u_star", exact_->u_star()},
+                     {"rho_star_left", exact_->rho_star_left()},
+                     {"rho_star_right", exact_->rho_star_right()},
+                     {"shock_speed", exact_->right_head_speed()}}}};
   if (D > 1) j["ny"] = ny_, j["dy_right"] = R.dy, j["layers_right"] = R.ny;
   return j;
 }

@@ -7,8 +7,8 @@
 // on the tube |x| <= 0.5 against the exact Riemann solution (Toro 2009, ch. 4).
 // -dim 2 / 3: a thin periodic box in y (and z) of -ny particle layers of the left state; the right
 // state's lattice is as close to isotropic as the layer count allows, masses nearly equal.
-#include "src/run/case.hpp"
 #include "cases/sod/exact_riemann.hpp"
+#include "src/run/case.hpp"
 
 namespace sph {
 
@@ -34,9 +34,9 @@ template <int D> class SodShockTube : public Case<D> {
 
  private:
   struct Lattice {
-    long nx, ny;     // cells along x and across (ny = 1 in 1D)
-    double dx, dy;   // spacings along x and across
-    double x0;       // left edge
+    long nx, ny;    // cells along x and across (ny = 1 in 1D)
+    double dx, dy;  // spacings along x and across
+    double x0;      // left edge
   };
   Lattice left_lattice() const;
   Lattice right_lattice() const;

@@ -120,8 +120,9 @@ void StandingWave::accumulate(const Particles<2>& P, double t, double) {
 }
 
 nlohmann::json StandingWave::accumulated_state() const {
-  return {{"crossings", crossings_}, {"extremes", extremes_}, {"extreme_times", extreme_times_}, {"last_t", last_t_},
-          {"last", last_}, {"swing_max", swing_max_}, {"swing_max_t", swing_max_t_}, {"samples", samples_}};
+  return {{"crossings", crossings_},     {"extremes", extremes_}, {"extreme_times", extreme_times_},
+          {"last_t", last_t_},           {"last", last_},         {"swing_max", swing_max_},
+          {"swing_max_t", swing_max_t_}, {"samples", samples_}};
 }
 
 void StandingWave::restore_accumulated_state(const nlohmann::json& s) {

@@ -43,10 +43,10 @@ class StandingWave : public Case<2> {
   PetscInt nx_ = 40, wall_layers_ = 4;
   PetscReal width_ = 1.0, depth_ = 0.5, amplitude_ = 0.01, g_ = 1.0, re_ = 1000.0, rho0_ = 1.0;
   bool side_walls_ = true;
-  std::vector<double> crossings_;            // times where the momentum changes sign
-  std::vector<double> extremes_;             // its largest magnitude in each whole swing
+  std::vector<double> crossings_;  // times where the momentum changes sign
+  std::vector<double> extremes_;   // its largest magnitude in each whole swing
   std::vector<double> extreme_times_;
-  double last_t_ = 0.0, last_ = 0.0;         // the last sample
+  double last_t_ = 0.0, last_ = 0.0;            // the last sample
   double swing_max_ = 0.0, swing_max_t_ = 0.0;  // the swing under way
   int samples_ = 0;
 };

@@ -10,8 +10,8 @@
 namespace sph {
 
 namespace {
-PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* width, PetscReal* depth, PetscReal* g, PetscReal* re,
-                            PetscReal* rho0) {
+PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* width, PetscReal* depth, PetscReal* g,
+                            PetscReal* re, PetscReal* rho0) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Still water (-case still_water)", "Case");
   PetscCall(PetscOptionsInt("-nx", "Particles per unit length", "", *nx, nx, nullptr));
@@ -33,8 +33,8 @@ template <int D> void StillWater<D>::set_from_options() {
   require(g_ > 0, "-g", "positive", g_);
   require(re_ > 0, "-re", "positive", re_);
   check_wall_scene_options(wall_layers_, rho0_);
-  require(std::lround(width_ * nx_) >= 4 && std::lround(depth_ * nx_) >= 4, "-nx", "at least 4 particles across the tank and the depth",
-          nx_);
+  require(std::lround(width_ * nx_) >= 4 && std::lround(depth_ * nx_) >= 4, "-nx",
+          "at least 4 particles across the tank and the depth", nx_);
 }
 
 template <int D> Physics<D> StillWater<D>::physics() const {
@@ -89,7 +89,8 @@ template <int D> std::map<std::string, double> StillWater<D>::errors(const Parti
     for (std::size_t i = 0; i < all.n_owned; ++i)
       if (all.kind[i] == kFluid) top = std::max(top, all.x[i][1]);
     top_.assign(all.n_owned, 0);
-    for (std::size_t i = 0; i < all.n_owned; ++i) top_[i] = all.kind[i] == kFluid && all.x[i][1] > top - 0.5 * spacing();
+    for (std::size_t i = 0; i < all.n_owned; ++i)
+      top_[i] = all.kind[i] == kFluid && all.x[i][1] > top - 0.5 * spacing();
   }
   const double dx = spacing(), scale = rho0_ * g_ * depth_;
   double sums[4] = {0.0, 0.0, 0.0, 0.0};  // |p error|, fluid count, top heights, top count
@@ -109,8 +110,8 @@ template <int D> std::map<std::string, double> StillWater<D>::errors(const Parti
 }
 
 template <int D> nlohmann::json StillWater<D>::parameters() const {
-  return {{"nx", nx_}, {"tank_width", width_}, {"depth", depth_}, {"g", g_}, {"re", re_}, {"rho0", rho0_},
-          {"wall_layers", wall_layers_}};
+  return {{"nx", nx_},     {"tank_width", width_},       {"depth", depth_}, {"g", g_}, {"re", re_},
+          {"rho0", rho0_}, {"wall_layers", wall_layers_}};
 }
 
 template class StillWater<2>;

@@ -28,8 +28,8 @@ PetscErrorCode read_options(PetscInt* nx, PetscReal* re, PetscReal* U, PetscReal
 // the modes (2, 0), (0, 2) and (1, 3), (3, 1).
 Vector<2> slow_manifold_velocity(const Vector<2>& x, double U, double decay_rate, double c0) {
   const double a = U, k = 2.0 * M_PI, c2 = c0 * c0;
-  const Vector<2> decay_part = (decay_rate * a * a / (4.0 * k * c2)) *
-                               Vector<2>(std::sin(2.0 * k * x[0]), std::sin(2.0 * k * x[1]));
+  const Vector<2> decay_part =
+      (decay_rate * a * a / (4.0 * k * c2)) * Vector<2>(std::sin(2.0 * k * x[0]), std::sin(2.0 * k * x[1]));
   const Vector<2> advection_part =
       (a * a * a / (40.0 * c2)) *
       Vector<2>(std::cos(k * x[0]) * std::sin(3.0 * k * x[1]) - 3.0 * std::cos(3.0 * k * x[0]) * std::sin(k * x[1]),

@@ -119,7 +119,8 @@ void ToyStar::create(Particles<1>& P, Domain<1>& domain) const {
   const int grid = 200000;
   std::vector<double> xs(grid + 1), cum(grid + 1, 0.0);
   for (int k = 0; k <= grid; ++k) xs[k] = -radius + 2.0 * radius * k / grid;
-  for (int k = 1; k <= grid; ++k) cum[k] = cum[k - 1] + 0.5 * (density(xs[k - 1], 0.0) + density(xs[k], 0.0)) * (xs[k] - xs[k - 1]);
+  for (int k = 1; k <= grid; ++k)
+    cum[k] = cum[k - 1] + 0.5 * (density(xs[k - 1], 0.0) + density(xs[k], 0.0)) * (xs[k] - xs[k - 1]);
   const double M = cum[grid], m = M / n_;
   PetscMPIInt rank, size;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -151,8 +152,8 @@ std::map<std::string, double> ToyStar::errors(const Particles<1>& P, double t) c
 
 nlohmann::json ToyStar::parameters() const {
   const auto y = coefficients(0.0);
-  return {{"nx", n_},       {"gamma", gamma_},   {"K", K_},         {"Omega", omega_}, {"A0", A0_},
-          {"radius", radius}, {"H0", y[1]},      {"C0", y[2]},      {"mass", mass()},  {"period", period()}};
+  return {{"nx", n_},         {"gamma", gamma_}, {"K", K_},    {"Omega", omega_}, {"A0", A0_},
+          {"radius", radius}, {"H0", y[1]},      {"C0", y[2]}, {"mass", mass()},  {"period", period()}};
 }
 
 }  // namespace sph

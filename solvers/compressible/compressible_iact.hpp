@@ -1,6 +1,7 @@
 #pragma once
 // Pair physics of compressible SPH with variable smoothing lengths (one i-j interaction each; the
-// loops are the variable-h ones of src/sph/pair_loop.hpp, run by compressible_solver.cpp). Every particle carries its own h_i, fixed by
+// loops are the variable-h ones of src/sph/pair_loop.hpp, run by compressible_solver.cpp). Every particle carries its
+// own h_i, fixed by
 //   rho_i h_i^D = m_i eta^D   together with   rho_i = sum_j m_j W(r_ij, h_i),
 // and the grad-h factor  Omega_i = 1 - (dh_i/drho_i) sum_j m_j dW(r_ij, h_i)/dh_i  (Springel & Hernquist
 // 2002, MNRAS 333:649; Monaghan 2002; Price 2012, JCP 231:759, sec. 3). With P_i/(Omega_i rho_i^2) = q_i
@@ -15,9 +16,9 @@
 #include <vector>
 
 #include "src/kernels/kernel.hpp"
+#include "src/particles/particles.hpp"
 #include "src/sph/artificial_viscosity.hpp"
 #include "src/sph/pair_loop.hpp"
-#include "src/particles/particles.hpp"
 
 namespace sph::compressible {
 
@@ -100,9 +101,8 @@ struct ArtificialViscosity {
   double alpha = 1.0, beta = 3.0, epsilon = 0.01;
 
   bool active() const { return model != ViscosityModel::None; }
-  template <int D>
-  double Pi(double alpha_ij, double ci, double cj, double rho_i, double rho_j, double hi, double hj,
-            const Vector<D>& vij, const VariableHPair<D>& g) const {
+  template <int D> double Pi(double alpha_ij, double ci, double cj, double rho_i, double rho_j, double hi, double hj,
+                             const Vector<D>& vij, const VariableHPair<D>& g) const {
     const double vr = vij.dot(g.rij);
     if (vr >= 0.0) return 0.0;
     const double rho_bar = 0.5 * (rho_i + rho_j);

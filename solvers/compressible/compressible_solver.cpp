@@ -5,8 +5,8 @@
 #include <limits>
 #include <sstream>
 
-#include "src/core/options.hpp"
 #include "src/core/log_events.hpp"
+#include "src/core/options.hpp"
 #include "src/sph/leapfrog.hpp"
 
 namespace sph {
@@ -44,8 +44,8 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Compressible SPH, ideal gas with grad-h terms (-solver compressible)",
                     "Solver");
-  PetscCall(PetscOptionsReal("-cfl", "Compressible: Courant number on the signal velocity, dt <= cfl h_i / v_sig,i", "", o->cfl, &o->cfl,
-                             nullptr));
+  PetscCall(PetscOptionsReal("-cfl", "Compressible: Courant number on the signal velocity, dt <= cfl h_i / v_sig,i", "",
+                             o->cfl, &o->cfl, nullptr));
   PetscCall(PetscOptionsReal("-cfl_force", "Force criterion: dt <= cfl_force sqrt(h_i / |a_i|)", "", o->cfl_force,
                              &o->cfl_force, nullptr));
   PetscCall(PetscOptionsReal("-eta", "Smoothing length h_i = eta (m_i/rho_i)^(1/D) (0: the kernel's default)", "",
@@ -54,8 +54,10 @@ PetscErrorCode read_options(RawOptions* o) {
                              &o->h_tol, nullptr));
   PetscCall(PetscOptionsEList("-av", "Artificial viscosity: none, signal_velocity (Monaghan 1997), monaghan (1992)", "",
                               viscosity_names, 3, viscosity_names[o->viscosity], &o->viscosity, nullptr));
-  PetscCall(PetscOptionsReal("-av_alpha", "Compressible: artificial viscosity alpha (default 1, initial alpha with -av_switch; WCSPH's default is 0)", "", o->alpha,
-                             &o->alpha, nullptr));
+  PetscCall(PetscOptionsReal(
+      "-av_alpha",
+      "Compressible: artificial viscosity alpha (default 1, initial alpha with -av_switch; WCSPH's default is 0)", "",
+      o->alpha, &o->alpha, nullptr));
   PetscCall(PetscOptionsReal("-av_beta", "Artificial viscosity beta (-1: 3 for signal_velocity, 2 for monaghan)", "",
                              o->beta, &o->beta, nullptr));
   PetscCall(PetscOptionsReal("-av_epsilon", "Singularity guard of the monaghan viscosity", "", o->epsilon, &o->epsilon,
@@ -64,7 +66,8 @@ PetscErrorCode read_options(RawOptions* o) {
                               switch_names[o->av_switch], &o->av_switch, nullptr));
   PetscCall(PetscOptionsReal("-av_alpha_min", "Morris-Monaghan: alpha far from shocks", "", o->alpha_min, &o->alpha_min,
                              nullptr));
-  PetscCall(PetscOptionsReal("-av_alpha_max", "Morris-Monaghan: largest alpha", "", o->alpha_max, &o->alpha_max, nullptr));
+  PetscCall(
+      PetscOptionsReal("-av_alpha_max", "Morris-Monaghan: largest alpha", "", o->alpha_max, &o->alpha_max, nullptr));
   PetscCall(PetscOptionsReal("-av_decay", "Morris-Monaghan: decay rate sigma, tau = h / (sigma c)", "", o->sigma,
                              &o->sigma, nullptr));
   PetscCall(PetscOptionsBool("-balsara", "Balsara (1995) switch on the artificial viscosity", "", o->balsara,
@@ -84,9 +87,21 @@ double mpi_max(double x) {
 }  // namespace
 
 template <int D> void CompressibleSolver<D>::set_from_options() {
-  RawOptions o{cfl_,       cfl_force_,  eta_,      h_tolerance_, av_.alpha, -1.0, av_.epsilon, alpha_min_, alpha_max_,
-               mm_sigma_,  alpha_u_,    static_cast<PetscInt>(av_.model), static_cast<PetscInt>(switch_),
-               balsara_,   conductivity_};
+  RawOptions o{cfl_,
+               cfl_force_,
+               eta_,
+               h_tolerance_,
+               av_.alpha,
+               -1.0,
+               av_.epsilon,
+               alpha_min_,
+               alpha_max_,
+               mm_sigma_,
+               alpha_u_,
+               static_cast<PetscInt>(av_.model),
+               static_cast<PetscInt>(switch_),
+               balsara_,
+               conductivity_};
   SPH_PETSC(read_options(&o));
   require(o.cfl > 0 && o.cfl <= 1, "-cfl", "in (0, 1]", o.cfl);
   require(o.cfl_force > 0 && o.cfl_force <= 1, "-cfl_force", "in (0, 1]", o.cfl_force);
@@ -115,8 +130,9 @@ template <int D> void CompressibleSolver<D>::setup(Scene<D>& scene) {
   Particles<D>& P = scene.particles;
   const Physics<D>& phys = scene.physics;
   if (!phys.is_gas())
-    throw Error("the compressible solver needs a gas scene (the case declares no adiabatic index gamma); "
-                "use e.g. -case sod or -case toy_star, or another -solver");
+    throw Error(
+        "the compressible solver needs a gas scene (the case declares no adiabatic index gamma); "
+        "use e.g. -case sod or -case toy_star, or another -solver");
   require(phys.gamma > 1.0, "gamma (declared by the case)", "greater than 1", phys.gamma);
   if (phys.viscous())
     throw Error("the compressible solver has no physical (Navier-Stokes) viscosity; the case asks for nu > 0");
@@ -129,7 +145,8 @@ template <int D> void CompressibleSolver<D>::setup(Scene<D>& scene) {
   const std::size_t n = P.n_owned;
   h_.assign(n, 0.0), thermal_.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
-    if (P.kind[i] != kFluid) throw Error("the compressible solver has no wall boundary treatment; use a periodic or free case");
+    if (P.kind[i] != kFluid)
+      throw Error("the compressible solver has no wall boundary treatment; use a periodic or free case");
     if (!(P.rho[i] > 0.0 && P.p[i] >= 0.0))
       throw Error("the compressible solver needs positive initial densities and non-negative pressures");
     h_[i] = eta_ * std::pow(P.m[i] / P.rho[i], 1.0 / D);
@@ -138,8 +155,8 @@ template <int D> void CompressibleSolver<D>::setup(Scene<D>& scene) {
   if (entropy_)
     for (std::size_t i = 0; i < n; ++i) thermal_[i] = P.p[i] / std::pow(P.rho[i], gamma_);
   std::vector<double> p_case(P.p.begin(), P.p.begin() + n);
-  const double alpha0 = switch_ == ViscositySwitch::MorrisMonaghan ? std::clamp<double>(av_.alpha, alpha_min_, alpha_max_)
-                                                                   : av_.alpha;
+  const double alpha0 =
+      switch_ == ViscositySwitch::MorrisMonaghan ? std::clamp<double>(av_.alpha, alpha_min_, alpha_max_) : av_.alpha;
   alpha_.assign(n, alpha0);
   dalpha_.assign(n, 0.0);
 
@@ -245,7 +262,8 @@ template <int D> void CompressibleSolver<D>::solve_density() {
       // The pruned list while it covers this h, the full list when the iteration has gone beyond it.
       if (K.support_radius() <= pairs_.reach(i)) for_each_gather_neighbour(P, pairs_, i, K, gather);
       else for_each_gather_neighbour(P, nl, i, K, gather);
-      const double h_new = newton_h_update(D, P.m[i], eta_, h, s, bracket[i], iteration > kNewtonIterationsBeforeBisection);
+      const double h_new =
+          newton_h_update(D, P.m[i], eta_, h, s, bracket[i], iteration > kNewtonIterationsBeforeBisection);
       const bool closed = bracket[i].hi > 0.0 && bracket[i].hi - bracket[i].lo <= h_tolerance_ * h;
       if (std::abs(h_new - h) <= h_tolerance_ * h || closed) {
         // Converged: the sums were taken at this h.
@@ -385,14 +403,16 @@ template <int D> StepReport CompressibleSolver<D>::step(double dt) {
   // velocity- and energy-dependent terms of the force evaluation.
   std::vector<LeapfrogScalar> scalars = {{&thermal_, &dthermal_}};
   if (mm) scalars.push_back({&alpha_, &dalpha_, alpha_min_, alpha_max_});
-  leapfrog_step<D>(dt, n, P.x, P.v, acc_, scalars, [](std::size_t) { return true; }, [&] {
-    check_thermal_state();
-    scene_->neighbourhood.update(P);
-    prune_pairs();  // particles moved: distances changed
-    solve_density();
-    update_thermodynamics();
-    compute_forces();
-  });
+  leapfrog_step<D>(
+      dt, n, P.x, P.v, acc_, scalars, [](std::size_t) { return true; },
+      [&] {
+        check_thermal_state();
+        scene_->neighbourhood.update(P);
+        prune_pairs();  // particles moved: distances changed
+        solve_density();
+        update_thermodynamics();
+        compute_forces();
+      });
   check_thermal_state();
   // Pressure and thermal energy of the final state (what the outputs and the errors see).
   for (std::size_t i = 0; i < n; ++i) {
@@ -443,10 +463,8 @@ template <int D> nlohmann::json CompressibleSolver<D>::describe() const {
         {"model", "MonaghanAV"}, {"alpha", av_.alpha}, {"beta", av_.beta}, {"epsilon", av_.epsilon}};
   if (balsara_) models["balsara"] = {{"model", "Balsara1995"}};
   if (switch_ == ViscositySwitch::MorrisMonaghan)
-    models["viscosity_switch"] = {{"model", "MorrisMonaghan1997"},
-                                  {"alpha_min", alpha_min_},
-                                  {"alpha_max", alpha_max_},
-                                  {"decay", mm_sigma_}};
+    models["viscosity_switch"] = {
+        {"model", "MorrisMonaghan1997"}, {"alpha_min", alpha_min_}, {"alpha_max", alpha_max_}, {"decay", mm_sigma_}};
   if (conductivity_) models["conductivity"] = {{"model", "Price2008"}, {"alpha_u", alpha_u_}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
   if (phys.has_external_force()) models["external_force"] = phys.describe()["external_acceleration"];
@@ -478,10 +496,13 @@ template <int D> std::vector<CheckpointField> CompressibleSolver<D>::checkpoint_
   const std::size_t n = scene_->particles.n_owned;
   for (auto* f : {&thermal_, &u_, &h_, &alpha_, &dthermal_, &dalpha_, &vsig_}) f->resize(n);
   acc_.resize(n);
-  return {{"thermal_variable", thermal_.data(), 1}, {"thermal_energy", u_.data(), 1},
-          {"smoothing_length", h_.data(), 1},    {"alpha", alpha_.data(), 1},
+  return {{"thermal_variable", thermal_.data(), 1},
+          {"thermal_energy", u_.data(), 1},
+          {"smoothing_length", h_.data(), 1},
+          {"alpha", alpha_.data(), 1},
           {"acceleration", acc_.empty() ? nullptr : acc_[0].data(), D},
-          {"thermal_rate", dthermal_.data(), 1}, {"alpha_rate", dalpha_.data(), 1},
+          {"thermal_rate", dthermal_.data(), 1},
+          {"alpha_rate", dalpha_.data(), 1},
           {"signal_velocity", vsig_.data(), 1}};
 }
 

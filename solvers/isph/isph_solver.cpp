@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "src/boundary/adami_wall.hpp"
-#include "src/core/options.hpp"
 #include "src/core/log_events.hpp"
+#include "src/core/options.hpp"
 #include "src/sph/free_surface.hpp"
 #include "src/sph/operators.hpp"
 #include "src/sph/step_limits.hpp"
@@ -37,8 +37,11 @@ struct RawOptions {
 PetscErrorCode read_options(RawOptions* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "ISPH projection solver (-solver isph)", "Solver");
-  PetscCall(PetscOptionsReal("-cfl", "ISPH: advective Courant number, dt <= cfl h / U (the explicit schemes read -cfl as an acoustic one)", "", o->cfl, &o->cfl, nullptr));
-  PetscCall(PetscOptionsBool("-shifting", "Particle shifting (Lind et al. 2012)", "", o->shifting, &o->shifting, nullptr));
+  PetscCall(PetscOptionsReal(
+      "-cfl", "ISPH: advective Courant number, dt <= cfl h / U (the explicit schemes read -cfl as an acoustic one)", "",
+      o->cfl, &o->cfl, nullptr));
+  PetscCall(
+      PetscOptionsBool("-shifting", "Particle shifting (Lind et al. 2012)", "", o->shifting, &o->shifting, nullptr));
   PetscCall(PetscOptionsEList("-shift_rate", shift_rate_help, "", shift_rate_names, 2, shift_rate_names[o->shift_rate],
                               &o->shift_rate, nullptr));
   PetscCall(PetscOptionsReal("-shift_coefficient", shift_coefficient_help, "", o->shift_A, &o->shift_A, nullptr));
@@ -69,7 +72,8 @@ PetscErrorCode read_options(RawOptions* o) {
                               "continuity equation; wall particles keep their place, so every wall here is fixed or "
                               "slides along itself) or prescribed (the walls' own: a sliding wall's velocity jump "
                               "where it ends reads as a compression, a first-order error)",
-                              "", wall_velocity_names, 2, wall_velocity_names[o->wall_velocity], &o->wall_velocity, nullptr));
+                              "", wall_velocity_names, 2, wall_velocity_names[o->wall_velocity], &o->wall_velocity,
+                              nullptr));
   PetscCall(PetscOptionsBool("-ppe_wall_impact",
                              "Walls stop the free surface that comes at them within the step: their pressure rows add "
                              "rho u_n (r . n) / tau for a surface particle's predicted velocity u_n towards them "
@@ -86,13 +90,24 @@ PetscErrorCode read_options(RawOptions* o) {
 }  // namespace
 
 template <int D> void IsphSolver<D>::set_from_options() {
-  RawOptions o{cfl_, shifting_model_.A, particle_divergence_rate_, static_cast<PetscInt>(shifting_model_.rate),
-               static_cast<PetscInt>(shifting_model_.scales), static_cast<PetscInt>(gradient_),
-               static_cast<PetscInt>(operators_), static_cast<PetscInt>(viscous_laplacian_), projection_corrections_, source_walls_at_rest_ ? 1 : 0,
-               static_cast<PetscInt>(surface_condition_), shifting_, PETSC_FALSE, PETSC_FALSE};
+  RawOptions o{cfl_,
+               shifting_model_.A,
+               particle_divergence_rate_,
+               static_cast<PetscInt>(shifting_model_.rate),
+               static_cast<PetscInt>(shifting_model_.scales),
+               static_cast<PetscInt>(gradient_),
+               static_cast<PetscInt>(operators_),
+               static_cast<PetscInt>(viscous_laplacian_),
+               projection_corrections_,
+               source_walls_at_rest_ ? 1 : 0,
+               static_cast<PetscInt>(surface_condition_),
+               shifting_,
+               PETSC_FALSE,
+               PETSC_FALSE};
   SPH_PETSC(read_options(&o));
   require(o.cfl > 0 && o.cfl <= 1.0, "-cfl", "in (0, 1]", o.cfl);
-  require(o.shift_A >= 0 || o.shift_A == -1, "-shift_coefficient", "non-negative (or -1: the shift rate's default)", o.shift_A);
+  require(o.shift_A >= 0 || o.shift_A == -1, "-shift_coefficient", "non-negative (or -1: the shift rate's default)",
+          o.shift_A);
   require(o.particle_divergence_rate >= 0 || o.particle_divergence_rate == -1, "-ppe_particle_divergence_rate",
           "non-negative (or -1: all of it every step)", o.particle_divergence_rate);
   require(o.projection_corrections >= 0, "-projection_corrections", "non-negative", o.projection_corrections);
@@ -152,15 +167,15 @@ template <int D> std::vector<Vector<D>> IsphSolver<D>::pressure_gradient(const s
   const Kernel<D>& K = scene_->kernel;
   switch (gradient_) {
     case PressureGradient::Corrected:
-      return nodes_.empty() ? gradient_corrected(P, nl, K, p, Rows::Fluid) : gradient_corrected(P, nl, K, p, Rows::Fluid, nodes_);
+      return nodes_.empty() ? gradient_corrected(P, nl, K, p, Rows::Fluid)
+                            : gradient_corrected(P, nl, K, p, Rows::Fluid, nodes_);
     case PressureGradient::Difference: return gradient_difference(P, nl, K, p);
     case PressureGradient::Symmetric: return gradient_symmetric(P, nl, K, p);
   }
   return {};
 }
 
-template <int D>
-std::vector<LaplacianCorrection<D>> IsphSolver<D>::laplacian_corrections_if_used() const {
+template <int D> std::vector<LaplacianCorrection<D>> IsphSolver<D>::laplacian_corrections_if_used() const {
   if (operators_ != OperatorSet::Consistent) return {};
   const Neighbourhood<D>& nh = scene_->neighbourhood;
   return laplacian_corrections(scene_->particles, nh.list(), scene_->kernel, Rows::Fluid);
@@ -194,10 +209,9 @@ std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vec
   return lap;
 }
 
-template <int D>
-std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences(const std::vector<const std::vector<Vector<D>>*>& fields,
-                                                                 const std::vector<char>& near_surface,
-                                                                 const Vector<D>& first_wall_velocity) const {
+template <int D> std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences(
+    const std::vector<const std::vector<Vector<D>>*>& fields, const std::vector<char>& near_surface,
+    const Vector<D>& first_wall_velocity) const {
   const Particles<D>& P = scene_->particles;
   const NeighbourList<D>& nl = scene_->neighbourhood.list();
   const Kernel<D>& K = scene_->kernel;
@@ -239,9 +253,8 @@ std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences(const std::vecto
   return div;
 }
 
-template <int D>
-StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double tau,
-                                  const std::vector<LaplacianCorrection<D>>& corrections) {
+template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double tau,
+                                                   const std::vector<LaplacianCorrection<D>>& corrections) {
   Particles<D>& P = scene_->particles;
   Neighbourhood<D>& nh = scene_->neighbourhood;
   const Kernel<D>& K = scene_->kernel;
@@ -286,9 +299,9 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
   // found"). So in the source the walls move with tau g.
   const Vector<D> wall_gravity = tau * phys.gravity;
   // div u* and, for the particle-scale part below, div u^n: one pass over the pairs for both.
-  std::vector<std::vector<double>> divergences =
-      remove_particle_scale ? ppe_divergences({&u_star, &P.v}, near_surface, wall_gravity)
-                            : ppe_divergences({&u_star}, near_surface, wall_gravity);
+  std::vector<std::vector<double>> divergences = remove_particle_scale
+                                                     ? ppe_divergences({&u_star, &P.v}, near_surface, wall_gravity)
+                                                     : ppe_divergences({&u_star}, near_surface, wall_gravity);
   std::vector<double>& source = divergences[0];
   if (remove_particle_scale) {
     std::vector<double>& div_u = divergences[1];  // its ghost values are filled for the average
@@ -365,7 +378,8 @@ StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double t
     LogEventScope log_pass_source(ppe_assembly_event());
     nh.halo().update(P.v);
     std::vector<double> remaining = ppe_divergences({&P.v}, near_surface, Vector<D>::Zero())[0];
-    std::vector<double> increment_source = kernel_average_in_fluid(P, nh, K, remaining, surface_flags, average_cut).average;
+    std::vector<double> increment_source =
+        kernel_average_in_fluid(P, nh, K, remaining, surface_flags, average_cut).average;
     for (double& s : increment_source) s /= tau;
     log_pass_source.end();
     LogEventScope log_pass_solve(ppe_solve_event());
@@ -412,8 +426,10 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
     const std::vector<Vector<D>> grad_p = pressure_gradient(P.p);
     for (std::size_t i = 0; i < n; ++i) pressure_acc[i] = -grad_p[i] / P.rho[i], acc[i] += pressure_acc[i];
   }
-  energy_.add_update(P, P.v, {{EnergyCause::Viscous, 0.5 * dt, &viscous_acc}, {EnergyCause::Pressure, 0.5 * dt, &pressure_acc},
-                              {EnergyCause::BodyForce, 0.5 * dt, &gravity}});
+  energy_.add_update(P, P.v,
+                     {{EnergyCause::Viscous, 0.5 * dt, &viscous_acc},
+                      {EnergyCause::Pressure, 0.5 * dt, &pressure_acc},
+                      {EnergyCause::BodyForce, 0.5 * dt, &gravity}});
   std::vector<Vector<D>> u_half = P.v;
   for (std::size_t i = 0; i < n; ++i) {
     if (!fluid(i)) continue;
@@ -440,7 +456,8 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
       if (fluid(i)) u_pred[i] += (0.5 * dt) * acc[i];
     nh.halo().update(u_pred);
     const std::vector<Vector<D>> visc = viscous_acceleration(u_pred, consistent ? &corrections : nullptr);
-    energy_.add_update(P, u_star, {{EnergyCause::Viscous, 0.5 * dt, &visc}, {EnergyCause::BodyForce, 0.5 * dt, &gravity}});
+    energy_.add_update(P, u_star,
+                       {{EnergyCause::Viscous, 0.5 * dt, &visc}, {EnergyCause::BodyForce, 0.5 * dt, &gravity}});
     for (std::size_t i = 0; i < n; ++i)
       if (fluid(i)) u_star[i] += (0.5 * dt) * visc[i];
   } else {
@@ -490,13 +507,15 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
   nlohmann::json models = nlohmann::json::object();
   const bool consistent = operators_ == OperatorSet::Consistent;
   models["pressure_laplacian"] = consistent ? "ConsistentLaplacian" : "CumminsRudman";
-  models["ppe_source"] = {{"divergence", consistent ? "corrected" : "plain"}, {"particle_divergence_rate", particle_divergence_rate_},
+  models["ppe_source"] = {{"divergence", consistent ? "corrected" : "plain"},
+                          {"particle_divergence_rate", particle_divergence_rate_},
                           {"wall_velocity", wall_velocity_names[source_walls_at_rest_ ? 1 : 0]}};
   models["projection_corrections"] = projection_corrections_;
   models["time_integration"] = "kick-drift-kick, projection as the closing kick";
   if (walls_)
-    models["walls"] = {{"model", "AdamiWall"},
-                       {"ppe", phys.free_surface ? "extrapolation rows" : "extrapolation rows, one fluid pressure pinned"}};
+    models["walls"] = {
+        {"model", "AdamiWall"},
+        {"ppe", phys.free_surface ? "extrapolation rows" : "extrapolation rows, one fluid pressure pinned"}};
   if (phys.free_surface) {
     models["free_surface"] = free_surface_model_.describe();
     models["free_surface"]["condition"] = surface_condition_names[static_cast<int>(surface_condition_)];
@@ -505,12 +524,16 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
   if (wall_impact_) models["walls"]["impact"] = "rho u_n (r . n) / tau for surface particles moving towards a wall";
   models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
   if (phys.viscous())
-    models["viscosity"] = {{"model", consistent ? "ConsistentLaplacian" : "MorrisViscosity"}, {"nu", phys.nu},
-                           {"smoothing_error", smoothing_error_description(consistent && viscous_laplacian_ == ViscousLaplacian::Fourth &&
-                                                                            !phys.free_surface)}};
+    models["viscosity"] = {
+        {"model", consistent ? "ConsistentLaplacian" : "MorrisViscosity"},
+        {"nu", phys.nu},
+        {"smoothing_error", smoothing_error_description(consistent && viscous_laplacian_ == ViscousLaplacian::Fourth &&
+                                                        !phys.free_surface)}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
   if (shifting_) models["shifting"] = shifting_model_.describe();
-  return {{"models", models}, {"cfl", cfl_}, {"ksp", ppe_.describe()},
+  return {{"models", models},
+          {"cfl", cfl_},
+          {"ksp", ppe_.describe()},
           {"conservation", {{"energy_budget", energy_.describe(scene_->particles)}}}};
 }
 

@@ -127,10 +127,10 @@ template <int D> class IsphSolver : public Solver<D> {
   bool walls_ = false;
   FreeSurface<D> free_surface_model_;
   SurfaceCondition surface_condition_ = SurfaceCondition::Node;
-  SurfaceNodes<D> nodes_;  // the free-surface nodes at the current positions (empty: none)
+  SurfaceNodes<D> nodes_;        // the free-surface nodes at the current positions (empty: none)
   int wall_impact_option_ = -1;  // -ppe_wall_impact: -1 unset (on with a free surface), 0 off, 1 on
   bool wall_impact_ = false;
-  EnergyBudget energy_;                          // since this run's start (a restart: since the restart)
+  EnergyBudget energy_;  // since this run's start (a restart: since the restart)
 };
 
 }  // namespace sph

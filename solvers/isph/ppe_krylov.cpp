@@ -88,11 +88,10 @@ template <int D> void PressurePoisson<D>::aggressive_coarsening_in_3d() {
   PC pc;
   SPH_PETSC(KSPGetPC(ksp_, &pc));
   if (!is_boomeramg(pc)) return;
-  const std::vector<std::pair<const char*, const char*>> options = {
-      {"-pc_hypre_boomeramg_coarsen_type", "HMIS"},
-      {"-pc_hypre_boomeramg_interp_type", "ext+i"},
-      {"-pc_hypre_boomeramg_strong_threshold", "0.5"},
-      {"-pc_hypre_boomeramg_agg_nl", "1"}};
+  const std::vector<std::pair<const char*, const char*>> options = {{"-pc_hypre_boomeramg_coarsen_type", "HMIS"},
+                                                                    {"-pc_hypre_boomeramg_interp_type", "ext+i"},
+                                                                    {"-pc_hypre_boomeramg_strong_threshold", "0.5"},
+                                                                    {"-pc_hypre_boomeramg_agg_nl", "1"}};
   for (const auto& [name, value] : options) {
     PetscBool user = PETSC_FALSE;
     SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, name, &user));
@@ -110,9 +109,8 @@ template <int D> void PressurePoisson<D>::aggressive_coarsening_in_3d() {
 template <int D> void PressurePoisson<D>::right_preconditioning() {
   PetscBool user_side = PETSC_FALSE, both_sides = PETSC_FALSE;
   SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-ksp_pc_side", &user_side));
-  SPH_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(ksp_), &both_sides, KSPGMRES, KSPLGMRES,
-                                      KSPDGMRES, KSPPGMRES, KSPBCGS, KSPIBCGS, KSPFBCGS, KSPFBCGSR, KSPBCGSL,
-                                      KSPPIPEBCGS, ""));
+  SPH_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(ksp_), &both_sides, KSPGMRES, KSPLGMRES, KSPDGMRES,
+                                      KSPPGMRES, KSPBCGS, KSPIBCGS, KSPFBCGS, KSPFBCGSR, KSPBCGSL, KSPPIPEBCGS, ""));
   if (user_side) return;
   // Set before the options for -help; a type chosen there that has one side only decides it itself.
   SPH_PETSC(KSPSetPCSide(ksp_, nonsymmetric_ && both_sides ? PC_RIGHT : PC_SIDE_DEFAULT));
@@ -147,10 +145,14 @@ void check_ksp_tolerances() {
     else SPH_PETSC(PetscOptionsGetReal(nullptr, nullptr, name, &v, &set));
     if (set) require(ok(v), name, what, v);
   };
-  get("-ksp_rtol", false, [](double v) { return v > 0 && v < 1; }, "in (0, 1)");
-  get("-ksp_atol", false, [](double v) { return v >= 0; }, "non-negative");
-  get("-ksp_divtol", false, [](double v) { return v > 1; }, "above 1");
-  get("-ksp_max_it", true, [](double v) { return v >= 1; }, "at least 1");
+  get(
+      "-ksp_rtol", false, [](double v) { return v > 0 && v < 1; }, "in (0, 1)");
+  get(
+      "-ksp_atol", false, [](double v) { return v >= 0; }, "non-negative");
+  get(
+      "-ksp_divtol", false, [](double v) { return v > 1; }, "above 1");
+  get(
+      "-ksp_max_it", true, [](double v) { return v >= 1; }, "at least 1");
 }
 }  // namespace
 

@@ -58,7 +58,8 @@ std::string requested_type(PetscInt n) {
   std::vector<PetscScalar> vals;
   for (PetscInt i = 0; i < n; ++i) {
     cols.clear(), vals.clear();
-    for (PetscInt k = rows.di[i]; k < rows.di[i + 1]; ++k) cols.push_back(rows.dj[k] + first), vals.push_back(rows.da[k]);
+    for (PetscInt k = rows.di[i]; k < rows.di[i + 1]; ++k)
+      cols.push_back(rows.dj[k] + first), vals.push_back(rows.da[k]);
     for (PetscInt k = rows.oi[i]; k < rows.oi[i + 1]; ++k) cols.push_back(rows.oj[k]), vals.push_back(rows.oa[k]);
     const PetscInt row = first + i;
     SPH_PETSC(MatSetValues(A, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(), vals.data(), INSERT_VALUES));
@@ -81,7 +82,8 @@ PpeRows lump_weak_entries(const PpeRows& rows, PetscInt n, double tol) {
     for (PetscInt k = rows.di[i]; k < rows.di[i + 1]; ++k)
       if (rows.dj[k] == i) diagonal[i] = k, weak[i] = tol * std::abs(rows.da[k]);
     PetscInt kept_d = 0, kept_o = 0;
-    for (PetscInt k = rows.di[i]; k < rows.di[i + 1]; ++k) kept_d += k == diagonal[i] || std::abs(rows.da[k]) >= weak[i];
+    for (PetscInt k = rows.di[i]; k < rows.di[i + 1]; ++k)
+      kept_d += k == diagonal[i] || std::abs(rows.da[k]) >= weak[i];
     for (PetscInt k = rows.oi[i]; k < rows.oi[i + 1]; ++k) kept_o += std::abs(rows.oa[k]) >= weak[i];
     out.di[i + 1] = kept_d, out.oi[i + 1] = kept_o;
   }

@@ -46,12 +46,10 @@ struct PpeRows {
   // Rows of the owned particles of P. Fluid rows hold the consistent Laplacian when `consistent`
   // holds its factors, else Cummins & Rudman's; wall rows hold the Adami extrapolation; rows flagged
   // in `dirichlet` and the row `pinned` (-1: none) hold only their diagonal.
-  template <int D>
-  void build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const Vector<D>& body_force,
-             const std::vector<char>& dirichlet, long pinned,
-             const std::vector<LaplacianCorrection<D>>* consistent = nullptr,
-             const SurfaceNodes<D>* nodes = nullptr, const WallImpact<D>* impact = nullptr);
-
+  template <int D> void build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                              const Vector<D>& body_force, const std::vector<char>& dirichlet, long pinned,
+                              const std::vector<LaplacianCorrection<D>>* consistent = nullptr,
+                              const SurfaceNodes<D>* nodes = nullptr, const WallImpact<D>* impact = nullptr);
 
  private:
   std::vector<PetscInt> dlen_, olen_;  // entries filled per row
@@ -89,11 +87,10 @@ inline void close_gaps(std::vector<PetscInt>& ptr, const std::vector<PetscInt>& 
 
 }  // namespace detail
 
-template <int D>
-void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                    const Vector<D>& body_force, const std::vector<char>& dirichlet, long pinned,
-                    const std::vector<LaplacianCorrection<D>>* consistent,
-                    const SurfaceNodes<D>* nodes, const WallImpact<D>* impact) {
+template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                     const Vector<D>& body_force, const std::vector<char>& dirichlet, long pinned,
+                                     const std::vector<LaplacianCorrection<D>>* consistent,
+                                     const SurfaceNodes<D>* nodes, const WallImpact<D>* impact) {
   const std::size_t n = P.n_owned;
   auto surface_row = [&](int i) { return nodes && nodes->has(static_cast<std::size_t>(i)); };
   const PetscInt first = P.first_gid, end = first + static_cast<PetscInt>(n);
@@ -118,18 +115,16 @@ void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Ker
   // One spare entry: PETSc is handed valid pointers even when a block is empty.
   dj.resize(di[n] + 1), da.resize(di[n] + 1), oj.resize(oi[n] + 1), oa.resize(oi[n] + 1);
   rhs.assign(n, 0.0), head_.assign(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i)
-    dj[di[i]] = P.gid[i] - first, da[di[i]] = 0.0, dlen_[i] = 1, olen_[i] = 0;
+  for (std::size_t i = 0; i < n; ++i) dj[di[i]] = P.gid[i] - first, da[di[i]] = 0.0, dlen_[i] = 1, olen_[i] = 0;
 
   // Fluid rows: c_ij off the diagonal, -sum_j c_ij on it; row i is div(grad p / rho)_i times -m_i.
   // Wall rows keep their diagonal (the scale of a fluid row, from Cummins & Rudman's coefficients)
   // and, for now, the kernel weights W_wf of their fluid neighbours.
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     if (P.gid[j] == P.gid[i]) return;
-    const double c =
-        consistent && P.kind[i] == kFluid
-            ? -P.m[i] / P.rho[i] * consistent_laplacian_coefficient((*consistent)[i], P.m[j] / P.rho[j], g)
-            : P.m[i] * ppe_pair_coefficient(P.m[j], P.rho[i], P.rho[j], morris_factor(g, K.h()));
+    const double c = consistent && P.kind[i] == kFluid
+                         ? -P.m[i] / P.rho[i] * consistent_laplacian_coefficient((*consistent)[i], P.m[j] / P.rho[j], g)
+                         : P.m[i] * ppe_pair_coefficient(P.m[j], P.rho[i], P.rho[j], morris_factor(g, K.h()));
     da[di[i]] -= c;
     if (static_cast<long>(i) == pinned) pinned_equation.emplace_back(P.gid[j], c);
     if (!has_entry(i, j)) return;

@@ -63,11 +63,11 @@ template <int D> void PressurePoisson<D>::destroy_system() {
   if (x_) VecDestroy(&x_);
 }
 
-template <int D>
-void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
-                                  const Vector<D>& body_force, const std::vector<char>* dirichlet,
-                                  const std::vector<LaplacianCorrection<D>>* consistent,
-                                  const SurfaceNodes<D>* nodes, const WallImpact<D>* impact) {
+template <int D> void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>& nh,
+                                                   const Kernel<D>& K, const Vector<D>& body_force,
+                                                   const std::vector<char>* dirichlet,
+                                                   const std::vector<LaplacianCorrection<D>>* consistent,
+                                                   const SurfaceNodes<D>* nodes, const WallImpact<D>* impact) {
   const std::size_t n = P.n_owned;
   kind_.assign(P.kind.begin(), P.kind.begin() + n);
   if (dirichlet) dirichlet_ = *dirichlet;
@@ -204,9 +204,9 @@ template <int D> void PressurePoisson<D>::spread_pinned_residual(double pinned_r
 // the pinned particle, all of it would land on that particle as a point source, whose pressure
 // spike can expel it through the wall (docs/verification/lid_driven_cavity.md, "Design measurements").
 // So the net source is spread evenly over the fluid rows instead.
-template <int D>
-double PressurePoisson<D>::remove_net_source(const std::vector<double>& source, const std::vector<double>& mass,
-                                             PetscScalar* b, PetscInt n) const {
+template <int D> double PressurePoisson<D>::remove_net_source(const std::vector<double>& source,
+                                                              const std::vector<double>& mass, PetscScalar* b,
+                                                              PetscInt n) const {
   // The pinned particle's continuity equation is dropped from the system but still counts here, and
   // its share of the mean is part of the right-hand side that spread_pinned_residual restores.
   double sums[2] = {0.0, 0.0};  // sum of -m s over the fluid particles, their number
@@ -223,9 +223,9 @@ double PressurePoisson<D>::remove_net_source(const std::vector<double>& source, 
   return mean;
 }
 
-template <int D>
-StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const std::vector<double>& mass,
-                                     std::vector<double>& p, bool use_guess, bool correction) {
+template <int D> StepReport PressurePoisson<D>::solve(const std::vector<double>& source,
+                                                      const std::vector<double>& mass, std::vector<double>& p,
+                                                      bool use_guess, bool correction) {
   PetscScalar *b, *x;
   PetscInt n;
   SPH_PETSC(VecGetLocalSize(b_, &n));
@@ -259,10 +259,8 @@ StepReport PressurePoisson<D>::solve(const std::vector<double>& source, const st
   PetscReal rtol, atol, dtol;
   PetscInt max_it;
   SPH_PETSC(KSPGetTolerances(ksp_, &rtol, &atol, &dtol, &max_it));
-  if (correction)
-    SPH_PETSC(KSPSetTolerances(ksp_, rtol, std::max(atol, rtol * first_rhs_norm_), dtol, max_it));
-  else
-    SPH_PETSC(VecNorm(b_, NORM_2, &first_rhs_norm_));
+  if (correction) SPH_PETSC(KSPSetTolerances(ksp_, rtol, std::max(atol, rtol * first_rhs_norm_), dtol, max_it));
+  else SPH_PETSC(VecNorm(b_, NORM_2, &first_rhs_norm_));
   SPH_PETSC(KSPSolve(ksp_, b_, x_));
   if (correction) SPH_PETSC(KSPSetTolerances(ksp_, rtol, atol, dtol, max_it));
   view_solve();

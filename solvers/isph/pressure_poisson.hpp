@@ -34,8 +34,8 @@
 #include <string>
 #include <vector>
 
-#include "src/run/solver.hpp"
 #include "solvers/isph/ppe_rows.hpp"
+#include "src/run/solver.hpp"
 
 namespace sph {
 
@@ -69,8 +69,8 @@ template <int D> class PressurePoisson {
   // Particles flagged in `dirichlet` (free surface) get the row p = 0.
   void assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
                 const Vector<D>& body_force = Vector<D>::Zero(), const std::vector<char>* dirichlet = nullptr,
-                const std::vector<LaplacianCorrection<D>>* consistent = nullptr,
-                const SurfaceNodes<D>* nodes = nullptr, const WallImpact<D>* impact = nullptr);
+                const std::vector<LaplacianCorrection<D>>* consistent = nullptr, const SurfaceNodes<D>* nodes = nullptr,
+                const WallImpact<D>* impact = nullptr);
 
   // Solves div(grad p / rho) = source (one value per owned particle). With use_guess, p holds the
   // initial guess on entry (the previous step's pressure: a good one); otherwise the KSP starts from
@@ -108,22 +108,22 @@ template <int D> class PressurePoisson {
   ::Mat P_ = nullptr;  // the preconditioner's matrix (lump_weak_entries), or null: A_ itself
   ::Vec b_ = nullptr, x_ = nullptr;
   MatNullSpace nullspace_ = nullptr;
-  bool nonsymmetric_ = false;    // wall rows or the consistent Laplacian
-  PetscReal first_rhs_norm_ = 0.0;  // |b| of the last solve that was not a correction
+  bool nonsymmetric_ = false;         // wall rows or the consistent Laplacian
+  PetscReal first_rhs_norm_ = 0.0;    // |b| of the last solve that was not a correction
   PetscViewer mat_viewer_ = nullptr;  // -mat_view (see set_from_options)
   PetscViewerFormat mat_format_ = PETSC_VIEWER_DEFAULT;
-  long pinned_ = -1;             // local row pinned to p = 0 (closed domains), -1: none
-  bool closed_ = false;          // walls, no Dirichlet rows: one fluid pressure is pinned on some rank
-  ::Vec pinned_equation_ = nullptr;  // closed domains: the pinned row's continuity equation, a_k
-  ::Vec spread_ = nullptr;           // z with A z = 1 on the fluid rows but the pinned one, 0 elsewhere
-  PetscScalar spread_denominator_ = 0.0;  // a_k . z - 1
-  PetscInt spread_iterations_ = 0;   // the KSP iterations z took, counted with the next solve
-  bool regularised_ = false;     // periodic and non-symmetric: the diagonal is shifted (see assemble)
+  long pinned_ = -1;                              // local row pinned to p = 0 (closed domains), -1: none
+  bool closed_ = false;                           // walls, no Dirichlet rows: one fluid pressure is pinned on some rank
+  ::Vec pinned_equation_ = nullptr;               // closed domains: the pinned row's continuity equation, a_k
+  ::Vec spread_ = nullptr;                        // z with A z = 1 on the fluid rows but the pinned one, 0 elsewhere
+  PetscScalar spread_denominator_ = 0.0;          // a_k . z - 1
+  PetscInt spread_iterations_ = 0;                // the KSP iterations z took, counted with the next solve
+  bool regularised_ = false;                      // periodic and non-symmetric: the diagonal is shifted (see assemble)
   static constexpr double regularisation = 1e-8;  // eps: the shift over the mean diagonal
-  std::vector<int> kind_;        // particle kind of each owned row
-  std::vector<char> dirichlet_;  // rows with p = 0
-  PpeRows rows_;                 // the matrix rows, and the right-hand side of wall rows
-  PpeRows pc_rows_;              // P_'s rows
+  std::vector<int> kind_;                         // particle kind of each owned row
+  std::vector<char> dirichlet_;                   // rows with p = 0
+  PpeRows rows_;                                  // the matrix rows, and the right-hand side of wall rows
+  PpeRows pc_rows_;                               // P_'s rows
   // -ppe_pc_drop_tol (see assemble and lump_weak_entries). The default is the fastest pressure solve
   // across 2D and 3D scenes, lattices and disordered particles (docs/pressure-solve.md, "The
   // preconditioner's matrix").

@@ -2,7 +2,6 @@
 // Pair physics of weakly-compressible SPH: each function is one i-j interaction, add_rates_pair the
 // whole of one pair's contribution to the rates; the loops live in the solver (wcsph_solver.cpp).
 #include <cmath>
-
 #include <vector>
 
 #include "src/core/integer_power.hpp"
@@ -33,9 +32,9 @@ inline double continuity_pair(double rho_i, double Vj, const Vector<D>& uij, con
 // psi_ij = 2 (rho_j - rho_i) (x_j - x_i) / |x_j - x_i|^2, i.e. delta h c0 times a Morris Laplacian of rho.
 // Antuono et al. (2010) subtract the part a linear density field would give: (G_i + G_j) . grad_i W_ij V_j
 // with G the corrected density gradient, so hydrostatic stratification is not diffused.
-template <int D>
-inline double density_diffusion_pair(double delta_h_c0, double rho_i, double rho_j, double Vj, double F,
-                                     const Vector<D>& Gi, const Vector<D>& Gj, const PairGeometry<D>& g) {
+template <int D> inline double density_diffusion_pair(double delta_h_c0, double rho_i, double rho_j, double Vj,
+                                                      double F, const Vector<D>& Gi, const Vector<D>& Gj,
+                                                      const PairGeometry<D>& g) {
   return delta_h_c0 * Vj * (-2.0 * (rho_j - rho_i) * F - (Gi + Gj).dot(g.gradW));
 }
 
@@ -44,9 +43,8 @@ struct MonaghanAV {
   double alpha = 0.0, beta = 0.0, epsilon = 0.01;
   bool active() const { return alpha > 0.0 || beta > 0.0; }
   // The sound speeds come from the equation of state, and only for approaching pairs: std::pow.
-  template <int D>
-  double Pi(double h, const TaitEos& eos, double rho_i, double rho_j, const Vector<D>& uij,
-            const PairGeometry<D>& g) const {
+  template <int D> double Pi(double h, const TaitEos& eos, double rho_i, double rho_j, const Vector<D>& uij,
+                             const PairGeometry<D>& g) const {
     const double ur = uij.dot(g.rij);
     if (ur >= 0.0) return 0.0;
     const double c_mean = 0.5 * (eos.sound_speed(rho_i) + eos.sound_speed(rho_j));
@@ -55,9 +53,8 @@ struct MonaghanAV {
 };
 
 // Momentum-conserving pressure (+ artificial viscosity) acceleration on i from j.
-template <int D>
-inline Vector<D> pressure_acceleration_pair(double mj, double pi, double pj, double rho_i, double rho_j,
-                                            double Pi_ij, const PairGeometry<D>& g) {
+template <int D> inline Vector<D> pressure_acceleration_pair(double mj, double pi, double pj, double rho_i,
+                                                             double rho_j, double Pi_ij, const PairGeometry<D>& g) {
   return (-mj * (pi / (rho_i * rho_i) + pj / (rho_j * rho_j) + Pi_ij)) * g.gradW;
 }
 
@@ -75,9 +72,9 @@ template <int D> struct RateSums {
 // The fields and settings of one rates evaluation that the pair physics reads.
 template <int D> struct RatesInputs {
   const Particles<D>& P;
-  const std::vector<Vector<D>>& uv;                        // velocities the viscous term sees (walls mirrored)
-  const std::vector<Vector<D>>& grad_rho;                  // Antuono's density gradients (empty: Molteni)
-  const std::vector<double>& diffused;                     // the density field the diffusion acts on
+  const std::vector<Vector<D>>& uv;        // velocities the viscous term sees (walls mirrored)
+  const std::vector<Vector<D>>& grad_rho;  // Antuono's density gradients (empty: Molteni)
+  const std::vector<double>& diffused;     // the density field the diffusion acts on
   const TaitEos& eos;
   const MonaghanAV& av;
   double h, inv_R, nu, delta_h_c0;
@@ -90,8 +87,8 @@ template <int D> struct RatesInputs {
 // continuity (corrected sums or the plain form) and delta-SPH density diffusion. Always inlined into
 // the pair loop, so that the sums stay in registers: out of line it is slower than the loop body it
 // replaced (docs/performance.md, "Design measurements").
-template <int D>
-[[gnu::always_inline]] inline void add_rates_pair(const RatesInputs<D>& in, RateSums<D>& s, int i, int j, const PairGeometry<D>& g) {
+template <int D> [[gnu::always_inline]] inline void add_rates_pair(const RatesInputs<D>& in, RateSums<D>& s, int i,
+                                                                   int j, const PairGeometry<D>& g) {
   const Particles<D>& P = in.P;
   const Vector<D> zero = Vector<D>::Zero();
   const Vector<D> uij = P.v[i] - P.v[j];
@@ -107,7 +104,8 @@ template <int D>
   const double F = morris_factor(g, in.h);
   if (in.viscous) {
     if (in.consistent) s.viscous.add(Vj, g, in.inv_R, Vector<D>(in.uv[j] - in.uv[i]));
-    else s.acc += morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], in.nu, in.nu, F, Vector<D>(in.uv[i] - in.uv[j]));
+    else
+      s.acc += morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], in.nu, in.nu, F, Vector<D>(in.uv[i] - in.uv[j]));
   }
   if (in.continuity) {
     // Walls count as at rest here: every wall is fixed or slides along itself (the cavity lid), so
@@ -126,10 +124,9 @@ template <int D>
     // Fourtakas et al. (2019): the hydrostatic density difference of the pair, (rho0 g / c0^2) . (x_j - x_i)
     // to first order in g h / c0^2, is not diffused: still water stays still.
     if (in.diffuse)
-      s.drho += density_diffusion_pair(in.delta_h_c0, in.diffused[i],
-                                       in.diffused[j] + in.hydrostatic_density_gradient.dot(g.rij), Vj, F,
-                                       in.grad_rho.empty() ? zero : in.grad_rho[i],
-                                       in.grad_rho.empty() ? zero : in.grad_rho[j], g);
+      s.drho += density_diffusion_pair(
+          in.delta_h_c0, in.diffused[i], in.diffused[j] + in.hydrostatic_density_gradient.dot(g.rij), Vj, F,
+          in.grad_rho.empty() ? zero : in.grad_rho[i], in.grad_rho.empty() ? zero : in.grad_rho[j], g);
   }
 }
 

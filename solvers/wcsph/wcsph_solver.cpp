@@ -4,8 +4,8 @@
 #include <sstream>
 
 #include "src/boundary/adami_wall.hpp"
-#include "src/core/options.hpp"
 #include "src/core/log_events.hpp"
+#include "src/core/options.hpp"
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/free_surface.hpp"
 #include "src/sph/kernel_average.hpp"
@@ -18,7 +18,8 @@ namespace sph {
 namespace {
 const char* const density_names[] = {"continuity", "summation"};
 const char* const diffusion_names[] = {"none", "molteni", "antuono", "particle", "fourtakas"};
-const char* const diffusion_models[] = {"none", "MolteniColagrossi", "Antuono", "MolteniColagrossiParticleScale", "Fourtakas"};
+const char* const diffusion_models[] = {"none", "MolteniColagrossi", "Antuono", "MolteniColagrossiParticleScale",
+                                        "Fourtakas"};
 const char* const gradient_names[] = {"auto", "corrected", "symmetric"};
 
 struct RawOptions {
@@ -40,7 +41,9 @@ PetscErrorCode read_options(RawOptions* o) {
                              "(Morris et al. 1997; 10 keeps density variations ~1%)",
                              "", o->c0_factor, &o->c0_factor, nullptr));
   PetscCall(PetscOptionsReal("-tait_gamma", "Tait equation-of-state exponent", "", o->gamma, &o->gamma, nullptr));
-  PetscCall(PetscOptionsReal("-cfl", "WCSPH: acoustic Courant number, dt <= cfl h / (c0 + U_max) (ISPH reads -cfl as an advective one)", "", o->cfl, &o->cfl, nullptr));
+  PetscCall(PetscOptionsReal(
+      "-cfl", "WCSPH: acoustic Courant number, dt <= cfl h / (c0 + U_max) (ISPH reads -cfl as an advective one)", "",
+      o->cfl, &o->cfl, nullptr));
   PetscCall(PetscOptionsEList("-density", "Density: continuity equation or kernel summation", "", density_names, 2,
                               density_names[o->density], &o->density, nullptr));
   PetscCall(PetscOptionsEList("-density_diffusion",
@@ -50,10 +53,13 @@ PetscErrorCode read_options(RawOptions* o) {
                               "difference, Fourtakas et al. 2019; the default under gravity, else molteni)",
                               "", diffusion_names, 5, diffusion_names[o->diffusion], &o->diffusion, &o->diffusion_set));
   PetscCall(PetscOptionsReal("-delta", "delta-SPH coefficient", "", o->delta, &o->delta, nullptr));
-  PetscCall(PetscOptionsReal("-av_alpha", "WCSPH: Monaghan artificial viscosity alpha (default 0: off; the compressible solver's default is 1)", "", o->alpha, &o->alpha, nullptr));
+  PetscCall(PetscOptionsReal(
+      "-av_alpha",
+      "WCSPH: Monaghan artificial viscosity alpha (default 0: off; the compressible solver's default is 1)", "",
+      o->alpha, &o->alpha, nullptr));
   PetscCall(PetscOptionsReal("-av_beta", "Monaghan artificial viscosity beta", "", o->beta, &o->beta, nullptr));
-  PetscCall(PetscOptionsReal("-av_epsilon", "Artificial viscosity singularity guard epsilon", "", o->epsilon, &o->epsilon,
-                             nullptr));
+  PetscCall(PetscOptionsReal("-av_epsilon", "Artificial viscosity singularity guard epsilon", "", o->epsilon,
+                             &o->epsilon, nullptr));
   PetscCall(PetscOptionsEList("-operators",
                               "Continuity divergence and viscous Laplacian: consistent (corrected divergence, "
                               "consistent Laplacian) or classic (plain divergence, Morris)",
@@ -89,11 +95,26 @@ PetscErrorCode read_options(RawOptions* o) {
 }  // namespace
 
 template <int D> void WcsphSolver<D>::set_from_options() {
-  RawOptions o{c0_, c0_factor_, eos_.gamma, cfl_, delta_, av_.alpha, av_.beta, av_.epsilon,
-               shifting_model_.A, static_cast<PetscInt>(density_), static_cast<PetscInt>(diffusion_),
-               static_cast<PetscInt>(operators_), static_cast<PetscInt>(viscous_laplacian_), static_cast<PetscInt>(gradient_),
-               static_cast<PetscInt>(shifting_model_.rate), static_cast<PetscInt>(shifting_model_.scales), shifting_,
-               closed_volume_option_ > 0 ? PETSC_TRUE : PETSC_FALSE, PETSC_FALSE, PETSC_FALSE,
+  RawOptions o{c0_,
+               c0_factor_,
+               eos_.gamma,
+               cfl_,
+               delta_,
+               av_.alpha,
+               av_.beta,
+               av_.epsilon,
+               shifting_model_.A,
+               static_cast<PetscInt>(density_),
+               static_cast<PetscInt>(diffusion_),
+               static_cast<PetscInt>(operators_),
+               static_cast<PetscInt>(viscous_laplacian_),
+               static_cast<PetscInt>(gradient_),
+               static_cast<PetscInt>(shifting_model_.rate),
+               static_cast<PetscInt>(shifting_model_.scales),
+               shifting_,
+               closed_volume_option_ > 0 ? PETSC_TRUE : PETSC_FALSE,
+               PETSC_FALSE,
+               PETSC_FALSE,
                prepared_start_ ? PETSC_TRUE : PETSC_FALSE};
   SPH_PETSC(read_options(&o));
   require(o.c0 >= 0, "-c0", "non-negative", o.c0);
@@ -146,8 +167,9 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
   // removes (docs/verification/taylor_green.md, "WCSPH with particle-scale delta-SPH").
   if (prepared_start_) {
     if (!scene.physics.slow_manifold_velocity)
-      throw Error("-prepared_start needs a case that gives its start's slow-manifold velocity (taylor_green "
-                  "does; this case does not): remove the option");
+      throw Error(
+          "-prepared_start needs a case that gives its start's slow-manifold velocity (taylor_green "
+          "does; this case does not): remove the option");
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (P.kind[i] == kFluid) P.v[i] += scene.physics.slow_manifold_velocity(P.x[i], eos_.c0);
   }
@@ -167,13 +189,15 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
   // Where a wall or a free surface cuts the kernel support, the kernel average of rho is not its
   // resolved part, and rho minus it would not be particle-scale noise.
   if (diffusion_ == DensityDiffusion::Particle && (walls_ || scene.physics.free_surface))
-    throw Error("-density_diffusion particle needs a scene without walls or a free surface (the kernel average that "
-                "separates the particle scale is cut there); use -density_diffusion molteni");
+    throw Error(
+        "-density_diffusion particle needs a scene without walls or a free surface (the kernel average that "
+        "separates the particle scale is cut there); use -density_diffusion molteni");
   // A closed or periodic box fixes the fluid's volume; a free surface lets the weakly compressible
   // fluid change it (hydrostatic compression), so there the constraint would be wrong.
   if (closed_volume_option_ > 0 && scene.physics.free_surface)
-    throw Error("-closed_volume 1 needs a scene without a free surface (a free surface lets the fluid's volume "
-                "change); remove the option");
+    throw Error(
+        "-closed_volume 1 needs a scene without a free surface (a free surface lets the fluid's volume "
+        "change); remove the option");
   closed_volume_ = closed_volume_option_ < 0 ? !scene.physics.free_surface : closed_volume_option_ > 0;
   if (gradient_ == WcsphGradient::Auto)
     gradient_ = scene.physics.free_surface ? WcsphGradient::Symmetric : WcsphGradient::Corrected;
@@ -280,17 +304,32 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   const bool corrected_continuity = consistent && corrected_gradient && continuity;
   // Sums finished after the pair loop: the moment matrix of the kernel-gradient correction, the
   // velocity gradient of the corrected continuity equation and the pressure-difference sum.
-  std::vector<Tensor<D>> M(corrected_gradient ? n : 0, Tensor<D>::Zero()), grad_u(corrected_continuity ? n : 0, Tensor<D>::Zero());
+  std::vector<Tensor<D>> M(corrected_gradient ? n : 0, Tensor<D>::Zero()),
+      grad_u(corrected_continuity ? n : 0, Tensor<D>::Zero());
   std::vector<Vector<D>> grad_p(corrected_gradient ? n : 0, Vector<D>::Zero());
 
   acc_.assign(n, Vector<D>::Zero());
   drho_.assign(n, 0.0);
   const double inv_R = 1.0 / K.support_radius();
   const std::vector<double>& diffused = rho_fine.empty() ? P.rho : rho_fine;
-  wcsph::RatesInputs<D> in{P,     uv,         grad_rho,       diffused,   eos_,       av_,
-                                 h,     inv_R,      phys.nu,        delta_h_c0, phys.viscous(),
-                                 consistent, corrected_gradient, continuity, corrected_continuity, diffuse};
-  if (diffusion_ == DensityDiffusion::Fourtakas) in.hydrostatic_density_gradient = eos_.rho0 * phys.gravity / (eos_.c0 * eos_.c0);
+  wcsph::RatesInputs<D> in{P,
+                           uv,
+                           grad_rho,
+                           diffused,
+                           eos_,
+                           av_,
+                           h,
+                           inv_R,
+                           phys.nu,
+                           delta_h_c0,
+                           phys.viscous(),
+                           consistent,
+                           corrected_gradient,
+                           continuity,
+                           corrected_continuity,
+                           diffuse};
+  if (diffusion_ == DensityDiffusion::Fourtakas)
+    in.hydrostatic_density_gradient = eos_.rho0 * phys.gravity / (eos_.c0 * eos_.c0);
   const bool consistent_viscous = consistent && phys.viscous();
   // Each particle's sums live in locals while its pairs are visited, and are stored once. The
   // consistent viscous Laplacian is gathered in the same loop as the rest, which saves a pass over the
@@ -388,17 +427,20 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
   // Wall particles have zero rates: they keep their prescribed velocity and place.
   std::vector<LeapfrogScalar> scalars;
   if (continuity) scalars.push_back({&P.rho, &drho_});
-  leapfrog_step<D>(dt, n, P.x, P.v, acc_, scalars, [&](std::size_t i) { return P.kind[i] == kFluid; }, [&] {
-    if (!nh.update(P)) nh.halo().update(P.v);
-    nh.halo().update(P.rho);
-    compute_rates();
-  });
+  leapfrog_step<D>(
+      dt, n, P.x, P.v, acc_, scalars, [&](std::size_t i) { return P.kind[i] == kFluid; },
+      [&] {
+        if (!nh.update(P)) nh.halo().update(P.v);
+        nh.halo().update(P.rho);
+        compute_rates();
+      });
   if (shifting_) {
     if (!nh.update(P)) nh.halo().update(P.rho);
     // At a free surface particles shift only along it (Lind et al. 2012), beside it never outwards.
     ShiftBoundary<D> boundary;
     if (scene_->physics.free_surface)
-      boundary = free_surface_.shift_boundary(P, nh, scene_->kernel, free_surface_.detect(P, nh.list(), scene_->kernel, true));
+      boundary =
+          free_surface_.shift_boundary(P, nh, scene_->kernel, free_surface_.detect(P, nh.list(), scene_->kernel, true));
     shift_particles(P, nh, scene_->kernel, shifting_model_, scene_->dx, largest_speed(P), dt, {&P.rho},
                     scene_->physics.free_surface ? &boundary : nullptr);
   }
@@ -415,16 +457,17 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
   if (c0_ == 0) models["equation_of_state"]["c0_set_by"] = speed_scale_name_;
   models["density"] = density_names[static_cast<int>(density_)];
   if (diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity)
-    models["density_diffusion"] = {{"model", diffusion_models[static_cast<int>(diffusion_)]},
-                                   {"delta", delta_}};
+    models["density_diffusion"] = {{"model", diffusion_models[static_cast<int>(diffusion_)]}, {"delta", delta_}};
   if (av_.active())
-    models["artificial_viscosity"] = {{"model", "MonaghanAV"}, {"alpha", av_.alpha}, {"beta", av_.beta},
-                                      {"epsilon", av_.epsilon}};
+    models["artificial_viscosity"] = {
+        {"model", "MonaghanAV"}, {"alpha", av_.alpha}, {"beta", av_.beta}, {"epsilon", av_.epsilon}};
   if (phys.viscous())
-    models["viscosity"] = {{"model", operators_ == OperatorSet::Consistent ? "ConsistentLaplacian" : "MorrisViscosity"},
-                           {"nu", phys.nu},
-                           {"smoothing_error", smoothing_error_description(operators_ == OperatorSet::Consistent &&
-                                                                            viscous_laplacian_ == ViscousLaplacian::Fourth && !phys.free_surface)}};
+    models["viscosity"] = {
+        {"model", operators_ == OperatorSet::Consistent ? "ConsistentLaplacian" : "MorrisViscosity"},
+        {"nu", phys.nu},
+        {"smoothing_error",
+         smoothing_error_description(operators_ == OperatorSet::Consistent &&
+                                     viscous_laplacian_ == ViscousLaplacian::Fourth && !phys.free_surface)}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
   if (walls_) models["walls"] = {{"model", "AdamiWall"}};
   models["operators"] = operator_set_names[static_cast<int>(operators_)];

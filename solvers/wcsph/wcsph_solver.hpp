@@ -5,8 +5,8 @@
 // or the former on the density's particle-scale part only),
 // Monaghan (1992) artificial viscosity, Morris et al. (1997) laminar viscosity; kick-drift-kick
 // leapfrog (Monaghan 2005, sec. 5.3); dt from the acoustic CFL, viscous and force limits.
-#include "src/run/solver.hpp"
 #include "solvers/wcsph/wcsph_iact.hpp"
+#include "src/run/solver.hpp"
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/free_surface.hpp"
 #include "src/sph/laplacian_smoothing.hpp"
@@ -40,7 +40,8 @@ template <int D> class WcsphSolver : public Solver<D> {
   std::vector<CheckpointField> checkpoint_fields() override {
     acc_.resize(scene_->particles.n_owned), drho_.resize(scene_->particles.n_owned);
     std::vector<double>& surface = free_surface_.state(scene_->particles.n_owned);
-    return {{"acceleration", acc_.empty() ? nullptr : acc_[0].data(), D}, {"density_rate", drho_.data(), 1},
+    return {{"acceleration", acc_.empty() ? nullptr : acc_[0].data(), D},
+            {"density_rate", drho_.data(), 1},
             {"free_surface_state", surface.data(), 1}};
   }
   // The free-surface flag of the last step (1: on the surface), in free-surface scenes.

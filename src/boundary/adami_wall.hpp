@@ -31,17 +31,20 @@ template <int D> struct AdamiWall {
     s.offset.assign(P.n_owned + 1, 0);
     std::vector<double> sum(P.n_owned, 0.0);
     std::size_t current = 0;
-    for_each_pair_in_order(P, nl, K, [&](int w, int f, const PairGeometry<D>& g) {
-      // A neighbour at the edge of the support can weigh exactly 0 (r / h rounds to the support): it
-      // adds nothing, and a wall whose only fluid neighbours were such would divide 0 by 0
-      // (docs/verification/dam_break.md, "Design measurements").
-      if (P.kind[f] != kFluid || g.W == 0.0) return;
-      while (current < static_cast<std::size_t>(w)) s.offset[++current] = s.fluid.size();
-      s.fluid.push_back(f);
-      s.weight.push_back(g.W);
-      s.r_wf.push_back(g.rij);
-      sum[w] += g.W;
-    }, Rows::Walls);
+    for_each_pair_in_order(
+        P, nl, K,
+        [&](int w, int f, const PairGeometry<D>& g) {
+          // A neighbour at the edge of the support can weigh exactly 0 (r / h rounds to the support): it
+          // adds nothing, and a wall whose only fluid neighbours were such would divide 0 by 0
+          // (docs/verification/dam_break.md, "Design measurements").
+          if (P.kind[f] != kFluid || g.W == 0.0) return;
+          while (current < static_cast<std::size_t>(w)) s.offset[++current] = s.fluid.size();
+          s.fluid.push_back(f);
+          s.weight.push_back(g.W);
+          s.r_wf.push_back(g.rij);
+          sum[w] += g.W;
+        },
+        Rows::Walls);
     while (current < P.n_owned) s.offset[++current] = s.fluid.size();
     for (std::size_t w = 0; w < P.n_owned; ++w)
       for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) s.weight[k] /= sum[w];
@@ -55,10 +58,12 @@ template <int D> struct AdamiWall {
   // neighbour. Owned particles.
   static std::vector<Vector<D>> normals(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                                         const Stencil& s) {
-    const std::vector<Vector<D>> g = sum_over_pairs(P, nl, K, Vector<D>(Vector<D>::Zero()),
-                                                    [&](Vector<D>& sum, int, int j, const PairGeometry<D>& pg) {
-      if (P.kind[j] != kFluid) sum += (P.m[j] / P.rho[j]) * pg.gradW;
-    }, Rows::Walls);
+    const std::vector<Vector<D>> g = sum_over_pairs(
+        P, nl, K, Vector<D>(Vector<D>::Zero()),
+        [&](Vector<D>& sum, int, int j, const PairGeometry<D>& pg) {
+          if (P.kind[j] != kFluid) sum += (P.m[j] / P.rho[j]) * pg.gradW;
+        },
+        Rows::Walls);
     std::vector<Vector<D>> n(P.n_owned, Vector<D>::Zero());
     const double scale = 1e-3 / K.h();  // |g| of an exposed wall face is O(1/h)
     for (std::size_t w = 0; w < P.n_owned; ++w) {

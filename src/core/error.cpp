@@ -10,8 +10,8 @@ namespace {
 // frame on the way up, the first call carries the text written at the point of failure.
 std::string g_first_message;
 
-PetscErrorCode remember_error(MPI_Comm, int, const char*, const char*, PetscErrorCode n,
-                              PetscErrorType p, const char* mess, void*) {
+PetscErrorCode remember_error(MPI_Comm, int, const char*, const char*, PetscErrorCode n, PetscErrorType p,
+                              const char* mess, void*) {
   if (p == PETSC_ERROR_INITIAL) {
     const char* text = nullptr;
     PetscErrorMessage(n, &text, nullptr);

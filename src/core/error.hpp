@@ -1,6 +1,7 @@
 #pragma once
 // Errors that reach the user as one line: what went wrong and how to fix it.
 #include <petscsys.h>
+
 #include <stdexcept>
 #include <string>
 

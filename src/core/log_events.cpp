@@ -20,10 +20,11 @@ struct Registered {
   PetscLogStage time_loop = 0;
 
   Registered() {
-    static const char* const names[] = {"SPHStep",     "SPHNbrUpdate", "SPHNbrRebuild",  "SPHDensity", "SPHForces",
-                                        "SPHShifting", "SPHDiagnostics", "SPHOutput", "SPHCheckpoint"};
+    static const char* const names[] = {"SPHStep",     "SPHNbrUpdate",   "SPHNbrRebuild", "SPHDensity",   "SPHForces",
+                                        "SPHShifting", "SPHDiagnostics", "SPHOutput",     "SPHCheckpoint"};
     static_assert(sizeof(names) / sizeof(names[0]) == static_cast<int>(LogEvent::Count), "one name per event");
-    for (int k = 0; k < static_cast<int>(LogEvent::Count); ++k) PetscLogEventRegister(names[k], sph_class(), &events[k]);
+    for (int k = 0; k < static_cast<int>(LogEvent::Count); ++k)
+      PetscLogEventRegister(names[k], sph_class(), &events[k]);
     PetscLogStageRegister("SPH time loop", &time_loop);
   }
 };
@@ -46,9 +47,7 @@ PetscLogEvent register_log_event(const char* name) {
   return e;
 }
 
-LogEventScope::LogEventScope(PetscLogEvent e) : event_(e) {
-  (void)PetscLogEventBegin(event_, 0, 0, 0, 0);
-}
+LogEventScope::LogEventScope(PetscLogEvent e) : event_(e) { (void)PetscLogEventBegin(event_, 0, 0, 0, 0); }
 
 void LogEventScope::end() {
   if (!open_) return;

@@ -22,7 +22,18 @@
 
 namespace sph {
 
-enum class LogEvent { Step, NeighbourUpdate, NeighbourRebuild, Density, Forces, Shifting, Diagnostics, Output, Checkpoint, Count };
+enum class LogEvent {
+  Step,
+  NeighbourUpdate,
+  NeighbourRebuild,
+  Density,
+  Forces,
+  Shifting,
+  Diagnostics,
+  Output,
+  Checkpoint,
+  Count
+};
 
 // The PETSc event id of a core event; the core events (and the stage) are registered on the first
 // call, which must come after PetscInitialize.

@@ -1,17 +1,16 @@
 #include "src/core/options.hpp"
 
 #include <petscsys.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <optional>
 #include <regex>
-
-#include <unistd.h>
-#include <cstdio>
 #include <sstream>
 
 namespace sph {
@@ -28,13 +27,41 @@ namespace {
 // PETSc itself reads these after start-up (at finalisation, or as it goes), or reads them during
 // initialisation without marking them used. Exact names: a typo of one is still caught.
 const std::vector<std::string>& petsc_late_options() {
-  static const std::vector<std::string> names = {
-      "log_view", "log_view_memory", "log_view_gpu_time", "log_all", "log_trace", "log_exclude", "log_sync",
-      "log_summary", "log_mpe", "log_perfstubs", "memory_view", "malloc_view", "malloc_view_threshold",
-      "malloc_dump", "malloc_debug", "malloc_test", "malloc_requested_size", "objects_dump", "options_left",
-      "options_view", "options_monitor", "options_monitor_cancel", "info", "info_exclude", "history",
-      "citations", "fp_trap", "on_error_abort", "on_error_attach_debugger", "no_signal_handler",
-      "check_pointer_intensity", "use_gpu_aware_mpi", "error_output_stdout", "error_output_none", "saws_options"};
+  static const std::vector<std::string> names = {"log_view",
+                                                 "log_view_memory",
+                                                 "log_view_gpu_time",
+                                                 "log_all",
+                                                 "log_trace",
+                                                 "log_exclude",
+                                                 "log_sync",
+                                                 "log_summary",
+                                                 "log_mpe",
+                                                 "log_perfstubs",
+                                                 "memory_view",
+                                                 "malloc_view",
+                                                 "malloc_view_threshold",
+                                                 "malloc_dump",
+                                                 "malloc_debug",
+                                                 "malloc_test",
+                                                 "malloc_requested_size",
+                                                 "objects_dump",
+                                                 "options_left",
+                                                 "options_view",
+                                                 "options_monitor",
+                                                 "options_monitor_cancel",
+                                                 "info",
+                                                 "info_exclude",
+                                                 "history",
+                                                 "citations",
+                                                 "fp_trap",
+                                                 "on_error_abort",
+                                                 "on_error_attach_debugger",
+                                                 "no_signal_handler",
+                                                 "check_pointer_intensity",
+                                                 "use_gpu_aware_mpi",
+                                                 "error_output_stdout",
+                                                 "error_output_none",
+                                                 "saws_options"};
   return names;
 }
 
@@ -42,8 +69,8 @@ const std::vector<std::string>& petsc_late_options() {
 // a solve reads.
 const std::vector<std::string>& unprinted_options() {
   static const std::vector<std::string> names = {"options_file", "options_file_yaml", "options_string_yaml", "help",
-                                                 "version", "start_in_debugger", "stop_for_debugger", "mat_type",
-                                                 "mat_view", "pc_view", "ksp_converged_reason"};
+                                                 "version",      "start_in_debugger", "stop_for_debugger",   "mat_type",
+                                                 "mat_view",     "pc_view",           "ksp_converged_reason"};
   return names;
 }
 
@@ -207,7 +234,8 @@ enum class ValueKind { undocumented, flag, real, other };
 
 ValueKind value_kind(const std::string& help, const std::string& name, std::string* shown) {
   std::smatch m;
-  if (!std::regex_search(help, m, std::regex("\\n  -" + name + "(:?) <(now )?([^>:]*)"))) return ValueKind::undocumented;
+  if (!std::regex_search(help, m, std::regex("\\n  -" + name + "(:?) <(now )?([^>:]*)")))
+    return ValueKind::undocumented;
   *shown = m[3].str();
   while (!shown->empty() && shown->back() == ' ') shown->pop_back();
   if (m[1].length() > 0) return ValueKind::flag;
@@ -300,7 +328,8 @@ void check_unused_options(const std::vector<OptionOwner>& owners) {
       throw OptionError("option -" + name + " is read by " + join_labels(readers, ", ") + ", not by this run's " +
                         join_labels(chosen, " and ") + "; remove it or choose " +
                         (readers.size() == 1 ? readers[0]->label : "one of those"));
-    throw OptionError("unknown option -" + name + " (not used by the chosen case or solver)" + suggestion(name, owners));
+    throw OptionError("unknown option -" + name + " (not used by the chosen case or solver)" +
+                      suggestion(name, owners));
   }
 }
 

@@ -26,7 +26,7 @@ struct OptionOwner {
   std::string label;
   std::function<void()> read;  // reads its options blocks (with -help set they print: the documentation)
   std::function<bool(const std::string&)> reads_late;  // options PETSc reads for it only during steps (may be empty)
-  bool active = false;         // chosen for this run
+  bool active = false;                                 // chosen for this run
 };
 
 // Before the options blocks are read: a real option of an active owner given inf or nan (PETSc parses

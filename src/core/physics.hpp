@@ -1,19 +1,18 @@
 #pragma once
 // What a scene asks of the physics; solvers compose only the terms switched on here.
 #include <functional>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "src/core/types.hpp"
 
 namespace sph {
 
 template <int D> struct Physics {
-  double rho0 = 1.0;                       // reference density
-  double nu = 0.0;                         // kinematic viscosity; 0 switches the viscous term off
-  double U = 1.0;                          // reference speed: time-step and shifting scales
-  Vector<D> gravity = Vector<D>::Zero();         // body force per unit mass; zero switches it off
+  double rho0 = 1.0;                      // reference density
+  double nu = 0.0;                        // kinematic viscosity; 0 switches the viscous term off
+  double U = 1.0;                         // reference speed: time-step and shifting scales
+  Vector<D> gravity = Vector<D>::Zero();  // body force per unit mass; zero switches it off
   // Position-dependent body force per unit mass (e.g. the toy star's -Omega^2 x), its potential (for
   // energy accounting) and a label for summary.json; an empty function switches it off.
   std::function<Vector<D>(const Vector<D>&)> external_acceleration;
@@ -44,7 +43,8 @@ template <int D> struct Physics {
   nlohmann::json describe() const {
     nlohmann::json j{{"rho0", rho0}, {"nu", nu}, {"U_ref", U}};
     if (has_body_force()) j["gravity"] = std::vector<double>(gravity.data(), gravity.data() + D);
-    if (has_external_force()) j["external_acceleration"] = external_label.empty() ? "position-dependent" : external_label;
+    if (has_external_force())
+      j["external_acceleration"] = external_label.empty() ? "position-dependent" : external_label;
     if (is_gas()) j["gas"] = {{"gamma", gamma}, {"isentropic", isentropic}};
     if (free_surface) j["free_surface"] = true;
     return j;

@@ -4,18 +4,16 @@
 // rows that the compiler unrolls. Eigen's PartialPivLU<Matrix<double, 5, 5>>::inverse() runs its
 // general kernels (a run-time-sized LU, then a triangular solve and GEMM packing for the identity's
 // columns), a large share of a step for 250 flops (docs/performance.md, "Before it").
-#include <cmath>
-
 #include <Eigen/Dense>
+#include <cmath>
 
 namespace sph {
 
 // inv = a^-1, the pivot in each column the entry of largest magnitude. Returns false, with inv
 // undefined, when a pivot is zero or not a number (a singular matrix or one holding NaN); a nearly
 // singular one passes, and its caller judges the condition number from the inverse.
-template <int n>
-bool invert_partial_pivot(Eigen::Matrix<double, n, n, Eigen::RowMajor> a,
-                          Eigen::Matrix<double, n, n, Eigen::RowMajor>& inv) {
+template <int n> bool invert_partial_pivot(Eigen::Matrix<double, n, n, Eigen::RowMajor> a,
+                                           Eigen::Matrix<double, n, n, Eigen::RowMajor>& inv) {
   inv.setIdentity();
   for (int k = 0; k < n; ++k) {
     int pivot = k;

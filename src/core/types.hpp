@@ -1,8 +1,9 @@
 #pragma once
 // Small dense algebra shared by the whole code: D is the spatial dimension (1, 2 or 3).
 // (Not named Vec/Mat: those are PETSc types in the global namespace.)
-#include <Eigen/Dense>
 #include <petscsys.h>
+
+#include <Eigen/Dense>
 
 namespace sph {
 

@@ -3,7 +3,6 @@
 #include <petscis.h>
 #include <petscvec.h>
 #include <petscviewer.h>
-
 #include <unistd.h>
 
 #include <algorithm>
@@ -28,8 +27,9 @@ namespace {
 template <int D> std::vector<CheckpointField> particle_fields(Particles<D>& P, std::vector<double>& kind) {
   double* x = P.x.empty() ? nullptr : P.x[0].data();
   double* v = P.v.empty() ? nullptr : P.v[0].data();
-  return {{"x", x, D}, {"v", v, D}, {"m", P.m.data(), 1}, {"rho", P.rho.data(), 1}, {"p", P.p.data(), 1},
-          {"kind", kind.data(), 1}};
+  return {{"x", x, D},          {"v", v, D},
+          {"m", P.m.data(), 1}, {"rho", P.rho.data(), 1},
+          {"p", P.p.data(), 1}, {"kind", kind.data(), 1}};
 }
 
 // This rank's share of the id range in the file's vectors (whole particles, so blocks stay whole).
@@ -42,8 +42,7 @@ template <int D> PetscInt id_share(const Particles<D>& P) {
 // Moves a field between this rank's particles and a global vector ordered by permanent particle id
 // (entry id * components + c), whichever rank holds the particle: what makes a checkpoint readable on
 // another rank count and independent of how the particles were partitioned.
-template <int D>
-void transfer(::Vec global, const Particles<D>& P, double* data, int components, bool to_global) {
+template <int D> void transfer(::Vec global, const Particles<D>& P, double* data, int components, bool to_global) {
   const PetscInt n = static_cast<PetscInt>(P.n_owned) * components;
   std::vector<PetscInt> where(n);
   for (std::size_t i = 0; i < P.n_owned; ++i)
@@ -169,15 +168,16 @@ std::string seal(const std::string& tmp, const std::string& path, nlohmann::json
   put_u64(tail + 8, fnv1a(text));
   std::memcpy(tail + 16, kMagic, 8);
   std::fseek(f, 0, SEEK_END);
-  bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fwrite(tail, 1, kTrailer, f) == kTrailer &&
-            std::fflush(f) == 0 && fsync(fileno(f)) == 0;
+  bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() &&
+            std::fwrite(tail, 1, kTrailer, f) == kTrailer && std::fflush(f) == 0 && fsync(fileno(f)) == 0;
   int write_errno = errno;
   if (fault_at("full", write_number)) ok = false, write_errno = ENOSPC;
   ok = (std::fclose(f) == 0) && ok;
   if (!ok) return std::strerror(write_errno);
   fault_point("trailer", write_number);
   if (const std::string moved = keep_older(path, kept); !moved.empty()) return moved;
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) return std::string("renaming the temporary file failed (") + std::strerror(errno) + ")";
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    return std::string("renaming the temporary file failed (") + std::strerror(errno) + ")";
   fault_point("renamed", write_number);
   return "";
 }
@@ -198,8 +198,9 @@ std::string unseal(const std::string& path, std::string* header_text) {
   if (size < static_cast<long>(kTrailer) || std::fseek(f, size - static_cast<long>(kTrailer), SEEK_SET) != 0 ||
       std::fread(tail, 1, kTrailer, f) != kTrailer || std::memcmp(tail + 16, kMagic, 8) != 0) {
     std::fclose(f);
-    return broken + " (no header at its end: truncated, or written by an older version); start a new run or "
-                    "restart from another checkpoint";
+    return broken +
+           " (no header at its end: truncated, or written by an older version); start a new run or "
+           "restart from another checkpoint";
   }
   const std::uint64_t len = get_u64(tail);
   if (len > static_cast<std::uint64_t>(size) - kTrailer) {
@@ -211,7 +212,8 @@ std::string unseal(const std::string& path, std::string* header_text) {
   std::fseek(f, static_cast<long>(data_bytes), SEEK_SET);
   if (std::fread(header_text->data(), 1, len, f) != len) err = broken + " (header unreadable)";
   else if (fnv1a(*header_text) != get_u64(tail + 8))
-    err = "checkpoint " + path + " fails its header checksum (the header was changed after it was written); "
+    err = "checkpoint " + path +
+          " fails its header checksum (the header was changed after it was written); "
           "restart from another checkpoint or start a new run";
   nlohmann::json header;
   if (err.empty()) {
@@ -222,7 +224,8 @@ std::string unseal(const std::string& path, std::string* header_text) {
   std::uint64_t hash = 0;
   if (err.empty() && (header.value("data_bytes", std::uint64_t(0)) != data_bytes || !checksum(f, data_bytes, &hash) ||
                       header["data_checksum"].get<std::uint64_t>() != hash))
-    err = "checkpoint " + path + " fails its checksum (the data was changed or damaged after it was written); "
+    err = "checkpoint " + path +
+          " fails its checksum (the data was changed or damaged after it was written); "
           "restart from another checkpoint or start a new run";
   std::fclose(f);
   return err;
@@ -230,9 +233,9 @@ std::string unseal(const std::string& path, std::string* header_text) {
 
 }  // namespace
 
-template <int D>
-void write_checkpoint(const std::string& path, Particles<D>& P, const std::vector<CheckpointField>& extra,
-                      const CheckpointState<D>& state, int kept) {
+template <int D> void write_checkpoint(const std::string& path, Particles<D>& P,
+                                       const std::vector<CheckpointField>& extra, const CheckpointState<D>& state,
+                                       int kept) {
   static int writes = 0;
   ++writes;
   std::vector<double> kind(P.kind.begin(), P.kind.begin() + P.n_owned);
@@ -240,8 +243,14 @@ void write_checkpoint(const std::string& path, Particles<D>& P, const std::vecto
   fields.insert(fields.end(), extra.begin(), extra.end());
   const std::string tmp = path + ".tmp";
   const bool root = world_rank() == 0;
-  nlohmann::json header{{"format", "sph checkpoint 1"}, {"t", state.t}, {"step", state.step}, {"n_global", P.n_global},
-                        {"dim", D}, {"scalars", state.scalars}, {"run", state.run}, {"fields", nlohmann::json::array()}};
+  nlohmann::json header{{"format", "sph checkpoint 1"},
+                        {"t", state.t},
+                        {"step", state.step},
+                        {"n_global", P.n_global},
+                        {"dim", D},
+                        {"scalars", state.scalars},
+                        {"run", state.run},
+                        {"fields", nlohmann::json::array()}};
   std::string error;
   try {
     PetscViewer viewer = open_viewer(tmp, FILE_MODE_WRITE);
@@ -275,8 +284,8 @@ nlohmann::json read_checkpoint_header(const std::string& path) {
   return nlohmann::json::parse(text);
 }
 
-template <int D>
-CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P, const std::vector<CheckpointField>& extra) {
+template <int D> CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P,
+                                                    const std::vector<CheckpointField>& extra) {
   const nlohmann::json header = read_checkpoint_header(path);
   if (header.value("dim", 0) != D || header.value("n_global", -1L) != static_cast<long>(P.n_global))
     throw Error("checkpoint " + path + " holds " + std::to_string(header.value("n_global", -1L)) + " particles in " +
@@ -286,7 +295,8 @@ CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P, con
   std::vector<CheckpointField> fields = particle_fields(P, kind);
   fields.insert(fields.end(), extra.begin(), extra.end());
   if (header["fields"].size() != fields.size())
-    throw Error("checkpoint " + path + " was written by another solver (field count differs); restart with the same -solver");
+    throw Error("checkpoint " + path +
+                " was written by another solver (field count differs); restart with the same -solver");
   PetscViewer viewer = open_viewer(path, FILE_MODE_READ);
   for (std::size_t k = 0; k < fields.size(); ++k) {
     const CheckpointField& f = fields[k];

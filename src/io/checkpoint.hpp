@@ -9,10 +9,9 @@
 // header from another write is refused on read. Data and header live in one file, written to
 // <path>.tmp, synced and renamed, so a crash at any point leaves the previous checkpoint or the new
 // one, never a mix, and no temporary file survives a failed write.
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "src/particles/particle_field.hpp"
 #include "src/particles/particles.hpp"
@@ -33,9 +32,9 @@ template <int D> struct CheckpointState {
 // removing <path>.tmp; the previous <path> is then untouched. With `kept` > 1 the previous ones move
 // along, <path> to <path>.1, <path>.1 to <path>.2, ..., up to <path>.<kept-1>, just before the new
 // one is renamed into place (the moves are renames and a hard link: <path> never goes missing).
-template <int D>
-void write_checkpoint(const std::string& path, Particles<D>& P, const std::vector<CheckpointField>& extra,
-                      const CheckpointState<D>& state, int kept = 1);
+template <int D> void write_checkpoint(const std::string& path, Particles<D>& P,
+                                       const std::vector<CheckpointField>& extra, const CheckpointState<D>& state,
+                                       int kept = 1);
 
 // The header of a checkpoint after checking its trailer and the data's checksum (collective: rank 0
 // reads, every rank gets the header). Throws sph::Error naming the file and what is wrong with it.

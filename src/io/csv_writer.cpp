@@ -1,12 +1,11 @@
 #include "src/io/csv_writer.hpp"
 
-#include <cstdlib>
-#include <fstream>
-
 #include <petscsys.h>
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 
 #include "src/core/error.hpp"
 

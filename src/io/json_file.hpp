@@ -6,9 +6,8 @@
 // Note: JSON has no NaN or infinity; nlohmann::json serialises NaN/Inf doubles as null. That is
 // accepted here (a diverged run's error norms then read as null). Strings that are not valid UTF-8
 // are written with U+FFFD replacement characters instead of throwing.
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace sph {
 

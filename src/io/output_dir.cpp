@@ -1,13 +1,12 @@
 #include "src/io/output_dir.hpp"
 
-#include <petscsys.h>
 #include <fcntl.h>
+#include <petscsys.h>
 #include <sys/file.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
-
 #include <filesystem>
 #include <regex>
 #include <system_error>
@@ -47,7 +46,6 @@ PetscMPIInt rank() {
   return r;
 }
 
-
 // Takes the directory's lock without waiting; on failure returns -1 and says why in `error`.
 int lock_directory(const std::string& dir, std::string* error) {
   std::error_code ec;
@@ -65,11 +63,10 @@ int lock_directory(const std::string& dir, std::string* error) {
     holder[n > 0 ? n : 0] = '\0';
     holder[std::strcspn(holder, "\n")] = '\0';
     close(fd);
-    *error = why == EWOULDBLOCK
-                 ? "output directory " + dir + " is in use by another run (" +
-                       (holder[0] ? std::string(holder) : std::string("process id not yet written")) +
-                       "); wait for it to end or choose another -output_dir"
-                 : "cannot lock " + path + " (" + std::strerror(why) + ")";
+    *error = why == EWOULDBLOCK ? "output directory " + dir + " is in use by another run (" +
+                                      (holder[0] ? std::string(holder) : std::string("process id not yet written")) +
+                                      "); wait for it to end or choose another -output_dir"
+                                : "cannot lock " + path + " (" + std::strerror(why) + ")";
     return -1;
   }
   char host[256] = "";
@@ -129,9 +126,8 @@ void remove_frames_from(const std::string& dir, const std::string& basename, int
 
 bool is_in_directory(const std::string& checkpoint, const std::string& dir) {
   std::error_code ec1, ec2;
-  const fs::path a = fs::weakly_canonical(fs::path(checkpoint).parent_path().empty() ? fs::path(".")
-                                                                                      : fs::path(checkpoint).parent_path(),
-                                          ec1);
+  const fs::path a = fs::weakly_canonical(
+      fs::path(checkpoint).parent_path().empty() ? fs::path(".") : fs::path(checkpoint).parent_path(), ec1);
   const fs::path b = fs::weakly_canonical(dir.empty() ? fs::path(".") : fs::path(dir), ec2);
   return !ec1 && !ec2 && a == b;
 }

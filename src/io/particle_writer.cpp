@@ -82,8 +82,9 @@ vtkNew<vtkDoubleArray> scalar_array(const std::string& name, const std::vector<d
 Error write_failure(const std::string& path, int err) {
   const std::string why = err ? std::strerror(err) : "unknown reason";
   return Error("cannot write " + path + " (" + why + "); " +
-               (err == ENOSPC || err == EDQUOT ? "free space on the disk of -output_dir, or write fewer frames (-output_interval)"
-                                               : "check that -output_dir is writable"));
+               (err == ENOSPC || err == EDQUOT
+                    ? "free space on the disk of -output_dir, or write fewer frames (-output_interval)"
+                    : "check that -output_dir is writable"));
 }
 
 // Moves a complete temporary file over `path` (atomic on POSIX file systems): readers see the old
@@ -135,8 +136,7 @@ void write_frame(vtkXMLPolyDataWriter* writer, const std::string& path) {
 
 }  // namespace
 
-template <int D>
-ParticleWriter<D>::ParticleWriter(const std::string& output_dir, const std::string& basename)
+template <int D> ParticleWriter<D>::ParticleWriter(const std::string& output_dir, const std::string& basename)
     : dir_(output_dir.empty() ? std::string(".") : output_dir), base_(basename) {
   PetscMPIInt r = 0, s = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &r);
@@ -220,14 +220,16 @@ std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const s
   if (parallel) {
     listed = frame_stem(base_, frame) + ".pvtp";
     if (rank_ == 0) {
-      std::string m = "<?xml version=\"1.0\"?>\n"
-                      "<VTKFile type=\"PPolyData\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-                      "  <PPolyData GhostLevel=\"0\">\n"
-                      "    <PPointData>\n";
+      std::string m =
+          "<?xml version=\"1.0\"?>\n"
+          "<VTKFile type=\"PPolyData\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+          "  <PPolyData GhostLevel=\"0\">\n"
+          "    <PPointData>\n";
       for (int k = 0; k < pd->GetNumberOfArrays(); ++k) {
         vtkDataArray* a = pd->GetArray(k);
         m += "      <PDataArray type=\"" + std::string(xml_type(a)) + "\" Name=\"" + xml_attr(a->GetName()) + "\"";
-        if (a->GetNumberOfComponents() > 1) m += " NumberOfComponents=\"" + std::to_string(a->GetNumberOfComponents()) + "\"";
+        if (a->GetNumberOfComponents() > 1)
+          m += " NumberOfComponents=\"" + std::to_string(a->GetNumberOfComponents()) + "\"";
         m += "/>\n";
       }
       m += "    </PPointData>\n"
@@ -257,13 +259,15 @@ template <int D> void ParticleWriter<D>::resume(double t) {
 
 template <int D> void ParticleWriter<D>::write_pvd() const {
   if (rank_ != 0) return;
-  std::string text = "<?xml version=\"1.0\"?>\n"
-                     "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-                     "  <Collection>\n";
+  std::string text =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      "  <Collection>\n";
   for (const auto& f : frames_) {
     char ts[40];
     std::snprintf(ts, sizeof ts, "%.17g", f.first);
-    text += std::string("    <DataSet timestep=\"") + ts + "\" group=\"\" part=\"0\" file=\"" + xml_attr(f.second) + "\"/>\n";
+    text += std::string("    <DataSet timestep=\"") + ts + "\" group=\"\" part=\"0\" file=\"" + xml_attr(f.second) +
+            "\"/>\n";
   }
   text += "  </Collection>\n</VTKFile>\n";
   write_atomically(pvd_path(), text);

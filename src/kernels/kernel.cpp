@@ -7,8 +7,8 @@
 namespace sph {
 
 const std::vector<std::string>& kernel_names() {
-  static const std::vector<std::string> names = {"cubic_spline", "quintic_spline", "wendland_c2",
-                                                 "wendland_c4", "gaussian"};
+  static const std::vector<std::string> names = {"cubic_spline", "quintic_spline", "wendland_c2", "wendland_c4",
+                                                 "gaussian"};
   return names;
 }
 
@@ -28,8 +28,7 @@ constexpr double pi = M_PI;
 double sigma(KernelType t, int D) {
   switch (t) {
     case KernelType::CubicSpline: return D == 1 ? 2.0 / 3.0 : D == 2 ? 10.0 / (7.0 * pi) : 1.0 / pi;
-    case KernelType::QuinticSpline:
-      return D == 1 ? 1.0 / 120.0 : D == 2 ? 7.0 / (478.0 * pi) : 1.0 / (120.0 * pi);
+    case KernelType::QuinticSpline: return D == 1 ? 1.0 / 120.0 : D == 2 ? 7.0 / (478.0 * pi) : 1.0 / (120.0 * pi);
     // Wendland functions of s = q/2 on [0, 1]; the 1D kernels are the psi_{1,k} family.
     case KernelType::WendlandC2: return D == 1 ? 5.0 / 8.0 : D == 2 ? 7.0 / (4.0 * pi) : 21.0 / (16.0 * pi);
     case KernelType::WendlandC4: return D == 1 ? 3.0 / 4.0 : D == 2 ? 9.0 / (4.0 * pi) : 495.0 / (256.0 * pi);
@@ -62,10 +61,8 @@ template <int D> double Kernel<D>::support_factor(KernelType t) {
   return (t == KernelType::QuinticSpline || t == KernelType::Gaussian) ? 3.0 : 2.0;
 }
 
-template <int D>
-Kernel<D>::Kernel(KernelType type, double h)
-    : type_(type), h_(h), inv_h_(1.0 / h), kappa_(support_factor(type)),
-      norm_(sigma(type, D) / std::pow(h, D)) {
+template <int D> Kernel<D>::Kernel(KernelType type, double h)
+    : type_(type), h_(h), inv_h_(1.0 / h), kappa_(support_factor(type)), norm_(sigma(type, D) / std::pow(h, D)) {
   if (!(h > 0.0)) throw Error("smoothing length must be positive (got " + std::to_string(h) + ")");
 }
 

@@ -18,7 +18,7 @@ namespace sph {
 
 enum class KernelType { CubicSpline, QuinticSpline, WendlandC2, WendlandC4, Gaussian };
 
-const std::vector<std::string>& kernel_names();  // in KernelType order
+const std::vector<std::string>& kernel_names();             // in KernelType order
 KernelType kernel_type_from_name(const std::string& name);  // throws sph::Error on unknown names
 
 template <int D> class Kernel {
@@ -40,9 +40,7 @@ template <int D> class Kernel {
   // for some r = kappa h (e.g. h = 0.7), which the truncated Gaussian would turn into W(R) > 0.
   double W(double r) const { return r < support_radius() ? norm_ * shape(r * inv_h_) : 0.0; }
   // dW/dr (negative inside the support).
-  double dWdr(double r) const {
-    return r < support_radius() ? norm_ * inv_h_ * shape_derivative(r * inv_h_) : 0.0;
-  }
+  double dWdr(double r) const { return r < support_radius() ? norm_ * inv_h_ * shape_derivative(r * inv_h_) : 0.0; }
   // W[k] = W(r[k]) and dWdr[k] = dW/dr(r[k]) for k < n, the same values as W() and dWdr(): the type's
   // switch is taken once for all n, so the loop over k has no branches the compiler cannot vectorise.
   void evaluate(std::size_t n, const double* r, double* W, double* dWdr) const;
@@ -108,8 +106,8 @@ template <KernelType T, int D> inline double kernel_shape_derivative(double q) {
     return q >= 2.0 ? 0.0 : f;
   } else if constexpr (T == KernelType::WendlandC4) {
     const double s = 0.5 * q, t = 1.0 - s;
-    const double f = D == 1 ? -7.0 * s * (1.0 + 4.0 * s) * kernel_pow4(t)
-                            : -28.0 / 3.0 * s * (1.0 + 5.0 * s) * kernel_pow4(t) * t;
+    const double f =
+        D == 1 ? -7.0 * s * (1.0 + 4.0 * s) * kernel_pow4(t) : -28.0 / 3.0 * s * (1.0 + 5.0 * s) * kernel_pow4(t) * t;
     return q >= 2.0 ? 0.0 : f;
   } else {
     return q < kernel_gaussian_cut ? -2.0 * q * std::exp(-q * q) : 0.0;
@@ -139,8 +137,7 @@ template <int D> inline double Kernel<D>::shape_derivative(double q) const {
   return 0.0;
 }
 
-template <int D>
-template <KernelType T>
+template <int D> template <KernelType T>
 inline void Kernel<D>::evaluate_as(std::size_t n, const double* r, double* W, double* dWdr) const {
   const double R = support_radius(), inv_h = inv_h_, norm = norm_, norm_dq = norm_ * inv_h_;
   for (std::size_t k = 0; k < n; ++k) {

@@ -46,9 +46,8 @@ void build_compressed_rows_per_thread(std::size_t n_rows, std::vector<std::size_
 }
 
 // The same with one stateless fill_row(i, out) shared by every thread.
-template <class FillRow>
-void build_compressed_rows(std::size_t n_rows, std::vector<std::size_t>& offset, std::vector<int>& index,
-                           FillRow&& fill_row) {
+template <class FillRow> void build_compressed_rows(std::size_t n_rows, std::vector<std::size_t>& offset,
+                                                    std::vector<int>& index, FillRow&& fill_row) {
   build_compressed_rows_per_thread(n_rows, offset, index, [&] { return std::ref(fill_row); });
 }
 

@@ -19,9 +19,8 @@ template <int D> void Halo<D>::build(Particles<D>& P, const Domain<D>& domain, d
   const Vector<D> L = domain.length();
   for (int a = 0; a < D; ++a)
     if (domain.periodic[a] && 2.0 * width >= L[a])
-      throw Error("periodic box is too small for the kernel support (needs length > " +
-                  std::to_string(2.0 * width) + " along axis " + std::to_string(a) +
-                  "); use more particles or a smaller -h_over_dx");
+      throw Error("periodic box is too small for the kernel support (needs length > " + std::to_string(2.0 * width) +
+                  " along axis " + std::to_string(a) + "); use more particles or a smaller -h_over_dx");
   n_owned_ = P.n_owned;
 
   // Every rank's bounding box of owned particles, grown by the width: a particle (or a periodic image

@@ -8,9 +8,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "src/core/error.hpp"
-
 #include "src/core/domain.hpp"
+#include "src/core/error.hpp"
 #include "src/particles/particles.hpp"
 
 namespace sph {
@@ -46,9 +45,7 @@ template <int D> class Halo {
   PetscSF sf_ = nullptr;
 };
 
-template <int D>
-template <class T>
-void Halo<D>::update(std::vector<T>& field) const {
+template <int D> template <class T> void Halo<D>::update(std::vector<T>& field) const {
   field.resize(n_owned_ + shift_.size());
   if (!sf_) return;
   MPI_Datatype type;

@@ -26,11 +26,9 @@ template <int D> struct PointCloud {
 // so scattered points (an unordered start) fall back to short runs, down to one point, not to long
 // candidate lists. The lists are exact whatever the runs are: the same neighbours in the same (index)
 // order, in about half the time of a search per point or less (docs/performance.md, "Design measurements").
-template <int D>
-void NeighbourList<D>::build(const std::vector<Vector<D>>& x, std::size_t n_query, double radius) {
+template <int D> void NeighbourList<D>::build(const std::vector<Vector<D>>& x, std::size_t n_query, double radius) {
   using Cloud = PointCloud<D>;
-  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, D,
-                                                   uint32_t>;
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, D, uint32_t>;
   constexpr std::size_t kMaxRun = 32;
   radius_ = radius;
   Cloud cloud{x};

@@ -47,8 +47,7 @@ template <int D> std::uint64_t morton_key(const Vector<D>& x, const Vector<D>& l
   return key;
 }
 
-template <int D>
-double partition_along_curve(Particles<D>& P, const Domain<D>& domain, const ParticleArrays& arrays) {
+template <int D> double partition_along_curve(Particles<D>& P, const Domain<D>& domain, const ParticleArrays& arrays) {
   PetscMPIInt size, rank;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -73,8 +72,9 @@ double partition_along_curve(Particles<D>& P, const Domain<D>& domain, const Par
   for (int round = 0; round < 64 && !split_lo.empty(); ++round) {
     for (std::size_t r = 0; r < split_lo.size(); ++r) {
       const std::uint64_t mid = split_lo[r] + (split_hi[r] - split_lo[r]) / 2;
-      below[r] = std::lower_bound(order.begin(), order.end(), mid, [](const Keyed& k, std::uint64_t v) { return k.key < v; }) -
-                 order.begin();
+      below[r] =
+          std::lower_bound(order.begin(), order.end(), mid, [](const Keyed& k, std::uint64_t v) { return k.key < v; }) -
+          order.begin();
     }
     MPI_Allreduce(MPI_IN_PLACE, below.data(), static_cast<int>(below.size()), MPI_LONG_LONG, MPI_SUM, PETSC_COMM_WORLD);
     for (std::size_t r = 0; r < split_lo.size(); ++r) {
@@ -100,7 +100,8 @@ double partition_along_curve(Particles<D>& P, const Domain<D>& domain, const Par
     *row++ = P.kind[i], *row++ = static_cast<double>(P.id[i]);  // exact below 2^53
     for (const ParticleField& f : fields)
       for (int c = 0; c < f.components; ++c) *row++ = f.data[i * f.components + c];
-    const int dest = static_cast<int>(std::upper_bound(split_hi.begin(), split_hi.end(), order[k].key) - split_hi.begin());
+    const int dest =
+        static_cast<int>(std::upper_bound(split_hi.begin(), split_hi.end(), order[k].key) - split_hi.begin());
     send_count[dest] += stride;
   }
 

@@ -15,12 +15,12 @@ enum ParticleKind : int { kFluid = 0, kWall = 1 };
 template <int D> struct Particles {
   std::size_t n_owned = 0;
   std::size_t n_ghost = 0;
-  GlobalIndex n_global = 0;    // all ranks together
-  GlobalIndex first_gid = 0;   // global index of owned particle 0; owned gids are contiguous
+  GlobalIndex n_global = 0;   // all ranks together
+  GlobalIndex first_gid = 0;  // global index of owned particle 0; owned gids are contiguous
 
-  std::vector<Vector<D>> x, v;            // position, velocity
-  std::vector<double> m, rho, p;       // mass, density, pressure
-  std::vector<int> kind;               // ParticleKind
+  std::vector<Vector<D>> x, v;    // position, velocity
+  std::vector<double> m, rho, p;  // mass, density, pressure
+  std::vector<int> kind;          // ParticleKind
   // gid: the particle's current global index (PETSc row): owned particles of rank r are numbered
   // contiguously after those of ranks < r, and renumbered whenever particles migrate.
   // id: the particle's permanent label (its first gid), for output and checkpoints.

@@ -3,9 +3,8 @@
 // solution its errors are measured against. Cases use core types only.
 #include <map>
 #include <memory>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "src/core/domain.hpp"
 #include "src/core/physics.hpp"
@@ -25,8 +24,8 @@ template <int D> class Case {
 
   // Owned particles of this rank (the whole scene on one rank) and the box.
   virtual void create(Particles<D>& P, Domain<D>& domain) const = 0;
-  virtual double spacing() const = 0;      // initial particle spacing dx
-  virtual int resolution() const = 0;      // particles per unit length label (nx)
+  virtual double spacing() const = 0;  // initial particle spacing dx
+  virtual int resolution() const = 0;  // particles per unit length label (nx)
   virtual Physics<D> physics() const = 0;
   virtual double default_t_end() const = 0;
 

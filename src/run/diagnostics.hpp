@@ -124,7 +124,8 @@ template <int D> void check_health(const Particles<D>& P, const Domain<D>& domai
   MPI_Allreduce(MPI_IN_PLACE, &ke, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   if (bad[0]) {
     const NamedParticle<D> p = first_particle(P, not_finite);
-    throw Error("position, velocity or pressure became NaN/Inf" + (p.label >= 0 ? " (" + p.where() + " first)" : std::string()) +
+    throw Error("position, velocity or pressure became NaN/Inf" +
+                (p.label >= 0 ? " (" + p.where() + " first)" : std::string()) +
                 ": the run blew up; reduce -cfl or -dt");
   }
   if (bad[1]) {
@@ -158,7 +159,8 @@ template <int D> void check_initial_state(const Particles<D>& P, double t) {
     if (!P.x[i].allFinite() || !P.v[i].allFinite() || !std::isfinite(P.p[i]) || !std::isfinite(P.rho[i])) bad = 1;
   MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
   if (bad)
-    throw Error("the initial state (t = " + std::to_string(t) + ") already holds NaN/Inf positions, velocities, densities "
+    throw Error("the initial state (t = " + std::to_string(t) +
+                ") already holds NaN/Inf positions, velocities, densities "
                 "or pressures, before any step: the case's start does not fit the solver's options; check them");
 }
 

@@ -1,9 +1,9 @@
 #include "src/run/interrupt.hpp"
 
 #include <petscsys.h>
+#include <unistd.h>
 
 #include <csignal>
-#include <unistd.h>
 
 namespace sph {
 

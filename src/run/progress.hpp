@@ -18,11 +18,12 @@ class Progress {
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     const double eta = t > 0 ? elapsed * (t_end_ - t) / t : 0.0;
     if (linear_its >= 0)
-      PetscFPrintf(PETSC_COMM_WORLD, stderr, "step %6ld  t %.4g/%.4g (%3.0f%%)  dt %.3e  ksp %3d  elapsed %.0fs  ETA %.0fs\n",
-                   step, t, t_end_, 100.0 * t / t_end_, dt, linear_its, elapsed, eta);
+      PetscFPrintf(PETSC_COMM_WORLD, stderr,
+                   "step %6ld  t %.4g/%.4g (%3.0f%%)  dt %.3e  ksp %3d  elapsed %.0fs  ETA %.0fs\n", step, t, t_end_,
+                   100.0 * t / t_end_, dt, linear_its, elapsed, eta);
     else
-      PetscFPrintf(PETSC_COMM_WORLD, stderr, "step %6ld  t %.4g/%.4g (%3.0f%%)  dt %.3e  elapsed %.0fs  ETA %.0fs\n", step,
-                   t, t_end_, 100.0 * t / t_end_, dt, elapsed, eta);
+      PetscFPrintf(PETSC_COMM_WORLD, stderr, "step %6ld  t %.4g/%.4g (%3.0f%%)  dt %.3e  elapsed %.0fs  ETA %.0fs\n",
+                   step, t, t_end_, 100.0 * t / t_end_, dt, elapsed, eta);
   }
 
   void done(long steps, double t) {

@@ -2,9 +2,8 @@
 // Where a run's results came from, for summary.json: the command line and the options database, the
 // program's version (git describe at build time), the versions of PETSc, hypre, VTK and MPI, and the
 // ranks, threads and cores it ran on.
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace sph {
 

@@ -13,10 +13,13 @@ PetscErrorCode read_options(RunControl* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Run control and output", "sph");
   PetscCall(PetscOptionsReal("-t_end", "End time", "", o->t_end, &o->t_end, nullptr));
-  PetscCall(PetscOptionsReal("-dt", "Fixed time step (0: from the solver's stability limits)", "", o->dt, &o->dt, nullptr));
-  PetscCall(PetscOptionsBool("-dt_force", "Run a -dt above the stability limit instead of refusing it (recorded in summary.json)",
+  PetscCall(
+      PetscOptionsReal("-dt", "Fixed time step (0: from the solver's stability limits)", "", o->dt, &o->dt, nullptr));
+  PetscCall(PetscOptionsBool("-dt_force",
+                             "Run a -dt above the stability limit instead of refusing it (recorded in summary.json)",
                              "", o->dt_force, &o->dt_force, nullptr));
-  PetscCall(PetscOptionsInt("-max_steps", "Stop after this many steps (-1: no limit)", "", o->max_steps, &o->max_steps, nullptr));
+  PetscCall(PetscOptionsInt("-max_steps", "Stop after this many steps (-1: no limit)", "", o->max_steps, &o->max_steps,
+                            nullptr));
   PetscCall(PetscOptionsReal("-output_interval", "Time between VTK frames (-1: t_end/20, 0: first and last only)", "",
                              o->output_interval, &o->output_interval, nullptr));
   PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/<case>-<solver>-<nx>)", "", o->output_dir,
@@ -25,8 +28,9 @@ PetscErrorCode read_options(RunControl* o) {
                                "Extra point arrays in the VTK frames: vorticity (the solver's own fields, e.g. ISPH's "
                                "free_surface, are always written)",
                                "", o->output_fields, o->output_fields, sizeof(o->output_fields), nullptr));
-  PetscCall(PetscOptionsBool("-overwrite", "Replace the run already in -output_dir (its frames, tables, summary, checkpoint)",
-                             "", o->overwrite, &o->overwrite, nullptr));
+  PetscCall(PetscOptionsBool("-overwrite",
+                             "Replace the run already in -output_dir (its frames, tables, summary, checkpoint)", "",
+                             o->overwrite, &o->overwrite, nullptr));
   PetscCall(PetscOptionsReal("-neighbour_skin", "Verlet-list skin as a fraction of the kernel support", "", o->skin,
                              &o->skin, nullptr));
   PetscCall(PetscOptionsReal("-steady_tol",
@@ -34,8 +38,8 @@ PetscErrorCode read_options(RunControl* o) {
                              "-1: the case's default)",
                              "", o->steady_tol, &o->steady_tol, nullptr));
   PetscCall(PetscOptionsReal("-checkpoint_interval",
-                             "Time between checkpoints (<output_dir>/checkpoint.bin; -1: with every frame, 0: never)", "",
-                             o->checkpoint_interval, &o->checkpoint_interval, nullptr));
+                             "Time between checkpoints (<output_dir>/checkpoint.bin; -1: with every frame, 0: never)",
+                             "", o->checkpoint_interval, &o->checkpoint_interval, nullptr));
   PetscCall(PetscOptionsInt("-checkpoints_kept",
                             "Checkpoints kept: the newest is checkpoint.bin, the one before it checkpoint.bin.1, and "
                             "so on (to go back to before a blow-up)",
@@ -48,8 +52,8 @@ PetscErrorCode read_options(RunControl* o) {
                             "OpenMP threads per MPI rank for the pair loops, neighbour search and PPE assembly (0: "
                             "OMP_NUM_THREADS if set, else this rank's cores shared with the other ranks on the node)",
                             "", o->threads, &o->threads, nullptr));
-  PetscCall(PetscOptionsString("-restart", "Resume from this checkpoint (same case, solver and options)", "", o->restart,
-                               o->restart, sizeof(o->restart), nullptr));
+  PetscCall(PetscOptionsString("-restart", "Resume from this checkpoint (same case, solver and options)", "",
+                               o->restart, o->restart, sizeof(o->restart), nullptr));
   PetscCall(PetscOptionsBool("-progress", "Print a progress line on stderr about once a second", "", o->progress,
                              &o->progress, nullptr));
   PetscOptionsEnd();

@@ -20,11 +20,11 @@ struct RunControl {
   PetscInt threads = 0;                // OpenMP threads per rank (0: see configure_threads)
   char restart[PETSC_MAX_PATH_LEN] = "";
   PetscBool progress = PETSC_TRUE;
-  PetscBool overwrite = PETSC_FALSE;   // replace a run already in output_dir
-  PetscBool dt_force = PETSC_FALSE;    // run a -dt above the stability limit anyway
+  PetscBool overwrite = PETSC_FALSE;  // replace a run already in output_dir
+  PetscBool dt_force = PETSC_FALSE;   // run a -dt above the stability limit anyway
   char output_dir[PETSC_MAX_PATH_LEN] = "";
-  char output_fields[128] = "";        // extra point arrays in the frames: "vorticity"
-  bool vorticity_output = false;       // from output_fields
+  char output_fields[128] = "";   // extra point arrays in the frames: "vorticity"
+  bool vorticity_output = false;  // from output_fields
 
   bool restarting() const { return restart[0] != '\0'; }
 };

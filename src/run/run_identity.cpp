@@ -16,14 +16,50 @@ namespace {
 // Options that steer a run without changing what it computes: a restart may change them (e.g. a
 // later -t_end to continue a run).
 bool steers_only(const std::string& name) {
-  static const std::set<std::string> exact = {
-      "t_end",  "max_steps", "output_dir", "output_interval", "checkpoint_interval", "checkpoints_kept", "progress", "threads",
-      "partition_interval", "restart", "overwrite", "steady_tol", "dt_force", "case", "solver", "dim", "help",
-      "version", "options_file", "options_file_yaml", "skip_petscrc"};
-  static const char* prefixes[] = {"log", "info", "malloc", "options_", "ksp_monitor", "ksp_view", "ksp_converged_reason",
-                                   "ksp_converged_rate", "mat_view", "vec_view", "pc_view", "memory_view", "objects_dump",
-                                   "on_error", "fp_trap", "no_signal_handler", "use_gpu_aware_mpi", "citations",
-                                   "error_output", "saws", "check_pointer_intensity", "mpi_linear_solver_server", "viewer"};
+  static const std::set<std::string> exact = {"t_end",
+                                              "max_steps",
+                                              "output_dir",
+                                              "output_interval",
+                                              "checkpoint_interval",
+                                              "checkpoints_kept",
+                                              "progress",
+                                              "threads",
+                                              "partition_interval",
+                                              "restart",
+                                              "overwrite",
+                                              "steady_tol",
+                                              "dt_force",
+                                              "case",
+                                              "solver",
+                                              "dim",
+                                              "help",
+                                              "version",
+                                              "options_file",
+                                              "options_file_yaml",
+                                              "skip_petscrc"};
+  static const char* prefixes[] = {"log",
+                                   "info",
+                                   "malloc",
+                                   "options_",
+                                   "ksp_monitor",
+                                   "ksp_view",
+                                   "ksp_converged_reason",
+                                   "ksp_converged_rate",
+                                   "mat_view",
+                                   "vec_view",
+                                   "pc_view",
+                                   "memory_view",
+                                   "objects_dump",
+                                   "on_error",
+                                   "fp_trap",
+                                   "no_signal_handler",
+                                   "use_gpu_aware_mpi",
+                                   "citations",
+                                   "error_output",
+                                   "saws",
+                                   "check_pointer_intensity",
+                                   "mpi_linear_solver_server",
+                                   "viewer"};
   if (exact.count(name)) return true;
   for (const char* p : prefixes)
     if (name.rfind(p, 0) == 0) return true;
@@ -105,7 +141,10 @@ nlohmann::json run_identity(const std::string& case_name, const std::string& sol
   const nlohmann::json db = options_database();
   for (const auto& [name, value] : db.items())
     if (!steers_only(name) && !identified_by_content(name)) options[name] = value;
-  return {{"case", case_name}, {"solver", solver_name}, {"dim", dim}, {"parameters", case_parameters},
+  return {{"case", case_name},
+          {"solver", solver_name},
+          {"dim", dim},
+          {"parameters", case_parameters},
           {"options", options}};
 }
 
@@ -114,8 +153,10 @@ nlohmann::json check_same_run(const nlohmann::json& saved, const nlohmann::json&
     throw Error("checkpoint " + path + " does not record the options it was written with; start a new run");
   for (const char* key : {"case", "solver", "dim"})
     if (saved[key] != now[key])
-      refuse(path, std::string("-") + key + " " + (saved[key].is_string() ? saved[key].get<std::string>() : saved[key].dump()),
-             std::string("-") + key + " " + (now[key].is_string() ? now[key].get<std::string>() : now[key].dump()), key);
+      refuse(
+          path,
+          std::string("-") + key + " " + (saved[key].is_string() ? saved[key].get<std::string>() : saved[key].dump()),
+          std::string("-") + key + " " + (now[key].is_string() ? now[key].get<std::string>() : now[key].dump()), key);
   const nlohmann::json &a = saved["options"], &b = now["options"];
   const nlohmann::json &pa = saved["parameters"], &pb = now["parameters"];
   std::set<std::string> names;
@@ -126,7 +167,8 @@ nlohmann::json check_same_run(const nlohmann::json& saved, const nlohmann::json&
     if (a.contains(name) && b.contains(name) && normalised(a[name]) == normalised(b[name])) continue;
     if (identified_by_content(name)) continue;  // recorded by checkpoints of earlier versions
     if (changes_numerics_only(name)) {
-      changed[name] = {{"was", a.contains(name) ? a[name] : "default"}, {"now", b.contains(name) ? b[name] : "default"}};
+      changed[name] = {{"was", a.contains(name) ? a[name] : "default"},
+                       {"now", b.contains(name) ? b[name] : "default"}};
       continue;
     }
     // Given on one side only: the same if the case's effective value agrees (-re 100 is the default).

@@ -3,9 +3,8 @@
 // the case, the solver, the dimension, the case's effective parameters and every option in PETSc's
 // database except those that only steer the run (end time, output, checkpoints, threads, logging).
 // A restart may also change the options that set only the numerics of the steps to come.
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace sph {
 

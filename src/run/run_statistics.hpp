@@ -5,9 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
-#include <utility>
-
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "src/run/solver.hpp"
 

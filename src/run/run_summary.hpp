@@ -4,9 +4,8 @@
 // at the final state. The time loop (time_loop.cpp) adds the rest.
 #include <algorithm>
 #include <cmath>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "src/run/case.hpp"
 #include "src/run/diagnostics.hpp"
@@ -15,9 +14,9 @@
 
 namespace sph {
 
-template <int D>
-void add_final_state(nlohmann::json& summary, const Solver<D>& solver, const Case<D>& scene_case,
-                     const Particles<D>& P, double t, const StepStats& stats, const Totals<D>& initial) {
+template <int D> void add_final_state(nlohmann::json& summary, const Solver<D>& solver, const Case<D>& scene_case,
+                                      const Particles<D>& P, double t, const StepStats& stats,
+                                      const Totals<D>& initial) {
   nlohmann::json solver_info = solver.describe();
   summary["models"] = solver_info["models"];
   if (solver_info.contains("ksp")) {

@@ -1,9 +1,8 @@
 #pragma once
 // The interface every scheme implements (one folder per scheme under solvers/). A solver reads its
 // options, takes the scene once, then advances it by one time step at a time.
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "src/core/error.hpp"
 #include "src/core/physics.hpp"
@@ -16,8 +15,8 @@ namespace sph {
 
 // What a step reports beyond the new particle state (linear solver figures, for implicit schemes).
 struct StepReport {
-  int linear_iterations = -1;   // -1: no linear solve in this scheme
-  int linear_reason = 0;        // PETSc KSPConvergedReason
+  int linear_iterations = -1;  // -1: no linear solve in this scheme
+  int linear_reason = 0;       // PETSc KSPConvergedReason
   double linear_residual = 0.0;
 };
 
@@ -31,9 +30,11 @@ template <int D> struct Scene {
 };
 
 // A case that asks for a model the solver does not have is refused, not silently run without it.
-template <int D> void refuse_unmodelled(const Physics<D>& phys, const std::string& solver, bool gas, bool external_force) {
+template <int D>
+void refuse_unmodelled(const Physics<D>& phys, const std::string& solver, bool gas, bool external_force) {
   if (phys.is_gas() && !gas)
-    throw Error("this case is a compressible gas (ideal-gas EOS, energy equation): use -solver compressible, not " + solver);
+    throw Error("this case is a compressible gas (ideal-gas EOS, energy equation): use -solver compressible, not " +
+                solver);
   if (phys.has_external_force() && !external_force)
     throw Error("this case needs a position-dependent body force, which -solver " + solver +
                 " does not model; use -solver compressible");

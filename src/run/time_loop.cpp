@@ -96,7 +96,7 @@ template <int D> class TimeLoop {
   const nlohmann::json identity_;
   const nlohmann::json resumed_run_;
   const nlohmann::json numerics_changed_;  // by this restart: -cfl, -dt, -ksp_*, ...
-  const MemoryBudgetScope memory_;  // checked as the scene is created, before the solver allocates
+  const MemoryBudgetScope memory_;         // checked as the scene is created, before the solver allocates
   RunScene<D> s_;
   long partitions_ = 1;
   CheckpointState<D> resumed_;
@@ -128,8 +128,7 @@ template <int D> class TimeLoop {
   Clock::time_point loop_start_;
 };
 
-template <int D>
-TimeLoop<D>::TimeLoop(const RunParts<D>& run)
+template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
     : run_(run),
       opt_(run.control),
       case_(run.scene_case),
@@ -158,7 +157,8 @@ TimeLoop<D>::TimeLoop(const RunParts<D>& run)
 // said at the start, recorded in the history.
 template <int D> nlohmann::json TimeLoop<D>::checked_restart() const {
   if (!opt_.restarting()) return nlohmann::json::object();
-  const nlohmann::json changed = check_same_run(resumed_run_.value("identity", nlohmann::json()), identity_, opt_.restart);
+  const nlohmann::json changed =
+      check_same_run(resumed_run_.value("identity", nlohmann::json()), identity_, opt_.restart);
   auto text = [](const nlohmann::json& v) { return v.is_null() ? std::string("(flag)") : v.get<std::string>(); };
   for (const auto& [name, change] : changed.items())
     PetscPrintf(PETSC_COMM_WORLD, "restart: -%s %s (was %s): the numerics of the steps to come\n", name.c_str(),
@@ -255,8 +255,8 @@ template <int D> void TimeLoop<D>::describe_run() {
   j["dim"] = D;
   j["n_particles"] = s_.P.n_global;
   j["dx"] = case_.spacing();
-  j["kernel"] = {{"type", s_.kernel.name()}, {"h", s_.kernel.h()},
-                 {"h_over_dx", run_.kernel.template resolved_h_over_dx<D>()}};
+  j["kernel"] = {
+      {"type", s_.kernel.name()}, {"h", s_.kernel.h()}, {"h_over_dx", run_.kernel.template resolved_h_over_dx<D>()}};
   j["t_end"] = opt_.t_end;
   j["parameters"] = case_.parameters();
   j["physics"] = s_.scene.physics.describe();
@@ -364,8 +364,10 @@ template <int D> void TimeLoop<D>::write_state(const std::string& why) {
   last_checkpoint_step_ = step_;
   repartition();
   const LogEventScope log_checkpoint(LogEvent::Checkpoint);
-  nlohmann::json run{{"identity", identity_}, {"ksp_statistics", stats_.to_json()},
-                     {"steady_state_window", steady_.to_json()}, {"history", history_},
+  nlohmann::json run{{"identity", identity_},
+                     {"ksp_statistics", stats_.to_json()},
+                     {"steady_state_window", steady_.to_json()},
+                     {"history", history_},
                      {"case_state", case_.accumulated_state()}};
   run["history"].push_back(this_segment(why));
   write_checkpoint(checkpoint_path_, s_.P, solver_.checkpoint_fields(), {t_, step_, solver_.checkpoint_scalars(), run},
@@ -374,9 +376,13 @@ template <int D> void TimeLoop<D>::write_state(const std::string& why) {
 
 // This run's entry in the history of runs that led to its state.
 template <int D> nlohmann::json TimeLoop<D>::this_segment(const std::string& status) const {
-  nlohmann::json j{{"status", status}, {"steps", {resumed_.step, step_}}, {"t", {resumed_.t, t_}},
-                   {"wall_time_s", seconds_since(wall_start_)}, {"mpi_ranks", ranks_},
-                   {"threads_per_rank", opt_.threads}, {"version", program_version()},
+  nlohmann::json j{{"status", status},
+                   {"steps", {resumed_.step, step_}},
+                   {"t", {resumed_.t, t_}},
+                   {"wall_time_s", seconds_since(wall_start_)},
+                   {"mpi_ranks", ranks_},
+                   {"threads_per_rank", opt_.threads},
+                   {"version", program_version()},
                    {"command_line", summary_.at("provenance").value("command_line", nlohmann::json())}};
   if (!numerics_changed_.empty()) j["numerics_changed"] = numerics_changed_;
   return j;
@@ -393,8 +399,8 @@ template <int D> void TimeLoop<D>::finish(const std::string& status, const std::
   j["t_final"] = t_;
   j["wall_time_s"] = seconds_since(wall_start_);
   j["time_per_particle_step_s"] = step_ > 0 ? loop_s / (double(step_) * double(s_.P.n_global)) : 0.0;
-  j["partition"] = {{"curve", "morton"}, {"interval", opt_.partition_interval}, {"count", partitions_},
-                    {"imbalance", s_.imbalance}};
+  j["partition"] = {
+      {"curve", "morton"}, {"interval", opt_.partition_interval}, {"count", partitions_}, {"imbalance", s_.imbalance}};
   add_final_state(j, solver_, case_, s_.P, t_, stats_, *initial_);
   write_json_file(run_.output_dir + "/summary.json", j);
 }
@@ -411,8 +417,9 @@ template <int D> void TimeLoop<D>::fail(const Error& e) {
     // No derived fields: the state may hold NaN. The .pvd lists it last, for inspection.
     writer_->write(s_.P, t_, frame_fields(false));
   } catch (const Error& later) {
-    also = later.what() == std::string(e.what()) ? "; the failed state could not be written either"
-                                                 : "; writing the failed run's outputs failed too: " + std::string(later.what());
+    also = later.what() == std::string(e.what())
+               ? "; the failed state could not be written either"
+               : "; writing the failed run's outputs failed too: " + std::string(later.what());
   }
   // Name only what exists: with -checkpoint_interval 0, or a failure before the first, no checkpoint.
   const bool checkpoint = std::filesystem::exists(checkpoint_path_);

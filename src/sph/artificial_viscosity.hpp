@@ -5,8 +5,8 @@
 // evaluated where needed). c_bar, rho_bar and h are the pair means the scheme uses.
 namespace sph {
 
-inline double monaghan_viscosity(double alpha, double beta, double epsilon, double h, double c_bar,
-                                 double rho_bar, double vr, double r) {
+inline double monaghan_viscosity(double alpha, double beta, double epsilon, double h, double c_bar, double rho_bar,
+                                 double vr, double r) {
   const double mu = h * vr / (r * r + epsilon * h * h);
   return (-alpha * c_bar * mu + beta * mu * mu) / rho_bar;
 }

@@ -165,20 +165,23 @@ LaplacianCorrection<D> solve_laplacian_factors(const LaplacianPairs<D>& pairs, s
 }  // namespace detail
 
 // The factors of every owned particle, from one pass over each particle's pairs.
-template <int D>
-std::vector<LaplacianCorrection<D>> laplacian_corrections(const Particles<D>& P, const NeighbourList<D>& nl,
-                                                          const Kernel<D>& K, Rows rows = Rows::All) {
+template <int D> std::vector<LaplacianCorrection<D>> laplacian_corrections(const Particles<D>& P,
+                                                                           const NeighbourList<D>& nl,
+                                                                           const Kernel<D>& K, Rows rows = Rows::All) {
   std::vector<LaplacianCorrection<D>> out(P.n_owned);
   const double inv_R = 1.0 / K.support_radius();
-  for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
-    LaplacianPairs<D>& pairs = laplacian_pair_buffer<D>();
-    // Moments of g_ij (the factor 2 of w and of the condition cancel); r scaled by 1 / R, so the
-    // solution is A R^2 and c R: scaled back in solve_laplacian_factors.
-    visit_pairs([&](int, int j, const PairGeometry<D>& g) {
-      pairs.add(-g.rij / g.r, g.r * inv_R, P.m[j] / P.rho[j] * (-g.dWdr_r));
-    });
-    out[i] = detail::solve_laplacian_factors(pairs, pairs.padded(), inv_R);
-  }, rows);
+  for_each_particle_pairs(
+      P, nl, K,
+      [&](std::size_t i, auto&& visit_pairs) {
+        LaplacianPairs<D>& pairs = laplacian_pair_buffer<D>();
+        // Moments of g_ij (the factor 2 of w and of the condition cancel); r scaled by 1 / R, so the
+        // solution is A R^2 and c R: scaled back in solve_laplacian_factors.
+        visit_pairs([&](int, int j, const PairGeometry<D>& g) {
+          pairs.add(-g.rij / g.r, g.r * inv_R, P.m[j] / P.rho[j] * (-g.dWdr_r));
+        });
+        out[i] = detail::solve_laplacian_factors(pairs, pairs.padded(), inv_R);
+      },
+      rows);
   return out;
 }
 
@@ -212,13 +215,16 @@ template <int D> struct FusedConsistentLaplacian {
 };
 
 // lap f_i = sum_j w_ij (f_j - f_i) for scalar or vector fields.
-template <int D, class T>
-std::vector<T> laplacian_consistent(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                    const std::vector<LaplacianCorrection<D>>& c, const std::vector<T>& f,
-                                    Rows rows = Rows::All) {
-  return sum_over_pairs(P, nl, K, T(f.empty() ? T() : f[0] * 0.0), [&](T& lap, int i, int j, const PairGeometry<D>& g) {
-    lap += consistent_laplacian_coefficient(c[i], P.m[j] / P.rho[j], g) * (f[j] - f[i]);
-  }, rows);
+template <int D, class T> std::vector<T> laplacian_consistent(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                              const Kernel<D>& K,
+                                                              const std::vector<LaplacianCorrection<D>>& c,
+                                                              const std::vector<T>& f, Rows rows = Rows::All) {
+  return sum_over_pairs(
+      P, nl, K, T(f.empty() ? T() : f[0] * 0.0),
+      [&](T& lap, int i, int j, const PairGeometry<D>& g) {
+        lap += consistent_laplacian_coefficient(c[i], P.m[j] / P.rho[j], g) * (f[j] - f[i]);
+      },
+      rows);
 }
 
 // The consistent Laplacian of a vector field with each particle's factors gathered in the same pass
@@ -233,11 +239,16 @@ std::vector<Vector<D>> laplacian_consistent_one_pass(const Particles<D>& P, cons
   std::vector<Vector<D>> out(P.n_owned, Vector<D>::Zero());
   if (factors) factors->assign(P.n_owned, LaplacianCorrection<D>());
   const double inv_R = 1.0 / K.support_radius();
-  for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
-    FusedConsistentLaplacian<D> lap(laplacian_pair_buffer<D>());
-    visit_pairs([&](int, int j, const PairGeometry<D>& g) { lap.add(P.m[j] / P.rho[j], g, inv_R, Vector<D>(f[j] - f[i])); });
-    out[i] = lap.finish(inv_R, factors ? &(*factors)[i] : nullptr);
-  }, rows);
+  for_each_particle_pairs(
+      P, nl, K,
+      [&](std::size_t i, auto&& visit_pairs) {
+        FusedConsistentLaplacian<D> lap(laplacian_pair_buffer<D>());
+        visit_pairs([&](int, int j, const PairGeometry<D>& g) {
+          lap.add(P.m[j] / P.rho[j], g, inv_R, Vector<D>(f[j] - f[i]));
+        });
+        out[i] = lap.finish(inv_R, factors ? &(*factors)[i] : nullptr);
+      },
+      rows);
   return out;
 }
 
@@ -258,44 +269,50 @@ std::vector<std::vector<double>> divergences_corrected(const Particles<D>& P, co
     Tensor<D> M;
     std::array<Tensor<D>, max_fields> G;
   };
-  const std::vector<Sums> sums = sum_over_pairs(P, nl, K, Sums{Tensor<D>::Zero(), {Tensor<D>::Zero(), Tensor<D>::Zero()}},
-                                                [&](Sums& s, int i, int j, const PairGeometry<D>& g) {
-    const double Vj = P.m[j] / P.rho[j];
-    s.M += correction_moment_term(Vj, g);
-    for (std::size_t f = 0; f < nf; ++f) s.G[f] += difference_vector_gradient_term(Vj, (*u[f])[i], (*u[f])[j], g);
-  }, rows);
+  const std::vector<Sums> sums = sum_over_pairs(
+      P, nl, K, Sums{Tensor<D>::Zero(), {Tensor<D>::Zero(), Tensor<D>::Zero()}},
+      [&](Sums& s, int i, int j, const PairGeometry<D>& g) {
+        const double Vj = P.m[j] / P.rho[j];
+        s.M += correction_moment_term(Vj, g);
+        for (std::size_t f = 0; f < nf; ++f) s.G[f] += difference_vector_gradient_term(Vj, (*u[f])[i], (*u[f])[j], g);
+      },
+      rows);
   std::vector<std::vector<double>> div(nf, std::vector<double>(P.n_owned));
   for (std::size_t i = 0; i < P.n_owned; ++i) {
     // A surface node moves with its particle: it adds to the moments only.
-    const Tensor<D> L = nodes && nodes->is_splash(i) ? Tensor<D>(Tensor<D>::Identity())
-                        : correction_from_moments(nodes && nodes->has(i) ? Tensor<D>(sums[i].M + nodes->moment_term(i)) : sums[i].M);
+    const Tensor<D> L = nodes && nodes->is_splash(i)
+                            ? Tensor<D>(Tensor<D>::Identity())
+                            : correction_from_moments(
+                                  nodes && nodes->has(i) ? Tensor<D>(sums[i].M + nodes->moment_term(i)) : sums[i].M);
     for (std::size_t f = 0; f < nf; ++f) div[f][i] = (L * sums[i].G[f]).trace();
   }
   return div;
 }
 
-template <int D>
-std::vector<double> divergence_corrected(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                         const std::vector<Vector<D>>& u, Rows rows = Rows::All) {
+template <int D> std::vector<double> divergence_corrected(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                          const Kernel<D>& K, const std::vector<Vector<D>>& u,
+                                                          Rows rows = Rows::All) {
   return divergences_corrected(P, nl, K, {&u}, rows)[0];
 }
 
 // The factors of the particles with a free-surface node (src/sph/surface_nodes.hpp), refitted with the
 // node as one more neighbour (p = 0 there), so that their rows stay exact for quadratic fields that
 // vanish at the surface; the others are left as they are.
-template <int D>
-void add_surface_nodes(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const SurfaceNodes<D>& nodes,
-                       std::vector<LaplacianCorrection<D>>& factors) {
+template <int D> void add_surface_nodes(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                        const SurfaceNodes<D>& nodes, std::vector<LaplacianCorrection<D>>& factors) {
   const double inv_R = 1.0 / K.support_radius();
-  for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
-    if (!nodes.has(i)) return;
-    LaplacianPairs<D>& pairs = laplacian_pair_buffer<D>();
-    visit_pairs([&](int, int j, const PairGeometry<D>& g) {
-      pairs.add(-g.rij / g.r, g.r * inv_R, P.m[j] / P.rho[j] * (-g.dWdr_r));
-    });
-    pairs.add(nodes.normal[i], nodes.distance * inv_R, nodes.node_weight(i));
-    factors[i] = detail::solve_laplacian_factors(pairs, pairs.padded(), inv_R);
-  }, Rows::Fluid);
+  for_each_particle_pairs(
+      P, nl, K,
+      [&](std::size_t i, auto&& visit_pairs) {
+        if (!nodes.has(i)) return;
+        LaplacianPairs<D>& pairs = laplacian_pair_buffer<D>();
+        visit_pairs([&](int, int j, const PairGeometry<D>& g) {
+          pairs.add(-g.rij / g.r, g.r * inv_R, P.m[j] / P.rho[j] * (-g.dWdr_r));
+        });
+        pairs.add(nodes.normal[i], nodes.distance * inv_R, nodes.node_weight(i));
+        factors[i] = detail::solve_laplacian_factors(pairs, pairs.padded(), inv_R);
+      },
+      Rows::Fluid);
 }
 
 // The node's weight w_is in i's consistent Laplacian (consistent_laplacian_coefficient for the node).

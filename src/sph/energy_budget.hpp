@@ -5,14 +5,14 @@
 // (u_i + d_i / 2) . d_k,i; the shares add up to the change. A solver reports the budget in
 // summary.json (conservation.energy_budget), the tool that split ISPH's decay-rate error into the
 // viscous term's and shifting's parts (docs/verification/taylor_green.md, "What limits ISPH's order").
+#include <petscsys.h>
+
 #include <array>
 #include <initializer_list>
+#include <nlohmann/json.hpp>
 #include <tuple>
 #include <utility>
 #include <vector>
-
-#include <petscsys.h>
-#include <nlohmann/json.hpp>
 
 #include "src/particles/particles.hpp"
 
@@ -51,7 +51,9 @@ class EnergyBudget {
   }
 
   // Credits a change measured as the difference of two energies (this rank's parts) to one cause.
-  void add_change(EnergyCause cause, double before, double after) { change_[static_cast<int>(cause)] += after - before; }
+  void add_change(EnergyCause cause, double before, double after) {
+    change_[static_cast<int>(cause)] += after - before;
+  }
 
   // Reduced over the ranks (collective), with the energies at the start and now.
   template <int D> nlohmann::json describe(const Particles<D>& P) const {
@@ -59,8 +61,12 @@ class EnergyBudget {
     for (int k = 0; k < kCauses; ++k) sum[k] = change_[k];
     sum[kCauses] = start_, sum[kCauses + 1] = kinetic_energy(P, P.v);
     MPI_Allreduce(MPI_IN_PLACE, sum.data(), kCauses + 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-    return {{"kinetic_energy_start", sum[kCauses]}, {"kinetic_energy_end", sum[kCauses + 1]},
-            {"viscous", sum[0]}, {"pressure", sum[1]}, {"body_force", sum[2]}, {"shifting", sum[3]}};
+    return {{"kinetic_energy_start", sum[kCauses]},
+            {"kinetic_energy_end", sum[kCauses + 1]},
+            {"viscous", sum[0]},
+            {"pressure", sum[1]},
+            {"body_force", sum[2]},
+            {"shifting", sum[3]}};
   }
 
  private:

@@ -14,9 +14,8 @@
 // came per step, not per unit time.
 #include <petscsys.h>
 
-#include <vector>
-
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "src/core/options.hpp"
 #include "src/neighbours/neighbourhood.hpp"
@@ -26,7 +25,9 @@ namespace sph {
 
 template <int D> double default_free_surface_threshold() { return D == 1 ? 0.75 : D == 2 ? 1.5 : 2.4; }
 // Exit threshold: 40 % of the way from the entry threshold to the interior value D (1.7 in 2D).
-template <int D> double default_free_surface_exit_threshold(double threshold) { return threshold + 0.4 * (D - threshold); }
+template <int D> double default_free_surface_exit_threshold(double threshold) {
+  return threshold + 0.4 * (D - threshold);
+}
 
 template <int D>
 std::vector<double> position_divergence(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) {
@@ -39,10 +40,10 @@ std::vector<double> position_divergence(const Particles<D>& P, const NeighbourLi
 // 1 for fluid particles on the free surface, 0 otherwise (one entry per owned particle). With
 // `previous` (the last step's flags, nonzero = on the surface), a flagged particle stays flagged while
 // div r < exit_threshold.
-template <int D>
-std::vector<char> free_surface_particles(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                         double threshold, double exit_threshold = 0.0,
-                                         const std::vector<double>* previous = nullptr) {
+template <int D> std::vector<char> free_surface_particles(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                          const Kernel<D>& K, double threshold,
+                                                          double exit_threshold = 0.0,
+                                                          const std::vector<double>* previous = nullptr) {
   const std::vector<double> div = position_divergence(P, nl, K);
   std::vector<char> has_fluid(P.n_owned, 0);
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>&) { has_fluid[i] |= P.kind[j] == kFluid; });
@@ -56,9 +57,8 @@ std::vector<char> free_surface_particles(const Particles<D>& P, const NeighbourL
 
 // 1 for owned particles with a free-surface particle among their neighbours (or on it); `surface`
 // holds owned and ghost values.
-template <int D>
-std::vector<char> near_free_surface(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                    const std::vector<double>& surface) {
+template <int D> std::vector<char> near_free_surface(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                     const Kernel<D>& K, const std::vector<double>& surface) {
   std::vector<char> near(P.n_owned, 0);
   for (std::size_t i = 0; i < P.n_owned; ++i) near[i] = surface[i] != 0.0;
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>&) { near[i] |= surface[j] != 0.0; });
@@ -133,44 +133,51 @@ inline PetscErrorCode read_free_surface_options(PetscReal* threshold, PetscReal*
 template <int D> void FreeSurface<D>::set_from_options() {
   SPH_PETSC(detail::read_free_surface_options(&threshold_, &exit_threshold_));
   require(threshold_ >= 0 && threshold_ < D, "-free_surface_threshold", "in [0, dimension)", threshold_);
-  require(exit_threshold_ >= 0 && exit_threshold_ < D, "-free_surface_exit_threshold", "in [0, dimension)", exit_threshold_);
+  require(exit_threshold_ >= 0 && exit_threshold_ < D, "-free_surface_exit_threshold", "in [0, dimension)",
+          exit_threshold_);
 }
 
 template <int D> void FreeSurface<D>::setup() {
   if (threshold_ <= 0) threshold_ = default_free_surface_threshold<D>();
   if (exit_threshold_ <= 0) exit_threshold_ = default_free_surface_exit_threshold<D>(threshold_);
-  require(exit_threshold_ >= threshold_, "-free_surface_exit_threshold", "at least -free_surface_threshold", exit_threshold_);
+  require(exit_threshold_ >= threshold_, "-free_surface_exit_threshold", "at least -free_surface_threshold",
+          exit_threshold_);
 }
 
-template <int D>
-std::vector<char> FreeSurface<D>::detect(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                         bool remember) {
+template <int D> std::vector<char> FreeSurface<D>::detect(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                          const Kernel<D>& K, bool remember) {
   state_.resize(P.n_owned, 0.0);
   std::vector<char> surface = free_surface_particles(P, nl, K, threshold_, exit_threshold_, &state_);
   if (remember) state_.assign(surface.begin(), surface.end());
   return surface;
 }
 
-template <int D>
-ShiftBoundary<D> FreeSurface<D>::shift_boundary(const Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K,
-                                                const std::vector<char>& surface) const {
+template <int D> ShiftBoundary<D> FreeSurface<D>::shift_boundary(const Particles<D>& P, Neighbourhood<D>& nh,
+                                                                 const Kernel<D>& K,
+                                                                 const std::vector<char>& surface) const {
   const NeighbourList<D>& nl = nh.list();
   std::vector<double> flags(surface.begin(), surface.end());
   flags.resize(P.size(), 0.0);
   nh.halo().update(flags);
   // The surface particles' own normals, -grad C / |grad C| (walls included), for their neighbours.
-  std::vector<Vector<D>> own = sum_over_pairs(P, nl, K, Vector<D>(Vector<D>::Zero()), [&](Vector<D>& s, int i, int j, const PairGeometry<D>& g) {
-    if (surface[i]) s -= (P.m[j] / P.rho[j]) * g.gradW;
-  }, Rows::Fluid);
+  std::vector<Vector<D>> own = sum_over_pairs(
+      P, nl, K, Vector<D>(Vector<D>::Zero()),
+      [&](Vector<D>& s, int i, int j, const PairGeometry<D>& g) {
+        if (surface[i]) s -= (P.m[j] / P.rho[j]) * g.gradW;
+      },
+      Rows::Fluid);
   for (auto& n : own)
     if (n.squaredNorm() > 0.0) n.normalize();
   own.resize(P.size(), Vector<D>::Zero());
   nh.halo().update(own);
   ShiftBoundary<D> b;
   b.kind.assign(P.n_owned, 0);
-  b.normal = sum_over_pairs(P, nl, K, Vector<D>(Vector<D>::Zero()), [&](Vector<D>& s, int, int j, const PairGeometry<D>& g) {
-    if (flags[j] != 0.0) s += g.W * own[j];
-  }, Rows::Fluid);
+  b.normal = sum_over_pairs(
+      P, nl, K, Vector<D>(Vector<D>::Zero()),
+      [&](Vector<D>& s, int, int j, const PairGeometry<D>& g) {
+        if (flags[j] != 0.0) s += g.W * own[j];
+      },
+      Rows::Fluid);
   const std::vector<char> near = near_free_surface(P, nl, K, flags);
   for (std::size_t i = 0; i < P.n_owned; ++i) {
     b.kind[i] = surface[i] ? 1 : near[i] ? 2 : 0;

@@ -10,10 +10,9 @@
 //  - linear: moving least squares, f(y) ~ a + b.(y - x)/h fitted with the weights W_f; the value is a.
 //    Exact for linear fields wherever the support holds D + 1 particles not on one hyperplane, next to
 //    walls too, so its error is second order (h^2 f''), the order of the schemes it measures.
+#include <Eigen/Dense>
 #include <cmath>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "src/kernels/kernel.hpp"
 #include "src/particles/particles.hpp"
@@ -23,9 +22,8 @@ namespace sph {
 enum class ProbeInterpolation { Shepard, Linear };
 inline const char* const probe_interpolation_names[] = {"shepard", "linear"};
 
-template <int D>
-std::vector<Vector<D>> probe_velocity(const Particles<D>& P, const Kernel<D>& K, const std::vector<Vector<D>>& points,
-                                      ProbeInterpolation fit) {
+template <int D> std::vector<Vector<D>> probe_velocity(const Particles<D>& P, const Kernel<D>& K,
+                                                       const std::vector<Vector<D>>& points, ProbeInterpolation fit) {
   constexpr int m = D + 1;  // basis 1, (y - x)/h
   using Moments = Eigen::Matrix<double, m, m>;
   using Sums = Eigen::Matrix<double, m, D>;

@@ -23,14 +23,15 @@ template <class T> struct KernelAverage {
 // averaged over its fluid particles all the same: where a scheme's surface particles carry the field
 // (ISPH's surface nodes) keeping f_i there would leave all of its particle-scale noise in place. f holds
 // the owned particles' values and grows to cover the ghosts.
-template <int D, class T>
-KernelAverage<T> kernel_average_in_fluid(const Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K,
-                                         std::vector<T>& f, const std::vector<char>* surface,
-                                         bool average_cut_by_surface = false) {
+template <int D, class T> KernelAverage<T> kernel_average_in_fluid(const Particles<D>& P, Neighbourhood<D>& nh,
+                                                                   const Kernel<D>& K, std::vector<T>& f,
+                                                                   const std::vector<char>* surface,
+                                                                   bool average_cut_by_surface = false) {
   f.resize(P.size());
   nh.halo().update(f);
   std::vector<double> boundary(P.size(), 0.0);  // 1: a wall particle, 2: a free-surface particle
-  for (std::size_t i = 0; i < P.n_owned; ++i) boundary[i] = P.kind[i] != kFluid ? 1.0 : surface && (*surface)[i] ? 2.0 : 0.0;
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    boundary[i] = P.kind[i] != kFluid ? 1.0 : surface && (*surface)[i] ? 2.0 : 0.0;
   nh.halo().update(boundary);
   KernelAverage<T> result{std::vector<T>(f.begin(), f.begin() + P.n_owned), std::vector<char>(P.n_owned, 0)};
   const double W0 = K.W(0.0);

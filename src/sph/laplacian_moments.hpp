@@ -10,11 +10,10 @@
 // register where they fit (in 2D most do; splitting the sums over two passes to keep them all there
 // made a 3D step slower, the monomials computed twice). The lanes are added in a fixed order at the
 // end: the sums differ from pair-by-pair ones in round-off only, and are the same on any thread count.
+#include <Eigen/Core>
 #include <array>
 #include <cstddef>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "src/core/types.hpp"
 
@@ -170,7 +169,8 @@ template <int D> LaplacianMoments<D> sum_laplacian_moments(const LaplacianPairs<
     std::array<L, M::n2> e2;
     std::array<L, M::n3> e3;
     for (int i = 0; i < M::n2; ++i) e2[i] = e[m2.axes[i][0]] * e[m2.axes[i][1]], gs2[i] += gs * e2[i];
-    for (int i = 0; i < M::n3; ++i) e3[i] = e2[m3.prefix[i]] * e[m3.last[i]], gs3[i] += gs * e3[i], gss3[i] += gss * e3[i];
+    for (int i = 0; i < M::n3; ++i)
+      e3[i] = e2[m3.prefix[i]] * e[m3.last[i]], gs3[i] += gs * e3[i], gss3[i] += gss * e3[i];
     for (int i = 0; i < M::n4; ++i) gss4[i] += gss * (e3[m4.prefix[i]] * e[m4.last[i]]);
   }
   M out;

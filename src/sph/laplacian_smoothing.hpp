@@ -46,16 +46,19 @@ void remove_laplacian_smoothing_error(const Particles<D>& P, const Neighbourhood
     double m4 = 0.0;
     bool wall = false;
   };
-  const std::vector<Sums> sums = sum_over_pairs(P, nh.list(), K, Sums{}, [&](Sums& s, int i, int j, const PairGeometry<D>& g) {
-    if (P.kind[j] != kFluid) {
-      s.wall = true;
-      return;
-    }
-    const double w = consistent_laplacian_coefficient(factors[i], P.m[j] / P.rho[j], g);
-    const double r2 = g.r * g.r;
-    s.lap2 += w * (lap_all[j] - lap_all[i]);
-    s.m4 += w * r2 * r2;
-  }, Rows::Fluid);
+  const std::vector<Sums> sums = sum_over_pairs(
+      P, nh.list(), K, Sums{},
+      [&](Sums& s, int i, int j, const PairGeometry<D>& g) {
+        if (P.kind[j] != kFluid) {
+          s.wall = true;
+          return;
+        }
+        const double w = consistent_laplacian_coefficient(factors[i], P.m[j] / P.rho[j], g);
+        const double r2 = g.r * g.r;
+        s.lap2 += w * (lap_all[j] - lap_all[i]);
+        s.m4 += w * r2 * r2;
+      },
+      Rows::Fluid);
   constexpr double isotropic = 1.0 / (8.0 * D * (D + 2));
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (P.kind[i] == kFluid && !sums[i].wall) lap[i] -= (isotropic * sums[i].m4) * sums[i].lap2;

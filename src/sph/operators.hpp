@@ -1,11 +1,10 @@
 #pragma once
 // SPH differential operators on particle fields (outputs hold one value per owned particle).
 // Every operator is the shared pair loop with a small pair formula; V_j = m_j / rho_j.
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <vector>
-
-#include <Eigen/Eigenvalues>
 
 #include "src/core/integer_power.hpp"
 #include "src/sph/pair_terms.hpp"
@@ -19,9 +18,8 @@ template <int D> inline Vector<D> difference_gradient_term(double Vj, double fi,
   return (Vj * (fj - fi)) * g.gradW;
 }
 // Term of sum_j V_j grad_i W_ij (u_j - u_i)^T.
-template <int D>
-inline Tensor<D> difference_vector_gradient_term(double Vj, const Vector<D>& ui, const Vector<D>& uj,
-                                                 const PairGeometry<D>& g) {
+template <int D> inline Tensor<D> difference_vector_gradient_term(double Vj, const Vector<D>& ui, const Vector<D>& uj,
+                                                                  const PairGeometry<D>& g) {
   return Vj * g.gradW * (uj - ui).transpose();
 }
 // Term of the moment matrix -sum_j V_j grad_i W_ij r_ij^T = sum_j V_j grad_i W_ij (x_j - x_i)^T.
@@ -39,31 +37,28 @@ std::vector<double> density_summation(const Particles<D>& P, const NeighbourList
 }
 
 // (div u)_i = -(1/rho_i) sum_j m_j u_ij . grad_i W_ij  (exact for uniform u).
-template <int D>
-std::vector<double> divergence(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                               const std::vector<Vector<D>>& u) {
+template <int D> std::vector<double> divergence(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                                const std::vector<Vector<D>>& u) {
   std::vector<double> div(P.n_owned, 0.0);
-  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
-    div[i] -= P.m[j] * (u[i] - u[j]).dot(g.gradW);
-  });
+  for_each_pair(P, nl, K,
+                [&](int i, int j, const PairGeometry<D>& g) { div[i] -= P.m[j] * (u[i] - u[j]).dot(g.gradW); });
   for (std::size_t i = 0; i < P.n_owned; ++i) div[i] /= P.rho[i];
   return div;
 }
 
 // (grad f)_i = sum_j V_j (f_j - f_i) grad_i W_ij  (zero for constant f).
-template <int D>
-std::vector<Vector<D>> gradient_difference(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                        const std::vector<double>& f) {
-  return sum_over_pairs(P, nl, K, Vector<D>(Vector<D>::Zero()), [&](Vector<D>& grad, int i, int j, const PairGeometry<D>& g) {
-    grad += difference_gradient_term(P.m[j] / P.rho[j], f[i], f[j], g);
-  });
+template <int D> std::vector<Vector<D>> gradient_difference(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                            const Kernel<D>& K, const std::vector<double>& f) {
+  return sum_over_pairs(P, nl, K, Vector<D>(Vector<D>::Zero()),
+                        [&](Vector<D>& grad, int i, int j, const PairGeometry<D>& g) {
+                          grad += difference_gradient_term(P.m[j] / P.rho[j], f[i], f[j], g);
+                        });
 }
 
 // (grad f)_i = rho_i sum_j m_j (f_i/rho_i^2 + f_j/rho_j^2) grad_i W_ij: the momentum-conserving
 // (antisymmetric in i, j) form of Monaghan (1992).
-template <int D>
-std::vector<Vector<D>> gradient_symmetric(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                       const std::vector<double>& f) {
+template <int D> std::vector<Vector<D>> gradient_symmetric(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                           const Kernel<D>& K, const std::vector<double>& f) {
   std::vector<Vector<D>> grad(P.n_owned, Vector<D>::Zero());
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     grad[i] += (P.m[j] * (f[i] / (P.rho[i] * P.rho[i]) + f[j] / (P.rho[j] * P.rho[j]))) * g.gradW;
@@ -101,16 +96,15 @@ template <int D> Tensor<D> correction_from_moments(const Tensor<D>& M) {
 template <int D>
 std::vector<Tensor<D>> correction_matrices(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) {
   std::vector<Tensor<D>> M(P.n_owned, Tensor<D>::Zero());
-  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
-    M[i] += correction_moment_term(P.m[j] / P.rho[j], g);
-  });
+  for_each_pair(P, nl, K,
+                [&](int i, int j, const PairGeometry<D>& g) { M[i] += correction_moment_term(P.m[j] / P.rho[j], g); });
   for (auto& Mi : M) Mi = correction_from_moments(Mi);
   return M;
 }
 
-template <int D>
-std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                       const std::vector<Tensor<D>>& L, const std::vector<double>& f) {
+template <int D> std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                           const Kernel<D>& K, const std::vector<Tensor<D>>& L,
+                                                           const std::vector<double>& f) {
   std::vector<Vector<D>> grad = gradient_difference(P, nl, K, f);
   for (std::size_t i = 0; i < P.n_owned; ++i) grad[i] = L[i] * grad[i];
   return grad;
@@ -121,22 +115,24 @@ template <int D> struct GradientSums {
   Tensor<D> M;
   Vector<D> grad;
 };
-template <int D>
-std::vector<GradientSums<D>> gradient_sums(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                           const std::vector<double>& f, Rows rows = Rows::All) {
-  return sum_over_pairs(P, nl, K, GradientSums<D>{Tensor<D>::Zero(), Vector<D>::Zero()},
-                        [&](GradientSums<D>& s, int i, int j, const PairGeometry<D>& g) {
-    const double Vj = P.m[j] / P.rho[j];
-    s.M += correction_moment_term(Vj, g);
-    s.grad += difference_gradient_term(Vj, f[i], f[j], g);
-  }, rows);
+template <int D> std::vector<GradientSums<D>> gradient_sums(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                            const Kernel<D>& K, const std::vector<double>& f,
+                                                            Rows rows = Rows::All) {
+  return sum_over_pairs(
+      P, nl, K, GradientSums<D>{Tensor<D>::Zero(), Vector<D>::Zero()},
+      [&](GradientSums<D>& s, int i, int j, const PairGeometry<D>& g) {
+        const double Vj = P.m[j] / P.rho[j];
+        s.M += correction_moment_term(Vj, g);
+        s.grad += difference_gradient_term(Vj, f[i], f[j], g);
+      },
+      rows);
 }
 
 // The same, with the correction matrices gathered in the same pair loop (bitwise the same result, one
 // pair loop instead of two) for callers that need no other corrected quantity.
-template <int D>
-std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                       const std::vector<double>& f, Rows rows = Rows::All) {
+template <int D> std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                           const Kernel<D>& K, const std::vector<double>& f,
+                                                           Rows rows = Rows::All) {
   const std::vector<GradientSums<D>> sums = gradient_sums(P, nl, K, f, rows);
   std::vector<Vector<D>> grad(P.n_owned);
   for (std::size_t i = 0; i < P.n_owned; ++i) grad[i] = correction_from_moments(sums[i].M) * sums[i].grad;
@@ -144,10 +140,9 @@ std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const Neighbour
 }
 
 // Corrected gradient of a vector field: G_i(a, b) = d u_b / d x_a.
-template <int D>
-std::vector<Tensor<D>> vector_gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl,
-                                              const Kernel<D>& K, const std::vector<Tensor<D>>& L,
-                                              const std::vector<Vector<D>>& u) {
+template <int D> std::vector<Tensor<D>> vector_gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                                  const Kernel<D>& K, const std::vector<Tensor<D>>& L,
+                                                                  const std::vector<Vector<D>>& u) {
   std::vector<Tensor<D>> G(P.n_owned, Tensor<D>::Zero());
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     G[i] += difference_vector_gradient_term(P.m[j] / P.rho[j], u[i], u[j], g);
@@ -157,9 +152,8 @@ std::vector<Tensor<D>> vector_gradient_corrected(const Particles<D>& P, const Ne
 }
 
 // Morris et al. (1997) Laplacian: (lap f)_i = 2 sum_j V_j (f_i - f_j) F_ij.
-template <int D, class T>
-std::vector<T> laplacian_morris(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                const std::vector<T>& f) {
+template <int D, class T> std::vector<T> laplacian_morris(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                          const Kernel<D>& K, const std::vector<T>& f) {
   std::vector<T> lap(P.n_owned, T(f.empty() ? T() : f[0] * 0.0));
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     lap[i] += (2.0 * P.m[j] / P.rho[j] * morris_factor(g, K.h())) * (f[i] - f[j]);

@@ -13,12 +13,12 @@
 namespace sph {
 
 template <int D> struct PairGeometry {
-  Vector<D> rij;      // x_i - x_j
-  double r;        // |x_i - x_j| > 0
-  double W;        // W(r, h)
-  double dWdr;     // dW/dr
-  double dWdr_r;   // dW/dr / r (< 0): the radial factor of the gradient, divided once per pair
-  Vector<D> gradW;    // grad_i W_ij = dWdr_r r_ij
+  Vector<D> rij;    // x_i - x_j
+  double r;         // |x_i - x_j| > 0
+  double W;         // W(r, h)
+  double dWdr;      // dW/dr
+  double dWdr_r;    // dW/dr / r (< 0): the radial factor of the gradient, divided once per pair
+  Vector<D> gradW;  // grad_i W_ij = dWdr_r r_ij
 };
 
 // Whether a listed neighbour at squared distance r2 forms a pair: inside the support (rc2 its square)
@@ -51,8 +51,9 @@ template <int D> struct PairBatch {
   // Fills the batch with i's pairs (0 < r < support, rc2 the support's square), in list order.
   void gather(std::size_t i, const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, double rc2) {
     const std::size_t listed = nl.count(i);
-    if (j.size() < listed) j.resize(listed), rij.resize(listed), r.resize(listed), W.resize(listed),
-                           dWdr.resize(listed), dWdr_r.resize(listed);
+    if (j.size() < listed)
+      j.resize(listed), rij.resize(listed), r.resize(listed), W.resize(listed), dWdr.resize(listed),
+          dWdr_r.resize(listed);
     const Vector<D> xi = P.x[i];
     std::size_t n = 0;
     // Every candidate is written and only a pair advances n: a branch on the support test was
@@ -63,7 +64,7 @@ template <int D> struct PairBatch {
     int* const jd = j.data();
     Vector<D>* const rd = rij.data();
     double* const r2d = r.data();
-    for (const int* it = nl.begin(i), *end = nl.end(i); it != end; ++it) {
+    for (const int *it = nl.begin(i), *end = nl.end(i); it != end; ++it) {
       const int k = *it;
       const Vector<D> d = xi - x[k];
       const double r2 = d.squaredNorm();
@@ -87,7 +88,8 @@ template <int D> PairBatchSlot<D>& pair_batch_slot() {
   return slot;
 }
 
-template <int D, class PairFn> [[gnu::flatten]] inline void visit_batch(std::size_t i, const PairBatch<D>& b, PairFn& f) {
+template <int D, class PairFn>
+[[gnu::flatten]] inline void visit_batch(std::size_t i, const PairBatch<D>& b, PairFn& f) {
   PairGeometry<D> g;
   for (std::size_t k = 0; k < b.size; ++k) {
     g.rij = b.rij[k];
@@ -102,9 +104,8 @@ template <int D, class PairFn> [[gnu::flatten]] inline void visit_batch(std::siz
 
 // f(i, j, geometry) for the neighbours j of one particle i, in list order. A pair function that visits
 // another particle's pairs gets a batch of its own (the thread's batch is in use).
-template <int D, class PairFn>
-inline void pairs_of(std::size_t i, const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                     double rc2, PairFn& f) {
+template <int D, class PairFn> inline void pairs_of(std::size_t i, const Particles<D>& P, const NeighbourList<D>& nl,
+                                                    const Kernel<D>& K, double rc2, PairFn& f) {
   PairBatchSlot<D>& slot = pair_batch_slot<D>();
   PairBatch<D>& batch = slot.batch;
   bool& in_use = slot.in_use;
@@ -128,9 +129,8 @@ inline void pairs_of(std::size_t i, const Particles<D>& P, const NeighbourList<D
 // particles i shared among OpenMP threads. Contract: f writes only to entries of i (it may read
 // anything) and does not throw. Each i's pairs still run in list order on one thread, so every sum
 // is bitwise the same on any thread count.
-template <int D, class PairFn>
-void for_each_pair(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, PairFn&& f,
-                   Rows rows = Rows::All) {
+template <int D, class PairFn> void for_each_pair(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                                  PairFn&& f, Rows rows = Rows::All) {
   const double rc2 = K.support_radius() * K.support_radius();
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
 #pragma omp parallel for schedule(static)
@@ -141,9 +141,9 @@ void for_each_pair(const Particles<D>& P, const NeighbourList<D>& nl, const Kern
 // f(i, visit_pairs) for every owned particle i, threaded like for_each_pair, where visit_pairs(pf) runs
 // pf(i, j, geometry) over i's pairs in list order (as often as f likes): for sums that live only as
 // long as one particle's computation (moment matrices solved on the spot), kept in f's locals.
-template <int D, class ParticleFn>
-void for_each_particle_pairs(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, ParticleFn&& f,
-                             Rows rows = Rows::All) {
+template <int D, class ParticleFn> void for_each_particle_pairs(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                                const Kernel<D>& K, ParticleFn&& f,
+                                                                Rows rows = Rows::All) {
   const double rc2 = K.support_radius() * K.support_radius();
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
 #pragma omp parallel for schedule(static)
@@ -188,9 +188,8 @@ void for_each_pair_index(const Particles<D>& P, const NeighbourList<D>& nl, cons
 
 // The same pairs on one thread, i ascending: for callers that build output in order (matrix rows,
 // compressed stencils) or write to shared state.
-template <int D, class PairFn>
-void for_each_pair_in_order(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, PairFn&& f,
-                            Rows rows = Rows::All) {
+template <int D, class PairFn> void for_each_pair_in_order(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                           const Kernel<D>& K, PairFn&& f, Rows rows = Rows::All) {
   const double rc2 = K.support_radius() * K.support_radius();
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (visited(rows, P.kind[i])) detail::pairs_of(i, P, nl, K, rc2, f);
@@ -203,9 +202,9 @@ void for_each_pair_in_order(const Particles<D>& P, const NeighbourList<D>& nl, c
 
 // For owned particle i: f(j, r_ij, r) for every neighbour j with 0 < r < support of K (i's own kernel),
 // the "gather" view used by the density / smoothing-length iteration.
-template <int D, class List, class Fn>
-inline void for_each_gather_neighbour(const Particles<D>& P, const List& nl, std::size_t i, const Kernel<D>& K,
-                                      Fn&& f) {
+template <int D, class List, class Fn> inline void for_each_gather_neighbour(const Particles<D>& P, const List& nl,
+                                                                             std::size_t i, const Kernel<D>& K,
+                                                                             Fn&& f) {
   const double rc2 = K.support_radius() * K.support_radius();
   for (const int* it = nl.begin(i); it != nl.end(i); ++it) {
     const int j = *it;
@@ -222,10 +221,10 @@ template <int D> struct VariableHPair {
   Vector<D> rij;  // x_i - x_j
   double r;       // |r_ij| > 0
   double Wi, Wj, dWi, dWj;
-  Vector<D> gradWi() const { return (dWi / r) * rij; }               // grad_i W(r_ij, h_i)
-  Vector<D> gradWj() const { return (dWj / r) * rij; }               // grad_i W(r_ij, h_j)
+  Vector<D> gradWi() const { return (dWi / r) * rij; }  // grad_i W(r_ij, h_i)
+  Vector<D> gradWj() const { return (dWj / r) * rij; }  // grad_i W(r_ij, h_j)
   double dW_mean() const { return 0.5 * (dWi + dWj); }
-  Vector<D> gradW_mean() const { return (dW_mean() / r) * rij; }     // symmetric in i, j
+  Vector<D> gradW_mean() const { return (dW_mean() / r) * rij; }  // symmetric in i, j
 };
 
 // f(i, j, pair) for every owned i and neighbour j within the larger of the two supports ("scatter +

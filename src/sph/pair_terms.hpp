@@ -17,9 +17,8 @@ template <int D> inline double morris_factor(const PairGeometry<D>& g, double h)
 
 // Morris et al. (1997) laminar viscous acceleration on i from j:
 //   sum_j m_j (mu_i + mu_j) / (rho_i rho_j) F_ij u_ij, with mu = rho nu.
-template <int D>
-inline Vector<D> morris_viscous_acceleration(double mj, double rho_i, double rho_j, double nu_i, double nu_j,
-                                          double F, const Vector<D>& uij) {
+template <int D> inline Vector<D> morris_viscous_acceleration(double mj, double rho_i, double rho_j, double nu_i,
+                                                              double nu_j, double F, const Vector<D>& uij) {
   return (mj * (rho_i * nu_i + rho_j * nu_j) / (rho_i * rho_j) * F) * uij;
 }
 

@@ -12,14 +12,13 @@
 //   term of Monaghan 2000 that Lind et al. add to stop pairing).
 #include <algorithm>
 #include <array>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "src/core/integer_power.hpp"
-#include "src/neighbours/neighbourhood.hpp"
 #include "src/core/log_events.hpp"
+#include "src/neighbours/neighbourhood.hpp"
 #include "src/sph/free_surface.hpp"
 #include "src/sph/kernel_average.hpp"
 #include "src/sph/operators.hpp"
@@ -37,7 +36,8 @@ namespace sph {
 enum class ShiftRate { Speed, Strain };
 inline const char* const shift_rate_names[] = {"speed", "strain"};
 inline const char* const shift_rate_help =
-    "Shift diffusivity: speed (D = A h U dt, U the largest particle speed, Lind et al. 2012) or strain (D = A h^2 |S| dt, S the local strain "
+    "Shift diffusivity: speed (D = A h U dt, U the largest particle speed, Lind et al. 2012) or strain (D = A h^2 |S| "
+    "dt, S the local strain "
     "rate: no shift where the flow does not deform, no time-step limit)";
 // Which part of grad C particles shift along (-shift_scales). The kernel sum C is not 1 on a uniform
 // but anisotropic arrangement, and the flow's strain makes such arrangements systematically: C then has
@@ -71,9 +71,9 @@ template <int D> double largest_speed(const Particles<D>& P) {
 struct LindShifting {
   ShiftRate rate = ShiftRate::Speed;
   ShiftScales scales = ShiftScales::All;
-  double A = -1.0;  // -1: the rate's default (default_coefficient)
-  double R = 0.2;   // tensile-correction strength
-  int n = 4;        // tensile-correction exponent
+  double A = -1.0;                              // -1: the rate's default (default_coefficient)
+  double R = 0.2;                               // tensile-correction strength
+  int n = 4;                                    // tensile-correction exponent
   static constexpr double max_D_over_h2 = 0.5;  // stability of the explicit shift
 
   static double default_coefficient(ShiftRate r) { return r == ShiftRate::Speed ? 2.0 : 5.0; }
@@ -89,10 +89,13 @@ struct LindShifting {
     return rate == ShiftRate::Speed && coefficient_A() > 0.0 ? max_D_over_h2 * h / (coefficient_A() * U) : 1e300;
   }
   nlohmann::json describe() const {
-    return {{"model", "LindShifting"}, {"rate", shift_rate_names[static_cast<int>(rate)]},
+    return {{"model", "LindShifting"},
+            {"rate", shift_rate_names[static_cast<int>(rate)]},
             {"scales", shift_scales_names[static_cast<int>(scales)]},
-            {"D", rate == ShiftRate::Speed ? "A h U dt" : "min(A h^2 |S| dt, 0.5 h^2)"}, {"A", coefficient_A()},
-            {"R", R}, {"n", n}};
+            {"D", rate == ShiftRate::Speed ? "A h U dt" : "min(A h^2 |S| dt, 0.5 h^2)"},
+            {"A", coefficient_A()},
+            {"R", R},
+            {"n", n}};
   }
 };
 
@@ -100,9 +103,8 @@ struct LindShifting {
 // particle scale. Only where the kernel support is all fluid: next to a wall or a free surface the
 // resolved part of grad C is the boundary's own signal, which keeps particles off walls, and g_i is kept
 // whole (docs/verification/lid_driven_cavity.md, "Design measurements").
-template <int D>
-void remove_kernel_average(const Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, std::vector<Vector<D>>& g,
-                           const std::vector<char>* surface) {
+template <int D> void remove_kernel_average(const Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K,
+                                            std::vector<Vector<D>>& g, const std::vector<char>* surface) {
   const KernelAverage<Vector<D>> average = kernel_average_in_fluid(P, nh, K, g, surface);
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (average.interior[i]) g[i] -= average.average[i];
@@ -119,10 +121,10 @@ void remove_kernel_average(const Particles<D>& P, Neighbourhood<D>& nh, const Ke
 // vector_gradient_corrected, gradient_corrected) these were one loop each, and traversing the pairs,
 // not the arithmetic, is the cost: the fused loop gives each sum bitwise the same terms in the same
 // order (tests/test_operators.cpp), in less time (docs/performance.md, "Design measurements").
-template <int D>
-void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, const LindShifting& model,
-                     double dx, double U, double dt, const std::vector<std::vector<double>*>& scalars = {},
-                     const ShiftBoundary<D>* surface = nullptr) {
+template <int D> void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K,
+                                      const LindShifting& model, double dx, double U, double dt,
+                                      const std::vector<std::vector<double>*>& scalars = {},
+                                      const ShiftBoundary<D>* surface = nullptr) {
   const LogEventScope log_shifting(LogEvent::Shifting);
   const NeighbourList<D>& nl = nh.list();
   const std::size_t n = P.n_owned;
@@ -137,21 +139,24 @@ void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, 
   const std::size_t ns = scalars.size();
   std::array<const double*, max_scalars> f{};
   for (std::size_t k = 0; k < ns; ++k) f[k] = scalars[k]->data();
-  for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
-    Vector<D> dr_i = Vector<D>::Zero();
-    Tensor<D> L_i = Tensor<D>::Zero(), grad_u_i = Tensor<D>::Zero();
-    std::array<Vector<D>, max_scalars> grad_f_i;
-    for (std::size_t k = 0; k < ns; ++k) grad_f_i[k].setZero();
-    visit_pairs([&](int, int j, const PairGeometry<D>& g) {
-      const double Vj = P.m[j] / P.rho[j];
-      dr_i += (Vj * (1.0 + model.R * integer_power(g.W / W_dx, model.n))) * g.gradW;
-      L_i += correction_moment_term(Vj, g);
-      grad_u_i += difference_vector_gradient_term(Vj, P.v[i], P.v[j], g);
-      for (std::size_t k = 0; k < ns; ++k) grad_f_i[k] += difference_gradient_term(Vj, f[k][i], f[k][j], g);
-    });
-    dr[i] = dr_i, L[i] = L_i, grad_u[i] = grad_u_i;
-    for (std::size_t k = 0; k < ns; ++k) grad_f[k][i] = grad_f_i[k];
-  }, Rows::Fluid);  // walls do not shift
+  for_each_particle_pairs(
+      P, nl, K,
+      [&](std::size_t i, auto&& visit_pairs) {
+        Vector<D> dr_i = Vector<D>::Zero();
+        Tensor<D> L_i = Tensor<D>::Zero(), grad_u_i = Tensor<D>::Zero();
+        std::array<Vector<D>, max_scalars> grad_f_i;
+        for (std::size_t k = 0; k < ns; ++k) grad_f_i[k].setZero();
+        visit_pairs([&](int, int j, const PairGeometry<D>& g) {
+          const double Vj = P.m[j] / P.rho[j];
+          dr_i += (Vj * (1.0 + model.R * integer_power(g.W / W_dx, model.n))) * g.gradW;
+          L_i += correction_moment_term(Vj, g);
+          grad_u_i += difference_vector_gradient_term(Vj, P.v[i], P.v[j], g);
+          for (std::size_t k = 0; k < ns; ++k) grad_f_i[k] += difference_gradient_term(Vj, f[k][i], f[k][j], g);
+        });
+        dr[i] = dr_i, L[i] = L_i, grad_u[i] = grad_u_i;
+        for (std::size_t k = 0; k < ns; ++k) grad_f[k][i] = grad_f_i[k];
+      },
+      Rows::Fluid);  // walls do not shift
   // A free-surface particle's outward normal is along grad C itself, before any filtering.
   std::vector<Vector<D>> normal;
   std::vector<char> on_surface;

@@ -11,9 +11,8 @@
 // vanishes). The corrected gradient and divergence of a surface particle see the node as one more
 // neighbour (its pressure 0; its velocity the particle's own, so it adds no divergence), and so does
 // its PPE row: the operators stay consistent with each other, which the projection needs.
-#include <vector>
-
 #include <Eigen/Eigenvalues>
+#include <vector>
 
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/sph/operators.hpp"
@@ -46,9 +45,8 @@ template <int D> struct SurfaceNodes {
 };
 
 // The nodes of the particles flagged in `surface` (owned particles), at distance d.
-template <int D>
-SurfaceNodes<D> surface_nodes(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
-                              const std::vector<char>& surface, double d) {
+template <int D> SurfaceNodes<D> surface_nodes(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
+                                               const std::vector<char>& surface, double d) {
   const NeighbourList<D>& nl = nh.list();
   SurfaceNodes<D> nodes;
   nodes.distance = d;
@@ -57,11 +55,13 @@ SurfaceNodes<D> surface_nodes(const Particles<D>& P, const Neighbourhood<D>& nh,
     Vector<D> gradC;
     Tensor<D> M;
   };
-  const std::vector<Sums> sum = sum_over_pairs(P, nl, K, Sums{Vector<D>::Zero(), Tensor<D>::Zero()},
-                                               [&](Sums& s, int, int j, const PairGeometry<D>& g) {
-    s.gradC += (P.m[j] / P.rho[j]) * g.gradW;
-    s.M += correction_moment_term(P.m[j] / P.rho[j], g);
-  }, Rows::Fluid);
+  const std::vector<Sums> sum = sum_over_pairs(
+      P, nl, K, Sums{Vector<D>::Zero(), Tensor<D>::Zero()},
+      [&](Sums& s, int, int j, const PairGeometry<D>& g) {
+        s.gradC += (P.m[j] / P.rho[j]) * g.gradW;
+        s.M += correction_moment_term(P.m[j] / P.rho[j], g);
+      },
+      Rows::Fluid);
   // Wall particles above the free surface are no part of the fluid's support: a first normal from all
   // neighbours, then the kernel-gradient sum again, twice, without the walls beyond the surface that the
   // last normal gives. Otherwise a surface particle on a side wall that rises above the water has its
@@ -72,10 +72,13 @@ SurfaceNodes<D> surface_nodes(const Particles<D>& P, const Neighbourhood<D>& nh,
     if (surface[i] && sum[i].gradC.norm() > 0.0) first[i] = -sum[i].gradC.normalized();
   std::vector<Vector<D>> gradC;
   for (int pass = 0; pass < 2; ++pass) {
-    gradC = sum_over_pairs(P, nl, K, Vector<D>(Vector<D>::Zero()), [&](Vector<D>& s, int i, int j, const PairGeometry<D>& g) {
-      if (P.kind[j] != kFluid && first[i].dot(-g.rij) > d) return;
-      s += (P.m[j] / P.rho[j]) * g.gradW;
-    }, Rows::Fluid);
+    gradC = sum_over_pairs(
+        P, nl, K, Vector<D>(Vector<D>::Zero()),
+        [&](Vector<D>& s, int i, int j, const PairGeometry<D>& g) {
+          if (P.kind[j] != kFluid && first[i].dot(-g.rij) > d) return;
+          s += (P.m[j] / P.rho[j]) * g.gradW;
+        },
+        Rows::Fluid);
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (surface[i] && gradC[i].norm() > 0.0) first[i] = -gradC[i].normalized();
   }
@@ -99,9 +102,9 @@ SurfaceNodes<D> surface_nodes(const Particles<D>& P, const Neighbourhood<D>& nh,
 // The corrected gradient (gradient_corrected) with each surface particle's node as one more neighbour;
 // sheets and drops (SurfaceNodes::splash) take the uncorrected sum, their moment matrix being near
 // singular.
-template <int D>
-std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                          const std::vector<double>& f, Rows rows, const SurfaceNodes<D>& nodes) {
+template <int D> std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                           const Kernel<D>& K, const std::vector<double>& f, Rows rows,
+                                                           const SurfaceNodes<D>& nodes) {
   const std::vector<GradientSums<D>> sums = gradient_sums(P, nl, K, f, rows);
   std::vector<Vector<D>> grad(P.n_owned);
   for (std::size_t i = 0; i < P.n_owned; ++i) {
