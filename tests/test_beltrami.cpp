@@ -94,8 +94,8 @@ BeltramiRun beltrami_run(const std::string& tag, const std::string& args) {
   return {r.summary["errors"], 1.0 - std::exp(-0.5 * r.summary["physics"]["nu"].get<double>())};
 }
 
-// ISPH's errors fall at second order from nx 16 to 32 (measured l1_velocity 1.29e-3,
-// 3.17e-4: 2.02; l1_pressure 2.64e-2, 6.36e-3: 2.05); asserted above 1.5.
+// ISPH's errors fall at second order from nx 16 to 32 (measured orders 2.02 and 2.05 for velocity and pressure;
+// docs/verification/beltrami.md, "Design measurements"); asserted above 1.5.
 TEST(Beltrami, IsphConvergesInH) {
   const BeltramiRun run16 = beltrami_run("beltrami_isph_16", "-solver isph -nx 16");
   const BeltramiRun run32 = beltrami_run("beltrami_isph_32", "-solver isph -nx 32");

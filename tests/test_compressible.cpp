@@ -204,13 +204,9 @@ TEST(CompressibleIact, SmoothingLengthIterationOnALattice) {
 std::string opts(const std::string& name) { return std::string("-options_file ") + SPH_SOURCE_DIR + "/cases/" + name; }
 double num(const nlohmann::json& j) { return j.get<double>(); }
 
-// Sod at t = 0.2, cubic spline, h = 1.2 (m/rho): measured (1D, -nx = left particles per unit length)
-//   nx   l1_rho  l1_u    l1_P    plateau rho  plateau P  shock pos.
-//   400  0.0078  0.0221  0.0074  0.71%        0.39%      0.0033
-//   800  0.0042  0.0101  0.0037  0.14%        0.18%      0.0017
-//  1600  0.0026  0.0051  0.0018  0.09%        0.06%      0.0007
-// For scale, leaving the initial step in place scores l1_rho ~ 0.1, plateau errors ~50%; the exact shock
-// runs 0.35 in t = 0.2. The bounds leave ~50% headroom over the measurements.
+// Sod at t = 0.2, cubic spline, h = 1.2 (m/rho), 1D, -nx = left particles per unit length. For scale, leaving the
+// initial step in place scores l1_rho ~ 0.1, plateau errors ~50%; the exact shock runs 0.35 in t = 0.2. The bounds
+// leave ~50% headroom over the measurements (docs/verification/compressible.md, "Design measurements").
 TEST(Sod, ConvergesToExactRiemannSolution) {
   const auto coarse = run_sph("sod_400", opts("sod.opts") + " -nx 400 -output_interval 0");
   const auto fine = run_sph("sod_800", opts("sod.opts") + " -nx 800 -output_interval 0");
@@ -281,13 +277,9 @@ TEST(Compressible, RefusesSceneWithoutGas) {
   EXPECT_NE(text.str().find("needs a gas scene"), std::string::npos) << text.str();
 }
 
-// Toy star after two breathing periods (t = 7.26), against the RK4 solution of the ODEs. Measured
-// (quintic spline, Morris-Monaghan alpha from 0.1, -nx particles):
-//   nx   l1_density  l1_velocity
-//   100  9.6e-4      6.2e-4
-//   200  4.7e-4      3.9e-4
-//   400  3.0e-4      2.6e-4
-// against a central density of 1 and a velocity amplitude A0 R = 0.1.
+// Toy star after two breathing periods (t = 7.26), against the RK4 solution of the ODEs (quintic spline,
+// Morris-Monaghan alpha from 0.1), against a central density of 1 and a velocity amplitude A0 R = 0.1; the errors
+// at nx 200 are under 5e-4 (docs/verification/compressible.md, "Design measurements").
 TEST(ToyStar, FollowsExactSolutionOverTwoPeriods) {
   const auto coarse = run_sph("toy_star_100", opts("toy_star.opts") + " -nx 100 -output_interval 0");
   const auto fine = run_sph("toy_star_200", opts("toy_star.opts") + " -nx 200 -output_interval 0");

@@ -2,9 +2,8 @@
 // at resolutions that fit CI. The tables of docs/verification/taylor_green.md (cases/studies/taylor_green*.yaml) go
 // further.
 //
-// What used to fail: ISPH's error grew as dt fell (nx 64: 2.2e-3, 1.5e-3, 3.7e-3 at CFL 0.2, 0.1,
-// 0.05), because the projection's operators were inconsistent and shifting was defined per step;
-// WCSPH's error stalled at 4.4e-3 from nx 64 on.
+// The failures they catch: an error per step, which makes ISPH's error grow as dt falls, and an order that stalls
+// under refinement in h (docs/verification/taylor_green.md, "History").
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -35,16 +34,12 @@ double l1_velocity(const std::string& tag, const std::string& args) {
   return e.is_null() ? NAN : e["l1_velocity"].get<double>();
 }
 
-// Halving dt at fixed h: the velocity error approaches a limit (the spatial error) instead of growing
-// without bound, as an error per step would (the pressure's did while the particle-scale divergence was
-// divided by dt/2 every step: -ppe_particle_divergence_rate -1 gave l1_pressure 2.50e-2, 2.67e-2,
-// 2.86e-2, +7 % per halving). At nx 32 and 48 the last per cent is the start lattice's rearrangement
-// at t ~ 0.2, which moves with dt without a trend: l1_velocity 4.22e-3, 4.37e-3, 4.33e-3, 4.15e-3 at
-// CFL 0.1 ... 0.0125 (nx 32), 2.11e-3, 2.19e-3, 2.12e-3 at CFL 0.1 ... 0.025 (nx 48). So what is
-// tested is that the changes shrink, as a sum that converges does (an error per step makes them
-// grow), not their share of the error: since the viscous term's smoothing error was removed the
-// error at nx 32 is half what it was while the rearrangement's changes are the same size (2.21e-3,
-// 2.06e-3, 2.10e-3: changes 1.6e-4, 5e-5, against 1.5e-4, 4e-5 before).
+// Halving dt at fixed h: the velocity error approaches a limit (the spatial error) instead of growing without
+// bound, as an error per step would (the pressure's does with -ppe_particle_divergence_rate -1, which divides the
+// particle-scale divergence by dt/2 every step). At nx 32 the last per cent is the start lattice's rearrangement at
+// t ~ 0.2, which moves with dt without a trend, so the test asserts that the changes shrink, as a sum that converges
+// does, not their share of the error (measured 2.21e-3, 2.06e-3, 2.10e-3: changes 1.6e-4, 5e-5;
+// docs/verification/taylor_green.md, "Design measurements").
 TEST(Convergence, IsphErrorApproachesALimitAsDtFalls) {
   double u[3], p[3];
   const double cfl[] = {0.1, 0.05, 0.025};
@@ -62,12 +57,11 @@ TEST(Convergence, IsphErrorApproachesALimitAsDtFalls) {
   EXPECT_LT(std::abs(p[2] - p[1]), 0.02 * p[2]);
 }
 
-// The time error's order, on the vortex's amplitude at t = 0.05 (before the start lattice rearranges),
-// nx 32, CFL 0.1 ... 0.0125. One projection leaves in u the resolved-scale divergence tau (L - D G) psi
-// (its Laplacian is not the divergence of its gradient), an error of order dt h^2 the next step
-// removes again: a first-order time error (measured: the change of amplitude_rel per halving shrinks
-// by 0.46, 0.43, 0.49 with -projection_corrections 0). The correction pass removes that divergence
-// up to its relative size again (measured 0.34, 0.28, 0.32 with the default pass: order 1.6-1.8).
+// The time error's order, on the vortex's amplitude at t = 0.05 (before the start lattice rearranges), nx 32,
+// CFL 0.1 ... 0.0125. One projection leaves in u the resolved-scale divergence tau (L - D G) psi (its Laplacian is
+// not the divergence of its gradient), an error of order dt h^2 the next step removes again: first order in dt. The
+// correction pass removes that divergence up to its relative size again: order 1.6-1.8, the ratios per halving
+// 0.34, 0.28, 0.32 against 0.46, 0.43, 0.49 without it (docs/verification/taylor_green.md, "ISPH's time error").
 TEST(Convergence, IsphCorrectionPassMakesTheTimeErrorSecondOrder) {
   auto ratios = [](int passes) {
     double a[4];
@@ -95,9 +89,8 @@ TEST(Convergence, IsphCorrectionPassMakesTheTimeErrorSecondOrder) {
   EXPECT_GT(without.second, 0.4);
 }
 
-// Observed order in h at the default CFL (measured: ISPH 4.30e-3 -> 1.30e-3, order 1.72; WCSPH
-// 1.44e-3 -> 2.70e-4, order 2.4). Before the correction pass ISPH's order here was 1.1 (2.18e-3 ->
-// 1.02e-3): a first-order time error of the other sign hid part of the spatial error at nx 32.
+// Observed order in h at the default CFL, nx 32 to 64, at least 1.5 for both solvers (measured 1.72 for ISPH, 2.4
+// for WCSPH; docs/verification/taylor_green.md, "Design measurements").
 TEST(Convergence, ObservedOrderInH) {
   const double i32 = l1_velocity("conv_isph_32", "-solver isph -nx 32");
   const double i64 = l1_velocity("conv_isph_64", "-solver isph -nx 64");
@@ -136,10 +129,10 @@ double time_mean(const std::string& dir, const std::string& column, double t0, d
 // only (-density_diffusion particle), delta fixed at 0.1, from a start disordered by 2 % of dx (no
 // lattice collapse), Re 100. Means over t in [0.2, 0.3], because the start's acoustic ringing, which
 // this diffusion no longer damps on the resolved scale, swings the errors by +-50 % within a period.
-// Measured: l1_velocity_shape 1.16e-3 -> 2.09e-4 (order 2.5), l1_pressure 2.74e-2 -> 7.9e-3 (1.8).
-// The cause it removes: delta-SPH on the whole density, with delta falling as h^2 to keep its
-// resolved-scale diffusion second order, damps particle-scale noise at a fixed rate, while the noise's
-// pressure grows as c0^2: l1_pressure 2.23e-2 -> 1.09e-2 (order 1.0) and 1.08e-2 at nx 128 (0.0).
+// Measured orders 2.5 (l1_velocity_shape) and 1.8 (l1_pressure). The cause it removes: delta-SPH on the whole
+// density, with delta falling as h^2 to keep its resolved-scale diffusion second order, damps particle-scale noise
+// at a fixed rate while the noise's pressure grows as c0^2, so the pressure stops converging
+// (docs/verification/taylor_green.md, "WCSPH with particle-scale delta-SPH").
 TEST(Convergence, WcsphParticleScaleDiffusionConvergesAsTheMachNumberFalls) {
   double shape[2], pressure[2];
   const int nx[] = {32, 64};

@@ -26,9 +26,9 @@ TEST(DamBreak, IsphFrontFollowsMartinMoyce) {
 }
 
 // The 3D column (a x 2a x a, walls in front and behind) to T = 2.5, both solvers, against the same
-// experiment and the same 15 % bound (measured to T = 3 at nx 8: ISPH 7.5 %, WCSPH 7.0 %; the front and
-// back walls' friction slows the front a little against 2D's 10 %). ISPH at nx 10 (2 000 fluid and
-// 17 376 wall particles), WCSPH at nx 8, whose acoustic step makes it the dearer of the two.
+// experiment and the same 15 % bound (the front and back walls' friction slows the front a little against 2D's;
+// docs/verification/dam_break.md, "3D dam break"). ISPH at nx 10 (2 000 fluid and 17 376 wall particles), WCSPH
+// at nx 8, whose acoustic step makes it the dearer of the two.
 TEST(DamBreak, FrontFollowsMartinMoyceIn3D) {
   for (const char* run : {"isph -nx 10", "wcsph -nx 8"}) {
     const std::string solver(run);
@@ -49,9 +49,9 @@ namespace {
 
 // Rotating square patch (Colagrossi 2005): inviscid, so angular momentum and kinetic energy are
 // invariants of the exact flow. The scheme breaks them only through the free-surface treatment and
-// shifting: measured 1.1% / 1.4% at nx 24 to t = 0.5 (1.3% / 2.2% at nx 40 to t = 1; 0.7% / 0.8% and
-// 0.8% / 1.5% before the plain PPE source next to the surface). A 3% bound catches a patch that flies
-// apart or whose corners collapse (tensile instability).
+// shifting: measured 1.1% / 1.4% at nx 24 to t = 0.5, the price of the plain PPE source next to the surface
+// (docs/verification/dam_break.md, "ISPH at nx 40, a blow-up found and fixed"). A 3% bound catches a patch that
+// flies apart or whose corners collapse (tensile instability).
 TEST(SquarePatch, IsphKeepsInviscidInvariants) {
   const auto r = run_sph("square_patch_isph", "-case square_patch -solver isph -nx 24 -t_end 0.5 -output_interval 0");
   ASSERT_EQ(r.exit_code, 0) << r.summary.dump();

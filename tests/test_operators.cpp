@@ -594,11 +594,10 @@ TEST(OperatorDisordered, FluidRowsEqualAllRowsAtTheFluid) {
 }
 
 // The consistent Laplacian with its smoothing error removed (src/sph/laplacian_smoothing.hpp), on
-// the Taylor-Green field of the periodic lattice: the consistent Laplacian converges at second order;
-// the corrected one at fourth from nx 20 to 40 (measured 3.07e-2 -> 1.07e-3 -> 2.3e-5 against
-// 3.07e-2 -> 7.8e-3), then reaches a floor near 1e-5 that the smoothing does not set (at fixed h/dx
-// the lattice's own discretisation error, see the top of this file): at nx 80 it is 1.0e-5, 1/190
-// of the consistent Laplacian's.
+// the Taylor-Green field of the periodic lattice: the consistent Laplacian converges at second order, the
+// corrected one at fourth or better from nx 20 to 40, then reaches a floor near 1e-5 that the smoothing does not
+// set (at fixed h/dx the lattice's own discretisation error, see the top of this file): at nx 80 it is 1/190 of
+// the consistent Laplacian's (docs/verification/speed_against_error.md, "The change").
 TEST(OperatorConvergence, SmoothingCorrectedLaplacianIsFourthOrderOnALattice) {
   double second[3], fourth[3];
   for (int k = 0; k < 3; ++k) {

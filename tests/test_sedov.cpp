@@ -145,15 +145,10 @@ std::string slurp(const std::string& path) {
   return s.str();
 }
 
-// cases/sedov.opts at t = 0.1 (R = 0.3175), measured (wall times on a loaded 2-core machine):
-//   nx   shock_radius_rel  peak_density_rel  l1_density  l1_velocity  l1_pressure  anisotropy  steps  wall
-//   32   0.083             0.62              0.52        0.17         0.15         0.041       83     1 s
-//   64   0.039             0.48              0.33        0.096        0.087        0.081       234    6 s
-//   128  0.026             0.35              0.22        0.068        0.048        0.018       575    64 s
-// The measured shock runs ahead of the exact one (R_measured = 0.344, 0.330, 0.326): the upstream half
-// of a front smeared over a few h; its ring-averaged peak is 2.3, 3.1, 3.9 against the exact 6.
-// The bounds leave ~50% headroom over the nx = 64 measurements; from 32 to 64 every norm but the
-// anisotropy (not monotonic in nx: a lattice effect) falls by a factor 0.47-0.77.
+// cases/sedov.opts at t = 0.1 (R = 0.3175). The shock runs ahead of the exact one, the upstream half of a front
+// smeared over a few h, and its peak stays far below the exact 6. The bounds leave ~50% headroom over the nx = 64
+// measurements; from 32 to 64 every norm but the anisotropy (not monotonic in nx: a lattice effect) falls by a
+// factor 0.47-0.77 (docs/verification/compressible.md, "Sedov-Taylor blast (2D)" and "Design measurements").
 TEST(SedovBlast, ShockRadiusConvergesToTheSelfSimilarSolution) {
   const auto coarse = run_sph("sedov_32", opts() + " -nx 32 -output_interval 0");
   const auto r = run_sph("sedov_64", opts() + " -nx 64 -output_interval 0");

@@ -16,10 +16,9 @@ using sph::testing::run_sph;
 // Still water at 20 particles a unit to t = 20 (40 time units sqrt(H/g)): the hydrostatic pressure to
 // 1 % of rho g H, no particle moved by half a spacing, the level to 0.5 % (the verification table's
 // bounds at t = 50). Measured: ISPH 1.7e-4, 0.008 dx, -1.7e-4; WCSPH 3.7e-3, 0.17 dx, -1.7e-3 (its
-// hydrostatic compression, rho g H / (2 rho c0^2) = 2.5e-3, is most of that level). Before shifting
-// followed the flow's speed and Fourtakas' density diffusion was WCSPH's default, the same scene
-// (scripts/make-scene still_water --nx 20) drifted 1.5 dx (ISPH) and 3.4 dx (WCSPH), and its level
-// rose 2.7 % and 10 %; at 40 a unit WCSPH leaked through its floor at t = 17.
+// hydrostatic compression, rho g H / (2 rho c0^2) = 2.5e-3, is most of that level). Shifting at the flow's speed and
+// WCSPH's default density diffusion are what keep the scene still (docs/verification/free_surface.md, "Design
+// measurements").
 void expect_still(const std::string& solver) {
   const auto r =
       run_sph("still_water_" + solver, "-case still_water -solver " + solver + " -nx 20 -t_end 20 -output_interval 0");

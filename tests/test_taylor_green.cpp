@@ -57,15 +57,12 @@ TEST(TaylorGreen, IsphMatchesAnalyticDecayAndConverges) {
             coarse.summary["ksp"]["iterations_mean"].get<double>() + 1.0);
 }
 
-// ISPH's kinetic-energy budget (summary.json conservation.energy_budget) closes: the energy at the
-// end minus that at the start is the sum of the causes' shares, to round-off. Its viscous share
-// against the exact dissipation of the computed field (a Taylor-Green mode has |grad u|^2 = 8 pi^2 |u|^2,
-// so dE/dt = -16 pi^2 nu E) falls short by the consistent Laplacian's kernel-smoothing error, second
-// order in h (measured 4.6e-2, 1.2e-2, 3.0e-3 of it at nx 16, 32, 64, -viscous_laplacian second). With
-// that error removed (-viscous_laplacian fourth, the default) the share is 30-100x closer to the exact
-// dissipation (measured 1.5e-3 and -1.3e-4 at nx 16 and 32). With -shift_scales particle,
-// shifting's share falls faster than h (measured order 1.8 from nx 16 to 32, third order from nx 32 to
-// 128 at CFL 0.05, docs/verification/taylor_green.md); with the whole grad C it fell at 0.6.
+// ISPH's kinetic-energy budget (summary.json conservation.energy_budget) closes: the energy at the end minus that at
+// the start is the sum of the causes' shares, to round-off. Its viscous share falls short of the exact dissipation
+// of the computed field (a Taylor-Green mode has |grad u|^2 = 8 pi^2 |u|^2, so dE/dt = -16 pi^2 nu E) by the
+// consistent Laplacian's kernel-smoothing error, second order in h; with that error removed (-viscous_laplacian
+// fourth, the default) the share is 30-100x closer. With -shift_scales particle shifting's share falls faster than
+// h (measured order 1.8 from nx 16 to 32; docs/verification/taylor_green.md, "Design measurements").
 struct EnergyBudgetRun {
   double start, end, viscous, pressure, body_force, shifting, exact_viscous;
 };
@@ -142,12 +139,11 @@ TEST(TaylorGreen, SummaryCarriesRequiredFields) {
   EXPECT_TRUE(r.summary["models"].contains("viscosity"));
 }
 
-// The viscous term with its smoothing error removed damps the particle scale harder (its symbol is
-// -k^2 - beta k^4), so its explicit step limit is tighter: measured at Re 10, nx 32 (the viscous limit
-// binding), stable up to 0.15 h^2/nu and unstable from 0.175-0.2, against 0.25 stable and 0.35
-// unstable for the second-order operator. The solvers' 0.125 h^2/nu (src/sph/step_limits.hpp) keeps
-// a margin of 1.2-1.4 for it: this run, in the regime where that limit sets every step, must stay
-// stable and match the exact decay (measured 2.9e-3; the second-order operator 6.8e-2).
+// The viscous term with its smoothing error removed damps the particle scale harder (its symbol is -k^2 - beta k^4),
+// so its explicit step limit is tighter than the second-order operator's; the solvers' 0.125 h^2/nu
+// (src/sph/step_limits.hpp) keeps a margin of 1.2-1.4 for it (docs/verification/speed_against_error.md, "The
+// change"). This run, in the regime where that limit sets every step, must stay stable and match the exact decay
+// (measured 2.9e-3; the second-order operator 6.8e-2).
 TEST(TaylorGreen, IsphViscousStepLimitHoldsForTheFourthOrderLaplacian) {
   const auto r = run_sph("tgv_re10_fourth",
                          "-case taylor_green -solver isph -nx 32 -re 10 -t_end 1 -output_interval 0 "

@@ -15,8 +15,8 @@ double error(const sph::testing::RunResult& r, const char* name) { return r.summ
 
 // Start-up Poiseuille flow at Re = 10 to t = 1 (about the viscous time L^2/nu / 10). A wall that let
 // the fluid slip would give a plug profile, an error of tens of percent; 2% at 20 particles across
-// is a fifth of the smallest such failure and the error must shrink with resolution (second order
-// expected from the kernel smoothing error: measured 0.53% -> 0.14%, nx 20 -> 40).
+// is a fifth of the smallest such failure and the error must shrink with resolution (it converges at about second
+// order; docs/verification/speed_against_error.md, "Where it is worse" and "Design measurements").
 TEST(Walls, IsphPoiseuilleMatchesSeriesSolutionAndConverges) {
   const auto coarse = run_sph("pois_isph_20", "-case poiseuille -solver isph -nx 20 -t_end 1");
   const auto fine = run_sph("pois_isph_40", "-case poiseuille -solver isph -nx 40 -t_end 1");
@@ -134,8 +134,8 @@ TEST(Walls, IsphCubicCavityRe100ConvergesToTheReference) {
 
 // Every 3D reference table is found and read (Re 400: the finite-difference table; Re 1000:
 // Albensoeder & Kuhlmann): after one step the fluid is nearly at rest, so the norms are close to the
-// RMS of each table's interior values (u, v: 0.17, 0.18 at Re 400; 0.28, 0.25 at Re 1000; measured
-// 0.172, 0.176 and 0.288, 0.240).
+// RMS of each table's interior values (u, v: 0.17, 0.18 at Re 400; 0.28, 0.25 at Re 1000;
+// docs/verification/lid_driven_cavity_3d.md, "Design measurements").
 TEST(Walls, CubicCavityReadsItsReferenceTables) {
   for (const char* re : {"400", "1000"}) {
     const auto r =
