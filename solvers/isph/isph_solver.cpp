@@ -23,106 +23,7 @@ PetscLogEvent ppe_solve_event() {
   return e;
 }
 
-const char* const gradient_names[] = {"corrected", "difference", "symmetric"};
-const char* const wall_velocity_names[] = {"prescribed", "zero"};
-const char* const surface_condition_names[] = {"node", "particle"};
-
-struct RawOptions {
-  PetscReal cfl, shift_A, particle_divergence_rate;
-  PetscInt shift_rate, shift_scales, gradient, operators, viscous_laplacian, projection_corrections, wall_velocity,
-      surface_condition;
-  PetscBool shifting, wall_impact, wall_impact_set;
-};
-
-PetscErrorCode read_options(RawOptions* o) {
-  PetscFunctionBeginUser;
-  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "ISPH projection solver (-solver isph)", "Solver");
-  PetscCall(PetscOptionsReal(
-      "-cfl", "ISPH: advective Courant number, dt <= cfl h / U (the explicit schemes read -cfl as an acoustic one)", "",
-      o->cfl, &o->cfl, nullptr));
-  PetscCall(
-      PetscOptionsBool("-shifting", "Particle shifting (Lind et al. 2012)", "", o->shifting, &o->shifting, nullptr));
-  PetscCall(PetscOptionsEList("-shift_rate", shift_rate_help, "", shift_rate_names, 2, shift_rate_names[o->shift_rate],
-                              &o->shift_rate, nullptr));
-  PetscCall(PetscOptionsReal("-shift_coefficient", shift_coefficient_help, "", o->shift_A, &o->shift_A, nullptr));
-  PetscCall(PetscOptionsEList("-shift_scales", shift_scales_help, "", shift_scales_names, 2,
-                              shift_scales_names[o->shift_scales], &o->shift_scales, nullptr));
-  PetscCall(PetscOptionsEList("-pressure_gradient",
-                              "Pressure gradient: corrected (Bonet & Lok), difference, symmetric (Monaghan)", "",
-                              gradient_names, 3, gradient_names[o->gradient], &o->gradient, nullptr));
-  PetscCall(PetscOptionsEList("-operators",
-                              "Viscous and PPE Laplacian, PPE divergence: consistent (exact for quadratic / linear "
-                              "fields on any particle distribution) or classic (Morris, Cummins & Rudman, plain)",
-                              "", operator_set_names, 2, operator_set_names[o->operators], &o->operators, nullptr));
-  PetscCall(PetscOptionsEList("-viscous_laplacian", viscous_laplacian_help, "", viscous_laplacian_names, 2,
-                              viscous_laplacian_names[o->viscous_laplacian], &o->viscous_laplacian, nullptr));
-  PetscCall(PetscOptionsReal("-ppe_particle_divergence_rate",
-                             "Rate, in U/h, at which the PPE removes the particle-scale divergence of the previous "
-                             "step's velocity, which the projection cannot remove (R: a fraction R U dt / (2 h) per "
-                             "step, at most all, so the default 10 removes all of it at CFL 0.2 and keeps that rate "
-                             "at smaller steps; -1: all of it every step, whatever dt; 0: never)",
-                             "", o->particle_divergence_rate, &o->particle_divergence_rate, nullptr));
-  PetscCall(PetscOptionsInt("-projection_corrections",
-                            "Passes after the projection that remove the resolved-scale divergence it leaves (its "
-                            "Laplacian is not the divergence of its gradient): each solves the same matrix again; 0: "
-                            "one projection, first order in dt",
-                            "", o->projection_corrections, &o->projection_corrections, nullptr));
-  PetscCall(PetscOptionsEList("-ppe_wall_velocity",
-                              "Wall velocity the PPE source's divergence sees: zero (walls at rest, as in WCSPH's "
-                              "continuity equation; wall particles keep their place, so every wall here is fixed or "
-                              "slides along itself) or prescribed (the walls' own: a sliding wall's velocity jump "
-                              "where it ends reads as a compression, a first-order error)",
-                              "", wall_velocity_names, 2, wall_velocity_names[o->wall_velocity], &o->wall_velocity,
-                              nullptr));
-  PetscCall(PetscOptionsBool("-ppe_wall_impact",
-                             "Walls stop the free surface that comes at them within the step: their pressure rows add "
-                             "rho u_n (r . n) / tau for a surface particle's predicted velocity u_n towards them "
-                             "(default: on in scenes with a free surface, off in closed ones)",
-                             "", o->wall_impact, &o->wall_impact, &o->wall_impact_set));
-  PetscCall(PetscOptionsEList("-free_surface_condition",
-                              "Where p = 0 holds: node (at the surface, dx/2 beyond each surface particle, which "
-                              "keeps its continuity equation) or particle (on the surface particles, Lind et al. 2012)",
-                              "", surface_condition_names, 2, surface_condition_names[o->surface_condition],
-                              &o->surface_condition, nullptr));
-  PetscOptionsEnd();
-  PetscFunctionReturn(0);
-}
 }  // namespace
-
-template <int D> void IsphSolver<D>::set_from_options() {
-  RawOptions o{cfl_,
-               shifting_model_.A,
-               particle_divergence_rate_,
-               static_cast<PetscInt>(shifting_model_.rate),
-               static_cast<PetscInt>(shifting_model_.scales),
-               static_cast<PetscInt>(gradient_),
-               static_cast<PetscInt>(operators_),
-               static_cast<PetscInt>(viscous_laplacian_),
-               projection_corrections_,
-               source_walls_at_rest_ ? 1 : 0,
-               static_cast<PetscInt>(surface_condition_),
-               shifting_,
-               PETSC_FALSE,
-               PETSC_FALSE};
-  SPH_PETSC(read_options(&o));
-  require(o.cfl > 0 && o.cfl <= 1.0, "-cfl", "in (0, 1]", o.cfl);
-  require(o.shift_A >= 0 || o.shift_A == -1, "-shift_coefficient", "non-negative (or -1: the shift rate's default)",
-          o.shift_A);
-  require(o.particle_divergence_rate >= 0 || o.particle_divergence_rate == -1, "-ppe_particle_divergence_rate",
-          "non-negative (or -1: all of it every step)", o.particle_divergence_rate);
-  require(o.projection_corrections >= 0, "-projection_corrections", "non-negative", o.projection_corrections);
-  cfl_ = o.cfl, shifting_ = o.shifting, particle_divergence_rate_ = o.particle_divergence_rate;
-  shifting_model_.A = o.shift_A, shifting_model_.rate = static_cast<ShiftRate>(o.shift_rate);
-  shifting_model_.scales = static_cast<ShiftScales>(o.shift_scales);
-  gradient_ = static_cast<PressureGradient>(o.gradient), operators_ = static_cast<OperatorSet>(o.operators);
-  viscous_laplacian_ = static_cast<ViscousLaplacian>(o.viscous_laplacian);
-  projection_corrections_ = o.projection_corrections, source_walls_at_rest_ = o.wall_velocity == 1;
-  surface_condition_ = static_cast<SurfaceCondition>(o.surface_condition);
-  wall_impact_option_ = o.wall_impact_set ? (o.wall_impact ? 1 : 0) : -1;
-  free_surface_model_.set_from_options();
-  ppe_.expect_nonsymmetric(operators_ == OperatorSet::Consistent);
-  ppe_.set_from_options();
-}
 
 template <int D> void IsphSolver<D>::setup(Scene<D>& scene) {
   refuse_unmodelled(scene.physics, name(), false, false);
@@ -500,41 +401,6 @@ template <int D> void IsphSolver<D>::shift(double dt) {
   nh.halo().update(mean_pressure_);
   shift_particles(P, nh, K, shifting_model_, scene_->dx, largest_speed(P), dt, {&P.p, &mean_pressure_},
                   scene_->physics.free_surface ? &boundary : nullptr);
-}
-
-template <int D> nlohmann::json IsphSolver<D>::describe() const {
-  const Physics<D>& phys = scene_->physics;
-  nlohmann::json models = nlohmann::json::object();
-  const bool consistent = operators_ == OperatorSet::Consistent;
-  models["pressure_laplacian"] = consistent ? "ConsistentLaplacian" : "CumminsRudman";
-  models["ppe_source"] = {{"divergence", consistent ? "corrected" : "plain"},
-                          {"particle_divergence_rate", particle_divergence_rate_},
-                          {"wall_velocity", wall_velocity_names[source_walls_at_rest_ ? 1 : 0]}};
-  models["projection_corrections"] = projection_corrections_;
-  models["time_integration"] = "kick-drift-kick, projection as the closing kick";
-  if (walls_)
-    models["walls"] = {
-        {"model", "AdamiWall"},
-        {"ppe", phys.free_surface ? "extrapolation rows" : "extrapolation rows, one fluid pressure pinned"}};
-  if (phys.free_surface) {
-    models["free_surface"] = free_surface_model_.describe();
-    models["free_surface"]["condition"] = surface_condition_names[static_cast<int>(surface_condition_)];
-    models["free_surface"]["model"] = surface_condition_ == SurfaceCondition::Node ? "SurfaceNodes" : "LindFreeSurface";
-  }
-  if (wall_impact_) models["walls"]["impact"] = "rho u_n (r . n) / tau for surface particles moving towards a wall";
-  models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
-  if (phys.viscous())
-    models["viscosity"] = {
-        {"model", consistent ? "ConsistentLaplacian" : "MorrisViscosity"},
-        {"nu", phys.nu},
-        {"smoothing_error", smoothing_error_description(consistent && viscous_laplacian_ == ViscousLaplacian::Fourth &&
-                                                        !phys.free_surface)}};
-  if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
-  if (shifting_) models["shifting"] = shifting_model_.describe();
-  return {{"models", models},
-          {"cfl", cfl_},
-          {"ksp", ppe_.describe()},
-          {"conservation", {{"energy_budget", energy_.describe(scene_->particles)}}}};
 }
 
 template class IsphSolver<1>;

@@ -1,0 +1,186 @@
+// The WCSPH solver's options (-help's "Weakly-compressible SPH" block), their checks, and its
+// description in summary.json. The step: wcsph_solver.cpp.
+#include <cmath>
+#include <sstream>
+
+#include "solvers/wcsph/wcsph_solver.hpp"
+#include "src/core/options.hpp"
+
+namespace sph {
+
+namespace {
+const char* const density_names[] = {"continuity", "summation"};
+const char* const diffusion_names[] = {"none", "molteni", "antuono", "particle", "fourtakas"};
+const char* const diffusion_models[] = {"none", "MolteniColagrossi", "Antuono", "MolteniColagrossiParticleScale",
+                                        "Fourtakas"};
+const char* const gradient_names[] = {"auto", "corrected", "symmetric"};
+
+struct RawOptions {
+  PetscReal c0, c0_factor, gamma, cfl, delta, alpha, beta, epsilon, shift_A;
+  PetscInt density, diffusion, operators, viscous_laplacian, gradient, shift_rate, shift_scales;
+  PetscBool shifting;
+  PetscBool closed_volume, closed_volume_set;
+  PetscBool diffusion_set;
+  PetscBool prepared_start;
+};
+
+PetscErrorCode read_options(RawOptions* o) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Weakly-compressible SPH (-solver wcsph)", "Solver");
+  PetscCall(PetscOptionsReal("-c0", "Reference sound speed (0: c0_factor times the largest of the flow's speed scales)",
+                             "", o->c0, &o->c0, nullptr));
+  PetscCall(PetscOptionsReal("-c0_factor",
+                             "c0 / V when -c0 is not given, V the largest of U_ref, sqrt(|g| H) and sqrt(nu U_ref / L) "
+                             "(Morris et al. 1997; 10 keeps density variations ~1%)",
+                             "", o->c0_factor, &o->c0_factor, nullptr));
+  PetscCall(PetscOptionsReal("-tait_gamma", "Tait equation-of-state exponent", "", o->gamma, &o->gamma, nullptr));
+  PetscCall(PetscOptionsReal(
+      "-cfl", "WCSPH: acoustic Courant number, dt <= cfl h / (c0 + U_max) (ISPH reads -cfl as an advective one)", "",
+      o->cfl, &o->cfl, nullptr));
+  PetscCall(PetscOptionsEList("-density", "Density: continuity equation or kernel summation", "", density_names, 2,
+                              density_names[o->density], &o->density, nullptr));
+  PetscCall(PetscOptionsEList("-density_diffusion",
+                              "delta-SPH density diffusion: none, molteni (2009), antuono (2010), particle (molteni "
+                              "on the density's particle-scale part, rho minus its kernel average; scenes without "
+                              "walls or a free surface), fourtakas (molteni without the hydrostatic density "
+                              "difference, Fourtakas et al. 2019; the default under gravity, else molteni)",
+                              "", diffusion_names, 5, diffusion_names[o->diffusion], &o->diffusion, &o->diffusion_set));
+  PetscCall(PetscOptionsReal("-delta", "delta-SPH coefficient", "", o->delta, &o->delta, nullptr));
+  PetscCall(PetscOptionsReal(
+      "-av_alpha",
+      "WCSPH: Monaghan artificial viscosity alpha (default 0: off; the compressible solver's default is 1)", "",
+      o->alpha, &o->alpha, nullptr));
+  PetscCall(PetscOptionsReal("-av_beta", "Monaghan artificial viscosity beta", "", o->beta, &o->beta, nullptr));
+  PetscCall(PetscOptionsReal("-av_epsilon", "Artificial viscosity singularity guard epsilon", "", o->epsilon,
+                             &o->epsilon, nullptr));
+  PetscCall(PetscOptionsEList("-operators",
+                              "Continuity divergence and viscous Laplacian: consistent (corrected divergence, "
+                              "consistent Laplacian) or classic (plain divergence, Morris)",
+                              "", operator_set_names, 2, operator_set_names[o->operators], &o->operators, nullptr));
+  PetscCall(PetscOptionsEList("-viscous_laplacian", viscous_laplacian_help, "", viscous_laplacian_names, 2,
+                              viscous_laplacian_names[o->viscous_laplacian], &o->viscous_laplacian, nullptr));
+  PetscCall(PetscOptionsEList("-pressure_gradient",
+                              "Pressure force: corrected (Bonet & Lok, p_j - p_i), symmetric (Monaghan, momentum-"
+                              "conserving), auto (symmetric with a free surface, whose zero pressure it imposes; "
+                              "else corrected)",
+                              "", gradient_names, 3, gradient_names[o->gradient], &o->gradient, nullptr));
+  PetscCall(PetscOptionsBool("-closed_volume",
+                             "Keep the fluid volume of a scene without a free surface: the net volume rate of the "
+                             "continuity equation, which a closed or periodic box does not allow, is removed "
+                             "(default: on without a free surface)",
+                             "", o->closed_volume, &o->closed_volume, &o->closed_volume_set));
+  PetscCall(PetscOptionsBool("-prepared_start",
+                             "Start on the weakly compressible flow's slow manifold: add the compressive velocity "
+                             "grad phi, lap phi = -(Dp/Dt) / (rho0 c0^2), that the case's incompressible start "
+                             "implies, so that it excites no sound of O(Mach) pressure (cases with an exact "
+                             "solution: taylor_green)",
+                             "", o->prepared_start, &o->prepared_start, nullptr));
+  PetscCall(PetscOptionsBool("-shifting", "Particle shifting (Lind et al. 2012) with Taylor-corrected u and rho", "",
+                             o->shifting, &o->shifting, nullptr));
+  PetscCall(PetscOptionsEList("-shift_rate", shift_rate_help, "", shift_rate_names, 2, shift_rate_names[o->shift_rate],
+                              &o->shift_rate, nullptr));
+  PetscCall(PetscOptionsReal("-shift_coefficient", shift_coefficient_help, "", o->shift_A, &o->shift_A, nullptr));
+  PetscCall(PetscOptionsEList("-shift_scales", shift_scales_help, "", shift_scales_names, 2,
+                              shift_scales_names[o->shift_scales], &o->shift_scales, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+}  // namespace
+
+template <int D> void WcsphSolver<D>::set_from_options() {
+  RawOptions o{c0_,
+               c0_factor_,
+               eos_.gamma,
+               cfl_,
+               delta_,
+               av_.alpha,
+               av_.beta,
+               av_.epsilon,
+               shifting_model_.A,
+               static_cast<PetscInt>(density_),
+               static_cast<PetscInt>(diffusion_),
+               static_cast<PetscInt>(operators_),
+               static_cast<PetscInt>(viscous_laplacian_),
+               static_cast<PetscInt>(gradient_),
+               static_cast<PetscInt>(shifting_model_.rate),
+               static_cast<PetscInt>(shifting_model_.scales),
+               shifting_,
+               closed_volume_option_ > 0 ? PETSC_TRUE : PETSC_FALSE,
+               PETSC_FALSE,
+               PETSC_FALSE,
+               prepared_start_ ? PETSC_TRUE : PETSC_FALSE};
+  SPH_PETSC(read_options(&o));
+  require(o.c0 >= 0, "-c0", "non-negative", o.c0);
+  require(o.c0_factor > 0, "-c0_factor", "positive", o.c0_factor);
+  require(o.gamma >= 1, "-tait_gamma", "at least 1", o.gamma);
+  require(o.cfl > 0 && o.cfl <= 1, "-cfl", "in (0, 1]", o.cfl);
+  require(o.delta >= 0, "-delta", "non-negative", o.delta);
+  require(o.alpha >= 0, "-av_alpha", "non-negative", o.alpha);
+  require(o.beta >= 0, "-av_beta", "non-negative", o.beta);
+  require(o.epsilon > 0, "-av_epsilon", "positive", o.epsilon);
+  require(o.shift_A >= 0 || o.shift_A == -1, "-shift_coefficient", "non-negative (or -1: the shift rate's default)",
+          o.shift_A);
+  shifting_ = o.shifting, shifting_model_.A = o.shift_A, shifting_model_.rate = static_cast<ShiftRate>(o.shift_rate);
+  shifting_model_.scales = static_cast<ShiftScales>(o.shift_scales);
+  if (o.closed_volume_set) closed_volume_option_ = o.closed_volume ? 1 : 0;
+  prepared_start_ = o.prepared_start;
+  c0_ = o.c0, c0_factor_ = o.c0_factor, eos_.gamma = o.gamma, cfl_ = o.cfl, delta_ = o.delta;
+  av_.alpha = o.alpha, av_.beta = o.beta, av_.epsilon = o.epsilon;
+  density_ = static_cast<DensityMethod>(o.density);
+  operators_ = static_cast<OperatorSet>(o.operators);
+  viscous_laplacian_ = static_cast<ViscousLaplacian>(o.viscous_laplacian);
+  gradient_ = static_cast<WcsphGradient>(o.gradient);
+  diffusion_ = static_cast<DensityDiffusion>(o.diffusion);
+  diffusion_chosen_ = o.diffusion_set;
+  if (delta_ == 0.0) diffusion_ = DensityDiffusion::None;
+  free_surface_.set_from_options();
+}
+
+template <int D> nlohmann::json WcsphSolver<D>::describe() const {
+  const Physics<D>& phys = scene_->physics;
+  nlohmann::json models = nlohmann::json::object();
+  models["equation_of_state"] = {{"model", "Tait"}, {"c0", eos_.c0}, {"gamma", eos_.gamma}, {"rho0", eos_.rho0}};
+  if (c0_ == 0) models["equation_of_state"]["c0_set_by"] = speed_scale_name_;
+  models["density"] = density_names[static_cast<int>(density_)];
+  if (diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity)
+    models["density_diffusion"] = {{"model", diffusion_models[static_cast<int>(diffusion_)]}, {"delta", delta_}};
+  if (av_.active())
+    models["artificial_viscosity"] = {
+        {"model", "MonaghanAV"}, {"alpha", av_.alpha}, {"beta", av_.beta}, {"epsilon", av_.epsilon}};
+  if (phys.viscous())
+    models["viscosity"] = {
+        {"model", operators_ == OperatorSet::Consistent ? "ConsistentLaplacian" : "MorrisViscosity"},
+        {"nu", phys.nu},
+        {"smoothing_error",
+         smoothing_error_description(operators_ == OperatorSet::Consistent &&
+                                     viscous_laplacian_ == ViscousLaplacian::Fourth && !phys.free_surface)}};
+  if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
+  if (walls_) models["walls"] = {{"model", "AdamiWall"}};
+  models["operators"] = operator_set_names[static_cast<int>(operators_)];
+  models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
+  if (shifting_) models["shifting"] = shifting_model_.describe();
+  if (phys.free_surface) models["free_surface"] = free_surface_.describe();
+  if (closed_volume_ && density_ == DensityMethod::Continuity) models["closed_volume"] = true;
+  if (prepared_start_) models["start"] = "slow manifold (case's compressive velocity added)";
+  // Mean fluid density over rho0, minus 1: the volume drift of a closed scene (the cavity).
+  const Particles<D>& P = scene_->particles;
+  double sums[2] = {0.0, 0.0};
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (P.kind[i] == kFluid) sums[0] += P.rho[i], sums[1] += 1.0;
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  const double mean_rho = sums[1] > 0 ? sums[0] / sums[1] : eos_.rho0;
+  return {{"models", models},
+          {"cfl", cfl_},
+          {"mean_fluid_density", mean_rho},
+          {"conservation", {{"mean_fluid_density_rel", mean_rho / eos_.rho0 - 1.0}}}};
+}
+
+// The solver's other members are instantiated with the class in its own file.
+template void WcsphSolver<1>::set_from_options();
+template nlohmann::json WcsphSolver<1>::describe() const;
+template void WcsphSolver<2>::set_from_options();
+template nlohmann::json WcsphSolver<2>::describe() const;
+template void WcsphSolver<3>::set_from_options();
+template nlohmann::json WcsphSolver<3>::describe() const;
+
+}  // namespace sph
