@@ -25,8 +25,8 @@ enum class ViscositySwitch { None, MorrisMonaghan };
 template <int D> class CompressibleSolver : public Solver<D> {
  public:
   std::string name() const override { return "compressible"; }
-  // Peak RSS net of the program's own, measured in 2D; 3D is WCSPH's 3D figure scaled by the 2D ratio
-  // of the two (docs/verification/compressible.md, "Design measurements").
+  // Measured in 2D; the 3D figure is scaled from WCSPH's, not measured (docs/performance.md,
+  // "Memory per particle").
   double bytes_per_particle() const override { return D == 3 ? 2.5e3 : 0.87e3; }
   void set_from_options() override;
   void setup(Scene<D>& scene) override;

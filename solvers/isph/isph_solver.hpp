@@ -68,8 +68,8 @@ enum class SurfaceCondition { Node, Particle };
 template <int D> class IsphSolver : public Solver<D> {
  public:
   std::string name() const override { return "isph"; }
-  // Peak RSS net of the program's own: 2.1 kB (Taylor-Green, 65 536 particles), 5.6 kB in 3D
-  // (97 336): the PPE matrix, BoomerAMG's hierarchy and the step's arrays.
+  // Measured: the PPE matrix, BoomerAMG's hierarchy and the step's arrays (docs/performance.md,
+  // "Memory per particle").
   double bytes_per_particle() const override { return D == 3 ? 5.6e3 : 2.1e3; }
   void set_from_options() override;
   void setup(Scene<D>& scene) override;

@@ -41,8 +41,8 @@ template <int D> void PressurePoisson<D>::create_ksp() {
 }
 
 // What the defaults above would make of the user's KSP: a direct solve (preonly) takes no first guess,
-// and a method for symmetric matrices is warned against on the non-symmetric matrix (with BoomerAMG it
-// diverged at step 1; Jacobi-CG converged on Taylor-Green, docs/solvers.md, so it is not refused).
+// and a method for symmetric matrices is warned against on the non-symmetric matrix, not refused: it
+// may converge there or not, depending on the preconditioner (docs/solvers.md).
 template <int D> void PressurePoisson<D>::check_ksp_choice() {
   PetscBool preonly = PETSC_FALSE, symmetric_only = PETSC_FALSE, user_guess = PETSC_FALSE;
   SPH_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ksp_), KSPPREONLY, &preonly));

@@ -28,7 +28,7 @@ enum class WcsphGradient { Auto, Corrected, Symmetric };
 template <int D> class WcsphSolver : public Solver<D> {
  public:
   std::string name() const override { return "wcsph"; }
-  // Peak RSS net of the program's own: 0.56 kB (Taylor-Green, 65 536 particles), 1.6 kB in 3D.
+  // Measured (docs/performance.md, "Memory per particle").
   double bytes_per_particle() const override { return D == 3 ? 1.6e3 : 0.56e3; }
   void set_from_options() override;
   void setup(Scene<D>& scene) override;

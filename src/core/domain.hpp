@@ -15,7 +15,7 @@ template <int D> struct Domain {
   Vector<D> length() const { return hi - lo; }
 
   // Maps a point back into the box along periodic axes, in one step whatever the distance (a point
-  // flung 1e300 away must not loop for ever; a non-finite one stays non-finite for the blow-up check).
+  // flung far away must not loop for ever; a non-finite one stays non-finite for the blow-up check).
   Vector<D> wrap(Vector<D> x) const {
     for (int a = 0; a < D; ++a) {
       if (!periodic[a] || (x[a] >= lo[a] && x[a] < hi[a])) continue;

@@ -53,7 +53,7 @@ template <int D> class Solver {
   // Largest time step the scheme's stability limits allow for the current state.
   virtual double stable_dt() const = 0;
   virtual StepReport step(double dt) = 0;
-  // Peak memory of a run per particle, measured (docs/verification/speed_against_error.md): the
+  // Peak memory of a run per particle, measured (docs/performance.md, "Memory per particle"): the
   // memory check refuses a scene that cannot fit before it is allocated (src/run/memory_budget.hpp).
   virtual double bytes_per_particle() const = 0;
   // Active models and their parameters, linear solver settings: goes into summary.json.
