@@ -298,6 +298,7 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
     }
     nh.halo().update(P.p);
   }
+  ppe_.release();
   return report;
 }
 

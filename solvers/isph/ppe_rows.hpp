@@ -50,6 +50,8 @@ struct PpeRows {
                               const Vector<D>& body_force, const std::vector<char>& dirichlet, long pinned,
                               const std::vector<LaplacianCorrection<D>>* consistent = nullptr,
                               const SurfaceNodes<D>* nodes = nullptr, const WallImpact<D>* impact = nullptr);
+  // Gives the rows' storage back (their capacity too).
+  void release() { *this = PpeRows(); }
 
  private:
   std::vector<PetscInt> dlen_, olen_;  // entries filled per row

@@ -63,6 +63,13 @@ template <int D> void PressurePoisson<D>::destroy_system() {
   if (x_) VecDestroy(&x_);
 }
 
+template <int D> void PressurePoisson<D>::release() {
+  // The KSP keeps its type and options for describe(); reset, it lets go of the matrices and the AMG.
+  if (ksp_) SPH_PETSC(KSPReset(ksp_));
+  destroy_system();
+  rows_.release(), pc_rows_.release();
+}
+
 template <int D> void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>& nh,
                                                    const Kernel<D>& K, const Vector<D>& body_force,
                                                    const std::vector<char>* dirichlet,
@@ -120,6 +127,12 @@ template <int D> void PressurePoisson<D>::assemble(const Particles<D>& P, const 
     P_ = make_ppe_matrix(pc_rows_, static_cast<PetscInt>(n), false);
   }
   A_ = make_ppe_matrix(rows_, static_cast<PetscInt>(n), !nonsymmetric_);
+  if (P_) {
+    MatInfo a, p;
+    SPH_PETSC(MatGetInfo(A_, MAT_GLOBAL_SUM, &a));
+    SPH_PETSC(MatGetInfo(P_, MAT_GLOBAL_SUM, &p));
+    if (a.nz_used > 0) pc_kept_entries_ = p.nz_used / a.nz_used;
+  }
 
   if (!nonsymmetric_ && !any_dirichlet) {  // symmetric and singular: the constants span both null spaces
     SPH_PETSC(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_TRUE, 0, nullptr, &nullspace_));
@@ -308,12 +321,9 @@ template <int D> nlohmann::json PressurePoisson<D>::describe() const {
   SPH_PETSC(PCGetType(pc, &ptype));
   SPH_PETSC(KSPGetTolerances(ksp_, &rtol, &abstol, &dtol, &maxit));
   nlohmann::json j{{"type", ktype ? ktype : ""}, {"pc_type", ptype ? ptype : ""}, {"rtol", rtol}, {"max_it", maxit}};
-  if (P_ && A_) {  // the lumped preconditioner's tolerance, and the last matrix's entries it kept
+  if (pc_kept_entries_ >= 0.0) {  // the lumped preconditioner's tolerance, and the last matrix's entries it kept
     j["pc_drop_tol"] = pc_drop_tol_;
-    MatInfo a, p;
-    SPH_PETSC(MatGetInfo(A_, MAT_GLOBAL_SUM, &a));
-    SPH_PETSC(MatGetInfo(P_, MAT_GLOBAL_SUM, &p));
-    if (a.nz_used > 0) j["pc_kept_entries"] = p.nz_used / a.nz_used;
+    j["pc_kept_entries"] = pc_kept_entries_;
   }
   if (ptype && std::string(ptype) == PCHYPRE) {
     const char* htype = nullptr;

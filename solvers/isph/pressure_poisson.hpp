@@ -81,6 +81,11 @@ template <int D> class PressurePoisson {
   StepReport solve(const std::vector<double>& source, const std::vector<double>& mass, std::vector<double>& p,
                    bool use_guess = true, bool correction = false);
 
+  // Frees the matrix, its rows, the KSP and the preconditioner until the next assemble. A step's system
+  // serves that step only: kept to the next, its rows (1.2 kB a particle in 3D) and the AMG hierarchy
+  // added to the peak of the neighbour search and the forces (docs/performance.md, "Memory per particle").
+  void release();
+
   ::Mat matrix() const { return A_; }
   // The matrix BoomerAMG is built from: A's rows with their weak entries lumped (-ppe_pc_drop_tol), or A.
   ::Mat preconditioner_matrix() const { return P_ ? P_ : A_; }
@@ -128,6 +133,7 @@ template <int D> class PressurePoisson {
   // across 2D and 3D scenes, lattices and disordered particles (docs/pressure-solve.md, "The
   // preconditioner's matrix").
   double pc_drop_tol_ = 0.02;
+  double pc_kept_entries_ = -1.0;  // share of A's entries that P_ kept at the last assemble; -1: no P_
 };
 
 }  // namespace sph
