@@ -19,6 +19,12 @@ namespace sph {
 template <class MakeRowFiller>
 void build_compressed_rows_per_thread(std::size_t n_rows, std::vector<std::size_t>& offset, std::vector<int>& index,
                                       MakeRowFiller&& make_row_filler) {
+  // Each thread's buffer starts at its share of the last list's length (lists change little between
+  // builds), so that it seldom doubles, and the last list is freed first: the build's peak is about
+  // the list once on one thread and twice on several, not three times (docs/performance.md, "Memory
+  // per particle").
+  const double last_row_length = offset.size() > 1 ? double(index.size()) / double(offset.size() - 1) : 0.0;
+  std::vector<int>().swap(index);
   offset.assign(n_rows + 1, 0);
   std::vector<std::vector<int>> block_index;
 #pragma omp parallel
@@ -32,6 +38,7 @@ void build_compressed_rows_per_thread(std::size_t n_rows, std::vector<std::size_
     block_index.resize(threads);  // implicit barrier: every thread sees the resized vector
     const std::size_t lo = n_rows * thread / threads, hi = n_rows * (thread + 1) / threads;
     std::vector<int>& out = block_index[thread];
+    out.reserve(static_cast<std::size_t>(1.05 * last_row_length * double(hi - lo)));
     auto fill_row = make_row_filler();
     for (std::size_t i = lo; i < hi; ++i) {
       const std::size_t start = out.size();
@@ -40,9 +47,15 @@ void build_compressed_rows_per_thread(std::size_t n_rows, std::vector<std::size_
     }
   }
   for (std::size_t i = 0; i < n_rows; ++i) offset[i + 1] += offset[i];
-  index.clear();
+  if (block_index.size() == 1) {
+    index.swap(block_index[0]);
+    return;
+  }
   index.reserve(offset[n_rows]);
-  for (const auto& b : block_index) index.insert(index.end(), b.begin(), b.end());
+  for (auto& b : block_index) {
+    index.insert(index.end(), b.begin(), b.end());
+    std::vector<int>().swap(b);
+  }
 }
 
 // The same with one stateless fill_row(i, out) shared by every thread.
