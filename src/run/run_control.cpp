@@ -31,8 +31,10 @@ PetscErrorCode read_options(RunControl* o) {
   PetscCall(PetscOptionsBool("-overwrite",
                              "Replace the run already in -output_dir (its frames, tables, summary, checkpoint)", "",
                              o->overwrite, &o->overwrite, nullptr));
-  PetscCall(PetscOptionsReal("-neighbour_skin", "Verlet-list skin as a fraction of the kernel support", "", o->skin,
-                             &o->skin, nullptr));
+  PetscCall(PetscOptionsReal("-neighbour_skin",
+                             "Verlet-list skin as a fraction of the kernel support (-1: the solver's, 0.1 for ISPH, "
+                             "0.2 for the explicit schemes; a wider skin rebuilds the lists less often and holds more pairs)",
+                             "", o->skin, &o->skin, nullptr));
   PetscCall(PetscOptionsReal("-steady_tol",
                              "Stop when |dKE/dt| / KE over the last time unit falls below this (0: run to t_end; "
                              "-1: the case's default)",
@@ -78,7 +80,8 @@ void read_run_control(RunControl& opt, double case_steady_tol, int dim) {
           "-1 (with every frame), 0 (never) or positive", opt.checkpoint_interval);
   require(opt.steady_tol == -1 || opt.steady_tol >= 0, "-steady_tol", "-1 (the case's default), 0 (off) or positive",
           opt.steady_tol);
-  require(opt.skin >= 0 && opt.skin <= 1, "-neighbour_skin", "in [0, 1]", opt.skin);
+  require(opt.skin == -1 || (opt.skin >= 0 && opt.skin <= 1), "-neighbour_skin", "-1 (the solver's) or in [0, 1]",
+          opt.skin);
   require(opt.partition_interval >= 0, "-partition_interval", "non-negative", opt.partition_interval);
   require(opt.threads >= 0, "-threads", "non-negative", opt.threads);
   opt.threads = configure_threads(static_cast<int>(opt.threads));

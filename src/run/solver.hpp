@@ -56,6 +56,9 @@ template <int D> class Solver {
   // Peak memory of a run per particle, measured (docs/performance.md, "Memory per particle"): the
   // memory check refuses a scene that cannot fit before it is allocated (src/run/memory_budget.hpp).
   virtual double bytes_per_particle() const = 0;
+  // Default Verlet skin (-neighbour_skin) as a fraction of the support: a wider one rebuilds the lists
+  // less often and holds more pairs (docs/performance.md, "Memory per particle").
+  virtual double neighbour_skin() const { return 0.2; }
   // Active models and their parameters, linear solver settings: goes into summary.json.
   virtual nlohmann::json describe() const = 0;
 

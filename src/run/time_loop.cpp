@@ -137,7 +137,7 @@ template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
       resumed_run_(resumed_run_header()),
       numerics_changed_(checked_restart()),
       memory_(run.solver.bytes_per_particle(), run.solver_name),
-      s_(run.scene_case, run.kernel, run.control.skin),
+      s_(run.scene_case, run.kernel, run.control.skin >= 0 ? run.control.skin : run.solver.neighbour_skin()),
       checkpoint_path_(run.output_dir + "/checkpoint.bin"),
       steady_(run.control.steady_tol),
       check_neighbours_(s_.scene.physics.free_surface) {
