@@ -2,9 +2,10 @@
 """Fixed benchmark workloads for the sph program, timed per phase with PETSc's -log_view.
 
 Each workload runs a fixed number of steps (-max_steps, no frames, no checkpoints, no progress line)
-with -log_view written to a file. The events of the "SPH time loop" stage (see src/core/log_events.hpp)
-are turned into seconds per particle-step for each phase, next to PETSc's PCSetUp/KSPSolve, the KSP
-iterations from summary.json and the child's peak resident memory (getrusage of that one child).
+with the log written as CSV (-log_view :FILE:ascii_csv). The events of the "SPH time loop" stage (see
+src/core/log_events.hpp) are turned into seconds per particle-step for each phase, next to PETSc's
+PCSetUp/KSPSolve, the KSP iterations from summary.json and the child's peak resident memory (getrusage
+of that one child).
 
   bench/run_bench.py --label before                   # default suite: 1e4 and 1e5 particles
   bench/run_bench.py --label before --large           # adds the 1e6-particle workloads (slow)
@@ -15,14 +16,13 @@ iterations from summary.json and the child's peak resident memory (getrusage of 
 
 Results go to out/bench/<label>/: workloads.csv (one row per workload), phases.csv (one row per
 workload and phase), report.md (the same as tables), meta.json (command, commit, dirty files), and
-one folder per workload with its log_view.txt, summary.json and stderr. Python 3 standard library only.
+one folder per workload with its log_view.csv, summary.json and stderr. Python 3 standard library only.
 """
 import argparse
 import csv
 import datetime
 import json
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -115,33 +115,25 @@ TOP_LEVEL = ["SPHNbrUpdate", "SPHDensity", "SPHGasDensityH", "SPHGasPairs", "SPH
              "SPHPPESolve", "SPHShifting"]
 
 
-def parse_log_view(path):
-    """{stage name: {"time": s, "events": {event: (count, max time s)}}} from a -log_view ascii file."""
-    stages, section, current = {}, None, None
-    with open(path) as f:
-        for line in f:
-            if line.startswith("Summary of Stages:"):
-                section = "stages"
-            elif line.startswith("Event ") and "Count" in line:
-                section = "events"
-            elif line.startswith("Object Type"):
-                break  # object counts follow, per stage again
-            elif section == "stages":
-                m = re.match(r"\s*\d+:\s+(.+?):\s+([0-9.eE+-]+)\s", line)
-                if m:
-                    stages[m.group(1)] = {"time": float(m.group(2)), "events": {}}
-                elif line.startswith("---"):
-                    section = None
-            elif section == "events":
-                m = re.match(r"--- Event Stage \d+: (.+)", line)
-                if m:
-                    current = m.group(1).strip()
-                    stages.setdefault(current, {"time": 0.0, "events": {}})
-                    continue
-                parts = line.split()
-                if current and len(parts) >= 4 and parts[1].isdigit():
-                    stages[current]["events"][parts[0]] = (int(parts[1]), float(parts[3]))
-    return stages
+def parse_log_csv(path):
+    """{stage name: {"time": s, "events": {event: (count, time s)}}} from a -log_view ascii_csv file.
+
+    The file has a row per stage, event and rank (the stage's own row is the event "summary"). The figures
+    are those of PETSc's text summary: a stage's time is its mean over the ranks, an event's count and time
+    their maxima, and events that no rank ran are left out."""
+    stages = {}
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            stage = stages.setdefault(row["Stage Name"].strip(), {"times": [], "events": {}})
+            # Some of PETSc's names are padded with blanks ("VecScatterEnd  ").
+            name, count, seconds = row["Event Name"].strip(), int(row["Count"]), float(row["Time"])
+            if name == "summary":
+                stage["times"].append(seconds)
+            elif count > 0:
+                c, t = stage["events"].get(name, (0, 0.0))
+                stage["events"][name] = (max(c, count), max(t, seconds))
+    return {name: {"time": sum(s["times"]) / len(s["times"]) if s["times"] else 0.0, "events": s["events"]}
+            for name, s in stages.items()}
 
 
 def git_state():
@@ -170,9 +162,9 @@ def run_workload(sph, args, steps, folder, env, extra=()):
     if os.path.isdir(folder):
         shutil.rmtree(folder)
     os.makedirs(folder)
-    log = os.path.join(folder, "log_view.txt")
+    log = os.path.join(folder, "log_view.csv")
     out_dir = os.path.join(folder, "run")
-    cmd = [*LAUNCH, sph, *args, "-max_steps", str(steps), *COMMON, *extra, "-output_dir", out_dir, "-log_view", ":" + log]
+    cmd = [*LAUNCH, sph, *args, "-max_steps", str(steps), *COMMON, *extra, "-output_dir", out_dir, "-log_view", f":{log}:ascii_csv"]
     rc, wall, cpu, rss = run_child(cmd, os.path.join(folder, "stderr.txt"), env)
     if rc != 0:
         with open(os.path.join(folder, "stderr.txt")) as f:
@@ -182,7 +174,7 @@ def run_workload(sph, args, steps, folder, env, extra=()):
         summary = json.load(f)
     shutil.copy(os.path.join(out_dir, "summary.json"), os.path.join(folder, "summary.json"))
     shutil.rmtree(out_dir)  # the frames are not needed
-    stages = parse_log_view(log)
+    stages = parse_log_csv(log)
     if STAGE not in stages:
         raise RuntimeError(f"no '{STAGE}' stage in {log}: is the program built with the SPH log events?")
     loop = stages[STAGE]
