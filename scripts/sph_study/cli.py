@@ -7,7 +7,7 @@
 A study file (YAML, or JSON when it ends in .json) names a case, the solvers, the resolutions (-nx) and
 the options; every combination of solver x sweep values x resolution is run with the sph program, each
 into its own folder under the study folder (default <repo>/out/studies/<name>/). Then results.csv,
-report.md and PNG plots are written there. Study file keys:
+report.md and the plots (PNG, and PDF beside each) are written there. Study file keys:
 
     name: taylor_green_re100          # study folder name (default: the file's stem)
     case: taylor_green

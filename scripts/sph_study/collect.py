@@ -68,11 +68,12 @@ def completed(rows):
 
 
 def line_points(group, metric, x):
-    """[(x, error)] of the completed runs of one group having both values."""
+    """[(x, |error|, error < 0, row)] of the completed runs of one group having both values and a nonzero
+    error. Log axes show a signed error (amplitude_rel) by its magnitude; the sign is kept for the marker."""
     pts = []
     for r in completed(group):
         e = r["errors"].get(metric)
         xv = r.get(x)
-        if isinstance(e, (int, float)) and isinstance(xv, (int, float)) and e > 0 and xv > 0:
-            pts.append((float(xv), float(e)))
+        if isinstance(e, (int, float)) and isinstance(xv, (int, float)) and e != 0 and xv > 0:
+            pts.append((float(xv), abs(float(e)), e < 0, r))
     return pts

@@ -11,7 +11,7 @@ import sys
 from .common import REPO, read_json
 from .execute import carry_out, study_settings
 from .plan import option_args, plan_matrix_runs
-from .report import fmt, fmt_time, md_table
+from .report import fmt, fmt_wall, md_table, noted
 
 
 def short_reason(msg, n=60):
@@ -59,7 +59,7 @@ def cell_text(c):
     status, reason, metric, value, wall, steps = c
     if status == "ok":
         t = "ok, %s=%s" % (metric, fmt(value, "%.3g")) if value is not None else "ok" + (" (%s)" % reason if reason else "")
-        return t + (" (%s)" % fmt_time(wall) if isinstance(wall, (int, float)) else "")
+        return t + (" (%s)" % fmt_wall(wall) if isinstance(wall, (int, float)) else "")
     if status == "failed":
         return "**failed**: %s" % short_reason(reason)
     if status == "n/a":
@@ -95,7 +95,7 @@ def make_matrix_outputs(study, study_file, runs, out_dir, counts):
     body = []
     for row in m["rows"]:
         body.append([row["label"]] + [cell_text(cells[(row["label"], c)][1]).replace("|", "\\|") for c in cols])
-    L += [md_table(["case"] + cols, body, align=["---"] * (len(cols) + 1)), ""]
+    L += [noted(md_table(["case"] + cols, body, align=["---"] * (len(cols) + 1))), ""]
     L += ["Per case:", ""]
     for row in m["rows"]:
         cs = [(c, cells[(row["label"], c)][1]) for c in cols]

@@ -1,5 +1,6 @@
 """Plots (matplotlib, imported only when plotting): errors against h, speed against accuracy, KSP
-iterations, lid-driven cavity centrelines against Ghia et al. (1982)."""
+iterations, lid-driven cavity centrelines against Ghia et al. (1982). The figure_* functions build a
+figure (None when there is nothing to draw); save() writes it as PNG and PDF."""
 
 import csv
 import os
@@ -7,7 +8,7 @@ import re
 import sys
 
 from .collect import completed, line_points
-from .common import REPO, read_json
+from .common import NOISE_WALL_S, REPO, noisy_wall, read_json
 
 
 def plotting():
@@ -16,7 +17,9 @@ def plotting():
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         plt.rcParams.update({"figure.dpi": 100, "savefig.dpi": 100, "font.size": 10, "axes.grid": True,
-                             "grid.alpha": 0.3, "grid.linestyle": ":", "legend.fontsize": 8})
+                             "grid.alpha": 0.3, "grid.linestyle": ":", "legend.fontsize": 8,
+                             # TrueType in the PDFs: publishers' checks reject the default Type 3 fonts
+                             "pdf.fonttype": 42})
         return plt
     except ImportError:
         print("study: matplotlib not available (Debian: python3-matplotlib; run with /usr/bin/python3): "
@@ -50,9 +53,12 @@ def tidy_log_axis(ax, which, ticks=None, integer=False):
     axis.set_minor_formatter(mt.NullFormatter())
 
 
-def outside_legend(ax, **kw):
-    """Legend right of the axes: never covers data or point labels, whatever the label lengths."""
-    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, title_fontsize=8, **kw)
+def outside_legend(ax, notes=(), **kw):
+    """Legend right of the axes: never covers data or point labels, whatever the label lengths. notes:
+    extra entries (marker_notes) after the lines'."""
+    handles = ax.get_legend_handles_labels()[0] + list(notes)
+    ax.legend(handles, [h.get_label() for h in handles], loc="upper left", bbox_to_anchor=(1.02, 1.0),
+              borderaxespad=0.0, title_fontsize=8, **kw)
 
 
 def reference_slopes(ax, hs, es, orders=(1, 2)):
@@ -67,100 +73,137 @@ def reference_slopes(ax, hs, es, orders=(1, 2)):
         ax.plot(xs, ys, ls, color="0.45", lw=1.2, label="O(h%s)" % ("" if p == 1 else "$^%d$" % p))
 
 
-def plot_error_vs_h(plt, groups, metric, path, title):
+def save(plt, fig, path):
+    """The figure as PNG (for report.md) and as PDF beside it, same basename (vector, for papers)."""
+    fig.savefig(path)
+    fig.savefig(os.path.splitext(path)[0] + ".pdf")
+    plt.close(fig)
+
+
+def magnitude_label(name, pts):
+    """|name| where a plotted value is negative: log axes then show magnitudes."""
+    return "|%s|" % name if any(p[2] for p in pts) else name
+
+
+def draw_line(ax, pts, i, label, noisy=None, **kw):
+    """One line of line_points() on log-log axes in line i's style. Points of a negative value get open
+    markers and noisy ones (noisy(row) true) grey markers, so the plot keeps what log axes would lose."""
+    st = style(i)
+    ax.loglog([p[0] for p in pts], [p[1] for p in pts], label=label, **st, **kw)
+    ms = kw.get("ms", 6)
+    for x, y, negative, row in pts:
+        grey = bool(noisy and noisy(row))
+        if negative or grey:
+            edge = "0.6" if grey else st["color"]
+            ax.plot([x], [y], ls="none", marker=st["marker"], ms=ms, mec=edge, mfc="white" if negative else edge,
+                    zorder=3)
+
+
+def marker_notes(pts, noisy=None):
+    """Legend entries for the marker kinds draw_line used: open (negative value), grey (noisy)."""
+    from matplotlib.lines import Line2D
+    notes = []
+    if any(p[2] for p in pts):
+        notes.append(Line2D([], [], ls="none", marker="o", mec="0.3", mfc="white", label="open marker: value < 0"))
+    if noisy and any(noisy(p[3]) for p in pts):
+        notes.append(Line2D([], [], ls="none", marker="o", mec="0.6", mfc="0.6",
+                            label="grey: wall time < %g s: noise" % NOISE_WALL_S))
+    return notes
+
+
+def figure_error_vs_h(plt, groups, metric, title):
     fig, ax = plt.subplots(figsize=(7.5, 4.5))
-    hs, es = [], []
+    drawn = []
     for i, (label, g) in enumerate(groups.items()):
         pts = line_points(g, metric, "h")
-        if not pts:
-            continue
-        ax.loglog([p[0] for p in pts], [p[1] for p in pts], label=label, lw=1.6, ms=6, **style(i))
-        hs += [p[0] for p in pts]
-        es += [p[1] for p in pts]
-    if not hs:
+        if pts:
+            draw_line(ax, pts, i, label, lw=1.6, ms=6)
+            drawn += pts
+    if not drawn:
         plt.close(fig)
-        return False
+        return None
+    hs, es = [p[0] for p in drawn], [p[1] for p in drawn]
     reference_slopes(ax, hs, es)
     tidy_log_axis(ax, "x", hs)
     tidy_log_axis(ax, "y")
     ax.set_xlabel("smoothing length h")
-    ax.set_ylabel(metric)
+    ax.set_ylabel(magnitude_label(metric, drawn))
     ax.set_title(title)
-    outside_legend(ax)
+    outside_legend(ax, marker_notes(drawn))
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
-    return True
+    return fig
 
 
-def plot_all_errors_vs_h(plt, groups, errors, path, title):
+def figure_all_errors_vs_h(plt, groups, errors, title):
     n = len(errors)
     if n < 2:
-        return False
+        return None
     cols = 2
     nrows = (n + 1) // 2
     fig, axes = plt.subplots(nrows, cols, figsize=(9, 3.3 * nrows), squeeze=False)
-    anything = False
+    everything = []
     for k, name in enumerate(errors):
         ax = axes[k // cols][k % cols]
-        hs, es = [], []
+        drawn = []
         for i, (label, g) in enumerate(groups.items()):
             pts = line_points(g, name, "h")
             if pts:
-                ax.loglog([p[0] for p in pts], [p[1] for p in pts], label=label, lw=1.4, ms=5, **style(i))
-                hs += [p[0] for p in pts]
-                es += [p[1] for p in pts]
-        if hs:
-            anything = True
-            reference_slopes(ax, hs, es)
-            tidy_log_axis(ax, "x", hs)
+                draw_line(ax, pts, i, label, lw=1.4, ms=5)
+                drawn += pts
+        if drawn:
+            reference_slopes(ax, [p[0] for p in drawn], [p[1] for p in drawn])
+            tidy_log_axis(ax, "x", [p[0] for p in drawn])
             tidy_log_axis(ax, "y")
-        ax.set_title(name)
+        ax.set_title(magnitude_label(name, drawn))
         ax.set_xlabel("h")
+        everything += drawn
     for k in range(n, nrows * cols):
         axes[k // cols][k % cols].axis("off")
-    if not anything:
+    if not everything:
         plt.close(fig)
-        return False
+        return None
     handles, labels = axes[0][0].get_legend_handles_labels()
+    handles += marker_notes(everything)
+    labels += [h.get_label() for h in handles[len(labels):]]
     fig.suptitle(title)
     fig.legend(handles, labels, loc="lower center", ncol=min(4, len(labels)), frameon=False)
     fig.tight_layout(rect=(0, 0.04 + 0.025 * ((len(labels) - 1) // 4), 1, 1))
-    fig.savefig(path)
-    plt.close(fig)
-    return True
+    return fig
 
 
-def plot_pareto(plt, groups, metric, path, title):
+def noisy_run(row):
+    """A run too short for its wall time to measure speed (draw_line greys it)."""
+    return noisy_wall(row["wall_time_s"])
+
+
+def figure_pareto(plt, groups, metric, title):
     fig, ax = plt.subplots(figsize=(7.5, 4.5))
-    drawn = False
+    drawn = []
     for i, (label, g) in enumerate(groups.items()):
-        pts = [(r["wall_time_s"], r["errors"].get(metric), r["nx"]) for r in completed(g)]
-        pts = [p for p in pts if isinstance(p[0], (int, float)) and isinstance(p[1], (int, float))
-               and p[0] > 0 and p[1] > 0]
+        pts = line_points(g, metric, "wall_time_s")
         if not pts:
             continue
-        drawn = True
-        ax.loglog([p[0] for p in pts], [p[1] for p in pts], label=label, lw=1.6, ms=6, **style(i))
-        for t, e, nx in pts:
-            ax.annotate(str(nx), (t, e), textcoords="offset points", xytext=(5, 4), fontsize=7,
+        draw_line(ax, pts, i, label, noisy=noisy_run, lw=1.6, ms=6)
+        drawn += pts
+        for t, e, _, r in pts:
+            ax.annotate(str(r["nx"]), (t, e), textcoords="offset points", xytext=(5, 4), fontsize=7,
                         color=style(i)["color"])
     if not drawn:
         plt.close(fig)
-        return False
+        return None
     tidy_log_axis(ax, "x")
     tidy_log_axis(ax, "y")
     ax.set_xlabel("wall time [s]")
-    ax.set_ylabel(metric)
+    ax.set_ylabel(magnitude_label(metric, drawn))
     ax.set_title(title)
-    outside_legend(ax, title="point labels: nx")
+    outside_legend(ax, marker_notes(drawn, noisy_run), title="point labels: nx")
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
-    return True
+    return fig
 
 
-def plot_ksp(plt, groups, path, title):
+def figure_ksp(plt, groups, title):
+    """Linear iterations per time step: the program sums them over a step's pressure solves (projection,
+    correction and free-surface passes) and reports only that sum, per step and as its mean and max."""
     fig, ax = plt.subplots(figsize=(7.5, 4.2))
     drawn = False
     Ns = []
@@ -172,22 +215,20 @@ def plot_ksp(plt, groups, path, title):
         drawn = True
         Ns += [p[0] for p in pts]
         st = style(i)
-        ax.semilogx([p[0] for p in pts], [p[1] for p in pts], label=label + " (mean)", lw=1.6, ms=6, **st)
+        ax.semilogx([p[0] for p in pts], [p[1] for p in pts], label=label + " (mean over steps)", lw=1.6, ms=6, **st)
         ax.semilogx([p[0] for p in pts], [p[2] for p in pts], "--", color=st["color"], marker=st["marker"],
-                    mfc="none", lw=1, ms=5, label=label + " (max)")
+                    mfc="none", lw=1, ms=5, label=label + " (max over steps)")
     if not drawn:
         plt.close(fig)
-        return False
+        return None
     ax.set_xlabel("number of particles N")
-    ax.set_ylabel("KSP iterations per pressure solve")
+    ax.set_ylabel("KSP iterations per time step\n(sum over the step's pressure solves)")
     tidy_log_axis(ax, "x", Ns, integer=True)
     ax.set_ylim(0, ax.get_ylim()[1] * 1.1)
     ax.set_title(title)
     outside_legend(ax)
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
-    return True
+    return fig
 
 
 def read_profile(path):
@@ -227,10 +268,11 @@ def reference_file(name):
     return p if os.path.exists(p) else None
 
 
-def plot_centrelines(plt, groups, case, study_options, path, title):
-    """Lid-driven cavity: u(0.5, y) and v(x, 0.5) of the finest run of every line against Ghia et al."""
+def figure_centrelines(plt, groups, case, study_options, title):
+    """Lid-driven cavity: u(0.5, y) and v(x, 0.5) of the finest run of every line against Ghia et al.
+    Returns (figure or None, a note for the report or None)."""
     if case != "lid_driven_cavity":
-        return False, None
+        return None, None
     profiles = []  # (line index, label, u file, v file, row, finest of its line)
     for i, (label, g) in enumerate(groups.items()):
         found = []
@@ -241,7 +283,7 @@ def plot_centrelines(plt, groups, case, study_options, path, title):
                 found.append((i, "%s, nx=%d" % (label, r["nx"]), fu, fv, r))
         profiles += [p + (k == len(found) - 1,) for k, p in enumerate(found)]
     if not profiles:
-        return False, "no centreline_u.csv / centreline_v.csv in the run folders"
+        return None, "no centreline_u.csv / centreline_v.csv in the run folders"
     re_number = None
     for *_, r, _finest in profiles:
         s = read_json(os.path.join(r["dir"], "summary.json")) or {}
@@ -286,6 +328,4 @@ def plot_centrelines(plt, groups, case, study_options, path, title):
     fig.suptitle(title + ("" if re_number is None else ", Re = %g" % float(re_number)) +
                  (" (faint: coarser runs)" if coarser else ""))
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
-    return True, note
+    return fig, note

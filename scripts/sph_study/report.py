@@ -5,10 +5,14 @@ import os
 import sys
 
 from .collect import collect, completed, error_names, groups_of, write_csv
-from .common import REPO
+from .common import NOISE_WALL_S, REPO, noisy_wall
 from .orders import observed_order, pareto_table
 from .plan import option_args, option_value
-from .plots import plot_all_errors_vs_h, plot_centrelines, plot_error_vs_h, plot_ksp, plot_pareto, plotting
+from .plots import (figure_all_errors_vs_h, figure_centrelines, figure_error_vs_h, figure_ksp, figure_pareto,
+                    plotting, save)
+
+NOISE_MARK = "†"
+NOISE_NOTE = "%s wall time < %g s: timer noise, not a measure of speed." % (NOISE_MARK, NOISE_WALL_S)
 
 
 def md_table(header, rows, align=None):
@@ -26,12 +30,27 @@ def fmt_time(t):
     return "%.0f s" % t
 
 
+def fmt_wall(t):
+    """fmt_time of a wall time, marked when it is noise."""
+    return flag_noise(t, fmt_time(t))
+
+
 def fmt(v, spec="%.4g"):
     if v is None or v == "":
         return ""
     if isinstance(v, float):
         return spec % v
     return str(v)
+
+
+def flag_noise(wall, text):
+    """A table cell measured over a wall time: marked when that wall time is noise (kept, not dropped)."""
+    return text + NOISE_MARK if text and noisy_wall(wall) else text
+
+
+def noted(table):
+    """A table, followed by the noise footnote where a cell of it is marked."""
+    return table + ("\n\n" + NOISE_NOTE if NOISE_MARK in table else "")
 
 
 def write_report(path, study, study_file, rows, groups, errors, metric, plots, pareto, counts, jobs, mpi, notes):
@@ -112,7 +131,7 @@ def write_report(path, study, study_file, rows, groups, errors, metric, plots, p
         isph_like = any(r["ksp_iterations_mean"] is not None for r in g)
         hdr = ["nx", "status", "steady state", "N", "h", "steps", "wall [s]", "s / (particle·step)"]
         if isph_like:
-            hdr.append("KSP its mean / max")
+            hdr.append("KSP its per step, mean / max")
         for e in errors:
             hdr += [e, "order"]
         body = []
@@ -125,8 +144,9 @@ def write_report(path, study, study_file, rows, groups, errors, metric, plots, p
                              *([""] if isph_like else []), r["failure"].replace("|", "\\|")] +
                             [""] * (2 * len(errors) - 1))
                 continue
+            wall = r["wall_time_s"]
             row = [r["nx"], r["status"], steady, fmt(r["N"]), fmt(r["h"]), fmt(r["steps"]),
-                   fmt(r["wall_time_s"], "%.3g"), fmt(r["time_per_particle_step_s"], "%.3g")]
+                   flag_noise(wall, fmt(wall, "%.3g")), flag_noise(wall, fmt(r["time_per_particle_step_s"], "%.3g"))]
             if isph_like:
                 row.append("%s / %s" % (fmt(r["ksp_iterations_mean"], "%.1f"), fmt(r["ksp_iterations_max"]))
                            if r["ksp_iterations_mean"] is not None else "")
@@ -137,7 +157,7 @@ def write_report(path, study, study_file, rows, groups, errors, metric, plots, p
                            if prev else "")
             body.append(row)
             prev = r
-        L += [md_table(hdr, body), ""]
+        L += [noted(md_table(hdr, body)), ""]
 
     failed_rows = [r for r in rows if r["status"] == "failed"]
     if failed_rows:
@@ -158,21 +178,21 @@ def write_report(path, study, study_file, rows, groups, errors, metric, plots, p
             cells = ["%.3g" % row["level"]]
             for l in labels:
                 t, exact = row["times"].get(l, (None, False))
-                cells.append(("" if exact or t is None else "≤ ") + fmt_time(t))
+                cells.append(("" if exact or t is None else "≤ ") + fmt_wall(t))
             cells += [row["best"] or "none", "%.2f×" % row["speedup"] if row["speedup"] else ""]
             body.append(cells)
-        L += [md_table(hdr, body), ""]
+        L += [noted(md_table(hdr, body)), ""]
         L += ["In words:", ""]
         for row in pareto:
             if not row["best"]:
                 L.append("- `%s` ≤ %.3g: no run reached it." % (metric, row["level"]))
             elif row["runner_up"]:
                 L.append("- `%s` ≤ %.3g: **%s** is ahead (%s against %s for %s, %.2f× faster)." % (
-                    metric, row["level"], row["best"], fmt_time(row["times"][row["best"]][0]),
-                    fmt_time(row["times"][row["runner_up"]][0]), row["runner_up"], row["speedup"]))
+                    metric, row["level"], row["best"], fmt_wall(row["times"][row["best"]][0]),
+                    fmt_wall(row["times"][row["runner_up"]][0]), row["runner_up"], row["speedup"]))
             else:
                 L.append("- `%s` ≤ %.3g: only **%s** reaches it (%s)." % (
-                    metric, row["level"], row["best"], fmt_time(row["times"][row["best"]][0])))
+                    metric, row["level"], row["best"], fmt_wall(row["times"][row["best"]][0])))
         L += [""]
     else:
         L += ["No completed runs with the metric `%s` and a wall time." % metric, ""]
@@ -180,13 +200,37 @@ def write_report(path, study, study_file, rows, groups, errors, metric, plots, p
     if plots:
         L += ["## Plots", ""]
         for title, fname in plots:
-            L += ["### %s" % title, "", "![%s](%s)" % (title, fname), ""]
+            pdf = os.path.splitext(fname)[0] + ".pdf"
+            L += ["### %s" % title, "", "![%s](%s)" % (title, fname), "", "Vector version: [%s](%s)." % (pdf, pdf), ""]
     if notes:
         L += ["## Notes", ""] + ["- " + n for n in notes] + [""]
     L += ["Every run's inputs and exact command are in its folder's `run.json`; its outputs in `summary.json`, "
           "`timeseries.csv`, `stderr.txt`. All rows: `results.csv`.", ""]
     with open(path, "w") as f:
         f.write("\n".join(L))
+
+
+def write_figures(plt, study, groups, errors, metric, out_dir, notes):
+    """Every figure there is something to draw, as PNG and PDF; returns [(caption, PNG file name)]."""
+    title = study["name"] if study["case"] in study["name"] else "%s: %s" % (study["name"], study["case"])
+    centrelines, note = figure_centrelines(plt, groups, study["case"], study["options"], title)
+    if note:
+        notes.append("centreline plot: " + note)
+    figures = [
+        ("%s against h" % metric, "error_vs_h.png", figure_error_vs_h(plt, groups, metric, title)),
+        ("Every error norm against h", "errors_vs_h.png", figure_all_errors_vs_h(plt, groups, errors, title)),
+        ("%s against wall time (speed–accuracy)" % metric, "pareto.png",
+         figure_pareto(plt, groups, metric, title + ", speed against accuracy")),
+        ("KSP iterations per time step against N", "ksp_iterations.png",
+         figure_ksp(plt, groups, title + ", pressure solves")),
+        ("Centreline velocity profiles", "centrelines.png", centrelines),
+    ]
+    plots = []
+    for caption, fname, fig in figures:
+        if fig is not None:
+            save(plt, fig, os.path.join(out_dir, fname))
+            plots.append((caption, fname))
+    return plots
 
 
 def make_outputs(study, study_file, runs, out_dir, counts, jobs, mpi):
@@ -216,22 +260,8 @@ def make_outputs(study, study_file, runs, out_dir, counts, jobs, mpi):
     pareto = pareto_table(lines, study.get("levels"))
     plots = []
     plt = plotting()
-    title = study["name"] if study["case"] in study["name"] else "%s: %s" % (study["name"], study["case"])
     if plt is not None:
-        if plot_error_vs_h(plt, groups, metric, os.path.join(out_dir, "error_vs_h.png"), title):
-            plots.append(("%s against h" % metric, "error_vs_h.png"))
-        if plot_all_errors_vs_h(plt, groups, errors, os.path.join(out_dir, "errors_vs_h.png"), title):
-            plots.append(("Every error norm against h", "errors_vs_h.png"))
-        if plot_pareto(plt, groups, metric, os.path.join(out_dir, "pareto.png"), title + ", speed against accuracy"):
-            plots.append(("%s against wall time (speed–accuracy)" % metric, "pareto.png"))
-        if plot_ksp(plt, groups, os.path.join(out_dir, "ksp_iterations.png"), title + ", pressure solve"):
-            plots.append(("KSP iterations against N", "ksp_iterations.png"))
-        ok, note = plot_centrelines(plt, groups, study["case"], study["options"],
-                                    os.path.join(out_dir, "centrelines.png"), title)
-        if ok:
-            plots.append(("Centreline velocity profiles", "centrelines.png"))
-        if note:
-            notes.append("centreline plot: " + note)
+        plots = write_figures(plt, study, groups, errors, metric, out_dir, notes)
     else:
         notes.append("plots skipped: matplotlib is not available to this Python")
     write_report(os.path.join(out_dir, "report.md"), study, study_file, rows, groups, errors, metric, plots,

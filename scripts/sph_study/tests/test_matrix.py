@@ -68,7 +68,7 @@ class Cells(TempDirCase):
                    elapsed_s=0.5)
         c = classify_cell(run)
         self.assertEqual(c, ("ok", "not measured: why", "l1_velocity", None, 0.5, None))
-        self.assertEqual(cell_text(c), "ok (not measured: why) (0.5 s)")
+        self.assertEqual(cell_text(c), "ok (not measured: why) (0.5 s†)")  # under 1 s: marked as noise
 
     def test_ok_without_the_metric(self):
         run = self.runs["TGV", "ISPH"]
@@ -129,8 +129,9 @@ class Cells(TempDirCase):
         self.assertIn("Columns: **ISPH** = `-solver isph`; **WCSPH** = `-solver wcsph -density_diffusion none`; "
                       "**gas** = `-solver compressible`\n", md)
         self.assertIn("| case | ISPH | WCSPH | gas |\n|---|---|---|---|\n"
-                      "| TGV | ok, l1_velocity=0.02 (1.5 s) | ok, l1_velocity=0.01 (0.5 s) | n/a (needs a gas scene) |\n"
-                      "| Sod | n/a (%s) | **failed**: boom | not run |\n" % short_reason(GAS, 80), md)
+                      "| TGV | ok, l1_velocity=0.02 (1.5 s) | ok, l1_velocity=0.01 (0.5 s†) | n/a (needs a gas scene) |\n"
+                      "| Sod | n/a (%s) | **failed**: boom | not run |\n\n"
+                      "† wall time < 1 s: timer noise, not a measure of speed.\n" % short_reason(GAS, 80), md)
         self.assertIn("- **TGV** (`-case taylor_green -nx 8`): survived with ISPH, WCSPH (lowest `l1_velocity`: WCSPH, "
                       "0.01); not applicable: gas.\n"
                       "- **Sod** (`-case sod -nx 48`): no variant survived; failed: WCSPH; not applicable: ISPH; "

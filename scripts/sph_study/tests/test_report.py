@@ -11,7 +11,7 @@ import unittest
 from sph_study.collect import collect, completed, error_names, groups_of, line_points, write_csv
 from sph_study.orders import pareto_table
 from sph_study.plan import load_study, plan_runs
-from sph_study.report import fmt, fmt_time, make_outputs, md_table, write_report
+from sph_study.report import flag_noise, fmt, fmt_time, fmt_wall, make_outputs, md_table, write_report
 from sph_study.tests.support import TempDirCase, record_run
 
 STUDY = """\
@@ -98,7 +98,9 @@ class Collect(SyntheticStudy):
         groups = groups_of(list(reversed(self.rows)))
         self.assertEqual(list(groups), ["wcsph", "isph"])
         self.assertEqual([r["nx"] for r in groups["isph"]], [10, 20, 40])
-        self.assertEqual(line_points(groups["wcsph"], "l1_velocity", "h"), [(0.1, 4e-2), (0.05, 2e-2)])
+        self.assertEqual([p[:3] for p in line_points(groups["wcsph"], "l1_velocity", "h")],
+                         [(0.1, 4e-2, False), (0.05, 2e-2, False)])
+        self.assertEqual([p[3]["nx"] for p in line_points(groups["wcsph"], "l1_velocity", "h")], [10, 20])
         self.assertEqual(line_points(groups["isph"], "nothing", "h"), [])
         self.assertEqual(len(completed(self.rows)), 5)
 
@@ -134,7 +136,7 @@ class Report(SyntheticStudy):
         # per run: the order in the row of the finer run
         self.assertIn("| 40 | completed | – | 1600 | 0.025 | 400 | 16 | 2.5e-05 | 9.0 / 11 | 2.500e-03 | 2.00 | "
                       "2.500e-02 | 1.00 |", text)
-        self.assertIn("| 10 | completed | – | 100 | 0.1 | 100 | 0.5 | 5e-05 | 4.000e-02 |  | 2.000e-01 |  |", text)
+        self.assertIn("| 10 | completed | – | 100 | 0.1 | 100 | 0.5† | 5e-05† | 4.000e-02 |  | 2.000e-01 |  |", text)
         self.assertIn("| 40 | **failed** | – |  |  |  |  |  | step 3 (t = 0.1): non-finite velocity |  |  |  |", text)
         self.assertNotIn("Remarks on", text)
 
@@ -150,6 +152,25 @@ class Report(SyntheticStudy):
         self.assertIn("- `l1_velocity` ≤ 0.02: **wcsph** is ahead (1 s against 2 s for isph, 2.00× faster).\n"
                       "- `l1_velocity` ≤ 0.01: only **isph** reaches it (4 s).\n"
                       "- `l1_velocity` ≤ 0.0001: no run reached it.\n", text)
+
+    def test_wall_times_under_1_s_are_flagged_not_dropped(self):
+        text = self.report()
+        # wcsph nx 10 ran 0.5 s: its wall time and time per particle-step are kept, marked, with a footnote
+        self.assertIn("| 10 | completed | – | 100 | 0.1 | 100 | 0.5† | 5e-05† |", text)
+        self.assertIn("| 20 | completed | – | 400 | 0.05 | 200 | 1 | 1.25e-05 |", text)
+        self.assertEqual(text.count("\n† wall time < 1 s: timer noise, not a measure of speed.\n"), 1)
+        # a speed-table time under 1 s: marked there too, with the table's own footnote
+        pareto = pareto_table({"isph": [(0.4, 4e-2), (4.0, 1e-2)], "wcsph": [(2.0, 4e-2)]}, [4e-2, 1e-2])
+        text = self.report(pareto=pareto)
+        self.assertIn("| 0.04 | ≤ 0.4 s† | ≤ 2 s | isph | 5.00× |", text)
+        self.assertIn("**isph** is ahead (0.4 s† against 2 s for wcsph, 5.00× faster).", text)
+        self.assertEqual(text.count("\n† wall time < 1 s: timer noise, not a measure of speed.\n"), 2)
+
+    def test_no_noise_footnote_without_short_runs(self):
+        for r in self.rows:
+            if r["wall_time_s"] is not None:
+                r["wall_time_s"] += 1.0
+        self.assertNotIn("†", self.report())
 
     def test_no_speed_table_without_completed_runs(self):
         self.assertIn("No completed runs with the metric `l1_velocity` and a wall time.", self.report(pareto=[]))
@@ -195,6 +216,11 @@ class Formats(unittest.TestCase):
         self.assertEqual([fmt_time(None), fmt_time(0.0344), fmt_time(9.99), fmt_time(123.4)],
                          ["–", "0.0344 s", "9.99 s", "123 s"])
 
+    def test_fmt_wall_marks_noise(self):
+        self.assertEqual([fmt_wall(None), fmt_wall(0.0344), fmt_wall(1.0), fmt_wall(123.4)],
+                         ["–", "0.0344 s†", "1 s", "123 s"])
+        self.assertEqual([flag_noise(0.5, ""), flag_noise(0.5, "0.5"), flag_noise(None, "x")], ["", "0.5†", "x"])
+
     def test_md_table(self):
         self.assertEqual(md_table(["a", "b"], [[1, 2]]), "| a | b |\n|---|---:|\n| 1 | 2 |")
         self.assertEqual(md_table(["a"], [], align=["---"]), "| a |\n|---|")
@@ -209,16 +235,23 @@ class MakeOutputs(SyntheticStudy):
         self.assertEqual(err.getvalue(), "")
         plots = (["error_vs_h.png", "errors_vs_h.png", "pareto.png", "ksp_iterations.png"]
                  if importlib.util.find_spec("matplotlib") else [])
-        for f in ["results.csv", "report.md"] + plots:
+        pdfs = [os.path.splitext(f)[0] + ".pdf" for f in plots]  # every figure also as PDF, same basename
+        for f in ["results.csv", "report.md"] + plots + pdfs:
             self.assertGreater(os.path.getsize(os.path.join(self.out, f)), 0, f)
-        self.assertFalse(os.path.exists(os.path.join(self.out, "centrelines.png")))  # not a cavity study
+        for f in pdfs:
+            with open(os.path.join(self.out, f), "rb") as pdf:
+                self.assertEqual(pdf.read(5), b"%PDF-", f)
+        for f in ("centrelines.png", "centrelines.pdf"):  # not a cavity study
+            self.assertFalse(os.path.exists(os.path.join(self.out, f)))
         with open(os.path.join(self.out, "report.md")) as f:
             text = f.read()
         for title, fname in (("l1_velocity against h", "error_vs_h.png"), ("Every error norm against h", "errors_vs_h.png"),
                              ("l1_velocity against wall time (speed–accuracy)", "pareto.png"),
-                             ("KSP iterations against N", "ksp_iterations.png")):
+                             ("KSP iterations per time step against N", "ksp_iterations.png")):
             if plots:
-                self.assertIn("### %s\n\n![%s](%s)\n" % (title, title, fname), text)
+                pdf = fname.replace(".png", ".pdf")
+                self.assertIn("### %s\n\n![%s](%s)\n\nVector version: [%s](%s).\n" % (title, title, fname, pdf, pdf),
+                              text)
         # automatic levels: 1-2-5 values between the smallest error and the largest coarsest-run error
         self.assertIn("| 0.02 | 2 s | 1 s | wcsph | 2.00× |", text)
 
