@@ -120,7 +120,7 @@ template <int D> void remove_kernel_average(const Particles<D>& P, Neighbourhood
 // uncorrected gradients of u and of the scalars. As separate operators (correction_matrices,
 // vector_gradient_corrected, gradient_corrected) these were one loop each, and traversing the pairs,
 // not the arithmetic, is the cost: the fused loop gives each sum bitwise the same terms in the same
-// order (tests/test_operators.cpp), in less time (docs/performance.md, "Design measurements").
+// order (tests/test_shifting.cpp), in less time (docs/performance.md, "Design measurements").
 template <int D> void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K,
                                       const LindShifting& model, double dx, double U, double dt,
                                       const std::vector<std::vector<double>*>& scalars = {},

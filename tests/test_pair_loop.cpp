@@ -1,0 +1,71 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "operator_lattice.hpp"
+#include "src/neighbours/neighbourhood.hpp"
+#include "src/sph/pair_loop.hpp"
+
+namespace {
+
+using namespace sph;
+using namespace sph::test;
+
+// The pair loop gathers each particle's pairs into a batch before the pair functions see them
+// (src/sph/pair_loop.hpp). Against a brute-force search over every two particles: it visits exactly
+// the pairs inside the support, in increasing j, with the kernel's W, dW/dr and gradient of each
+// pair, from Verlet lists whose skin holds candidates outside the support. A pair function that runs
+// another particle's pairs (a nested loop) sees them whole and leaves the outer batch intact.
+TEST(PairLoop, BatchesHoldExactlyThePairsOfABruteForceSearch) {
+  struct Seen {
+    int j;
+    double r, W, dWdr;
+    V2 gradW;
+    bool operator==(const Seen& o) const {
+      return j == o.j && r == o.r && W == o.W && dWdr == o.dWdr && gradW == o.gradW;
+    }
+  };
+  for (const KernelCase& kc : kCases) {
+    SCOPED_TRACE(label(kc));
+    Patch S(12, kc);
+    const double R = S.K.support_radius();
+    Neighbourhood<2> skinned(S.domain, R, 0.4 * R);
+    skinned.update(S.P, true);
+    const std::size_t n = S.P.n_owned;
+    std::vector<std::vector<Seen>> expected(n), seen(n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j) {
+        const V2 rij = S.P.x[i] - S.P.x[j];
+        const double r2 = rij.squaredNorm(), r = std::sqrt(r2);
+        if (j == i || !(r2 < R * R)) continue;
+        expected[i].push_back({static_cast<int>(j), r, S.K.W(r), S.K.dWdr(r), V2((S.K.dWdr(r) / r) * rij)});
+      }
+    std::size_t candidates = 0;
+    for (std::size_t i = 0; i < n; ++i) candidates += skinned.list().count(i);
+    std::size_t pairs = 0;
+    for (const auto& e : expected) pairs += e.size();
+    ASSERT_GT(candidates, pairs + pairs / 4) << "the skin must hold candidates outside the support";
+
+    const double rc2 = R * R;
+    std::vector<std::size_t> nested_count(n, 0);
+    for_each_particle_pairs(S.P, skinned.list(), S.K, [&](std::size_t i, auto&& visit_pairs) {
+      visit_pairs([&](int, int j, const PairGeometry<2>& g) {
+        seen[i].push_back({j, g.r, g.W, g.dWdr, g.gradW});
+        // A nested loop over j's pairs, in the middle of i's.
+        std::size_t count = 0;
+        auto counter = [&](int, int, const PairGeometry<2>&) { ++count; };
+        detail::pairs_of(static_cast<std::size_t>(j), S.P, skinned.list(), S.K, rc2, counter);
+        if (count != expected[static_cast<std::size_t>(j)].size()) ++nested_count[i];
+      });
+    });
+    for (std::size_t i = 0; i < n; ++i) {
+      ASSERT_EQ(seen[i].size(), expected[i].size()) << "particle " << i;
+      for (std::size_t k = 0; k < seen[i].size(); ++k) EXPECT_TRUE(seen[i][k] == expected[i][k]) << i << " pair " << k;
+      EXPECT_EQ(nested_count[i], 0u) << "particle " << i << ": a nested loop saw a wrong pair count";
+    }
+  }
+}
+
+}  // namespace
