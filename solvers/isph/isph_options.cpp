@@ -11,10 +11,9 @@ const char* const wall_velocity_names[] = {"prescribed", "zero"};
 const char* const surface_condition_names[] = {"node", "particle"};
 
 struct RawOptions {
-  PetscReal cfl, shift_A, particle_divergence_rate;
-  PetscInt shift_rate, shift_scales, gradient, operators, viscous_laplacian, projection_corrections, wall_velocity,
-      surface_condition;
-  PetscBool shifting, wall_impact, wall_impact_set;
+  PetscReal cfl, particle_divergence_rate;
+  PetscInt gradient, operators, viscous_laplacian, projection_corrections, wall_velocity, surface_condition;
+  PetscBool wall_impact, wall_impact_set;
 };
 
 PetscErrorCode read_options(RawOptions* o) {
@@ -23,13 +22,6 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscCall(PetscOptionsReal(
       "-cfl", "ISPH: advective Courant number, dt <= cfl h / U (the explicit schemes read -cfl as an acoustic one)", "",
       o->cfl, &o->cfl, nullptr));
-  PetscCall(
-      PetscOptionsBool("-shifting", "Particle shifting (Lind et al. 2012)", "", o->shifting, &o->shifting, nullptr));
-  PetscCall(PetscOptionsEList("-shift_rate", shift_rate_help, "", shift_rate_names, 2, shift_rate_names[o->shift_rate],
-                              &o->shift_rate, nullptr));
-  PetscCall(PetscOptionsReal("-shift_coefficient", shift_coefficient_help, "", o->shift_A, &o->shift_A, nullptr));
-  PetscCall(PetscOptionsEList("-shift_scales", shift_scales_help, "", shift_scales_names, 2,
-                              shift_scales_names[o->shift_scales], &o->shift_scales, nullptr));
   PetscCall(PetscOptionsEList("-pressure_gradient",
                               "Pressure gradient: corrected (Bonet & Lok), difference, symmetric (Monaghan)", "",
                               gradient_names, 3, gradient_names[o->gradient], &o->gradient, nullptr));
@@ -74,34 +66,27 @@ PetscErrorCode read_options(RawOptions* o) {
 
 template <int D> void IsphSolver<D>::set_from_options() {
   RawOptions o{cfl_,
-               shifting_model_.A,
                particle_divergence_rate_,
-               static_cast<PetscInt>(shifting_model_.rate),
-               static_cast<PetscInt>(shifting_model_.scales),
                static_cast<PetscInt>(gradient_),
                static_cast<PetscInt>(operators_),
                static_cast<PetscInt>(viscous_laplacian_),
                projection_corrections_,
                source_walls_at_rest_ ? 1 : 0,
                static_cast<PetscInt>(surface_condition_),
-               shifting_,
                PETSC_FALSE,
                PETSC_FALSE};
   SPH_PETSC(read_options(&o));
   require(o.cfl > 0 && o.cfl <= 1.0, "-cfl", "in (0, 1]", o.cfl);
-  require(o.shift_A >= 0 || o.shift_A == -1, "-shift_coefficient", "non-negative (or -1: the shift rate's default)",
-          o.shift_A);
   require(o.particle_divergence_rate >= 0 || o.particle_divergence_rate == -1, "-ppe_particle_divergence_rate",
           "non-negative (or -1: all of it every step)", o.particle_divergence_rate);
   require(o.projection_corrections >= 0, "-projection_corrections", "non-negative", o.projection_corrections);
-  cfl_ = o.cfl, shifting_ = o.shifting, particle_divergence_rate_ = o.particle_divergence_rate;
-  shifting_model_.A = o.shift_A, shifting_model_.rate = static_cast<ShiftRate>(o.shift_rate);
-  shifting_model_.scales = static_cast<ShiftScales>(o.shift_scales);
+  cfl_ = o.cfl, particle_divergence_rate_ = o.particle_divergence_rate;
   gradient_ = static_cast<PressureGradient>(o.gradient), operators_ = static_cast<OperatorSet>(o.operators);
   viscous_laplacian_ = static_cast<ViscousLaplacian>(o.viscous_laplacian);
   projection_corrections_ = o.projection_corrections, source_walls_at_rest_ = o.wall_velocity == 1;
   surface_condition_ = static_cast<SurfaceCondition>(o.surface_condition);
   wall_impact_option_ = o.wall_impact_set ? (o.wall_impact ? 1 : 0) : -1;
+  shifting_model_.set_from_options();
   free_surface_model_.set_from_options();
   ppe_.expect_nonsymmetric(operators_ == OperatorSet::Consistent);
   ppe_.set_from_options();
@@ -135,7 +120,7 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
         {"smoothing_error", smoothing_error_description(consistent && viscous_laplacian_ == ViscousLaplacian::Fourth &&
                                                         !phys.free_surface)}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
-  if (shifting_) models["shifting"] = shifting_model_.describe();
+  if (shifting_model_.enabled) models["shifting"] = shifting_model_.describe();
   return {{"models", models},
           {"cfl", cfl_},
           {"ksp", ppe_.describe()},

@@ -55,7 +55,7 @@ template <int D> double IsphSolver<D>::stable_dt() const {
   // The reference speed bounds the step too, so a fluid at rest does not take an unbounded step.
   double dt = cfl_ * h / std::max(max_speed(), phys.U);
   if (phys.viscous()) dt = std::min(dt, kViscousStepFactor * h * h / phys.nu);  // Morris et al. (1997)
-  if (shifting_) dt = std::min(dt, shifting_model_.max_dt(h, largest_speed(scene_->particles)));
+  if (shifting_model_.enabled) dt = std::min(dt, shifting_model_.max_dt(h, largest_speed(scene_->particles)));
   return dt;
 }
 
@@ -383,7 +383,7 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
     mean_pressure_[i] = mean;
   }
   nh.halo().update(P.p);
-  if (shifting_) {
+  if (shifting_model_.enabled) {
     shift(dt);
     energy_.add_change(EnergyCause::Shifting, energy_after_projection, EnergyBudget::kinetic_energy(P, P.v));
   }

@@ -118,7 +118,6 @@ template <int D> class IsphSolver : public Solver<D> {
   Scene<D>* scene_ = nullptr;
   PressurePoisson<D> ppe_;
   double cfl_ = 0.2;
-  PetscBool shifting_ = PETSC_TRUE;
   LindShifting shifting_model_;
   PressureGradient gradient_ = PressureGradient::Corrected;
   OperatorSet operators_ = OperatorSet::Consistent;

@@ -16,9 +16,8 @@ const char* const diffusion_models[] = {"none", "MolteniColagrossi", "Antuono", 
 const char* const gradient_names[] = {"auto", "corrected", "symmetric"};
 
 struct RawOptions {
-  PetscReal c0, c0_factor, gamma, cfl, delta, alpha, beta, epsilon, shift_A;
-  PetscInt density, diffusion, operators, viscous_laplacian, gradient, shift_rate, shift_scales;
-  PetscBool shifting;
+  PetscReal c0, c0_factor, gamma, cfl, delta, alpha, beta, epsilon;
+  PetscInt density, diffusion, operators, viscous_laplacian, gradient;
   PetscBool closed_volume, closed_volume_set;
   PetscBool diffusion_set;
   PetscBool prepared_start;
@@ -75,13 +74,6 @@ PetscErrorCode read_options(RawOptions* o) {
                              "implies, so that it excites no sound of O(Mach) pressure (cases with an exact "
                              "solution: taylor_green)",
                              "", o->prepared_start, &o->prepared_start, nullptr));
-  PetscCall(PetscOptionsBool("-shifting", "Particle shifting (Lind et al. 2012) with Taylor-corrected u and rho", "",
-                             o->shifting, &o->shifting, nullptr));
-  PetscCall(PetscOptionsEList("-shift_rate", shift_rate_help, "", shift_rate_names, 2, shift_rate_names[o->shift_rate],
-                              &o->shift_rate, nullptr));
-  PetscCall(PetscOptionsReal("-shift_coefficient", shift_coefficient_help, "", o->shift_A, &o->shift_A, nullptr));
-  PetscCall(PetscOptionsEList("-shift_scales", shift_scales_help, "", shift_scales_names, 2,
-                              shift_scales_names[o->shift_scales], &o->shift_scales, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -96,15 +88,11 @@ template <int D> void WcsphSolver<D>::set_from_options() {
                av_.alpha,
                av_.beta,
                av_.epsilon,
-               shifting_model_.A,
                static_cast<PetscInt>(density_),
                static_cast<PetscInt>(diffusion_),
                static_cast<PetscInt>(operators_),
                static_cast<PetscInt>(viscous_laplacian_),
                static_cast<PetscInt>(gradient_),
-               static_cast<PetscInt>(shifting_model_.rate),
-               static_cast<PetscInt>(shifting_model_.scales),
-               shifting_,
                closed_volume_option_ > 0 ? PETSC_TRUE : PETSC_FALSE,
                PETSC_FALSE,
                PETSC_FALSE,
@@ -118,10 +106,6 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   require(o.alpha >= 0, "-av_alpha", "non-negative", o.alpha);
   require(o.beta >= 0, "-av_beta", "non-negative", o.beta);
   require(o.epsilon > 0, "-av_epsilon", "positive", o.epsilon);
-  require(o.shift_A >= 0 || o.shift_A == -1, "-shift_coefficient", "non-negative (or -1: the shift rate's default)",
-          o.shift_A);
-  shifting_ = o.shifting, shifting_model_.A = o.shift_A, shifting_model_.rate = static_cast<ShiftRate>(o.shift_rate);
-  shifting_model_.scales = static_cast<ShiftScales>(o.shift_scales);
   if (o.closed_volume_set) closed_volume_option_ = o.closed_volume ? 1 : 0;
   prepared_start_ = o.prepared_start;
   c0_ = o.c0, c0_factor_ = o.c0_factor, eos_.gamma = o.gamma, cfl_ = o.cfl, delta_ = o.delta;
@@ -133,6 +117,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   diffusion_ = static_cast<DensityDiffusion>(o.diffusion);
   diffusion_chosen_ = o.diffusion_set;
   if (delta_ == 0.0) diffusion_ = DensityDiffusion::None;
+  shifting_model_.set_from_options();
   free_surface_.set_from_options();
 }
 
@@ -158,7 +143,7 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
   if (walls_) models["walls"] = {{"model", "AdamiWall"}};
   models["operators"] = operator_set_names[static_cast<int>(operators_)];
   models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
-  if (shifting_) models["shifting"] = shifting_model_.describe();
+  if (shifting_model_.enabled) models["shifting"] = shifting_model_.describe();
   if (phys.free_surface) models["free_surface"] = free_surface_.describe();
   if (closed_volume_ && density_ == DensityMethod::Continuity) models["closed_volume"] = true;
   if (prepared_start_) models["start"] = "slow manifold (case's compressive velocity added)";

@@ -286,7 +286,7 @@ template <int D> double WcsphSolver<D>::stable_dt() const {
   double dt = cfl_ * h / (buf[1] + std::sqrt(buf[0]));
   if (phys.viscous()) dt = std::min(dt, kViscousStepFactor * h * h / phys.nu);
   if (max_acc_ > 0.0) dt = std::min(dt, kForceStepFactor * std::sqrt(h / max_acc_));
-  if (shifting_) dt = std::min(dt, shifting_model_.max_dt(h, largest_speed(scene_->particles)));
+  if (shifting_model_.enabled) dt = std::min(dt, shifting_model_.max_dt(h, largest_speed(scene_->particles)));
   return dt;
 }
 
@@ -306,7 +306,7 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
         nh.halo().update(P.rho);
         compute_rates();
       });
-  if (shifting_) {
+  if (shifting_model_.enabled) {
     if (!nh.update(P)) nh.halo().update(P.rho);
     // At a free surface particles shift only along it (Lind et al. 2012), beside it never outwards.
     ShiftBoundary<D> boundary;

@@ -74,7 +74,6 @@ template <int D> class WcsphSolver : public Solver<D> {
   // dissipation (docs/verification/speed_against_error.md).
   ViscousLaplacian viscous_laplacian_ = ViscousLaplacian::Second;
   WcsphGradient gradient_ = WcsphGradient::Auto;
-  PetscBool shifting_ = PETSC_TRUE;
   LindShifting shifting_model_;
   FreeSurface<D> free_surface_;
   std::vector<Vector<D>> acc_;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "src/core/integer_power.hpp"
+#include "src/core/options.hpp"
 #include "src/core/log_events.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/sph/free_surface.hpp"
@@ -68,7 +69,10 @@ template <int D> double largest_speed(const Particles<D>& P) {
   return std::sqrt(u2);
 }
 
+// The shifting model of a run, shared by ISPH and WCSPH: its options (-shifting, -shift_rate,
+// -shift_coefficient, -shift_scales) are one block, read and checked once whichever scheme runs.
 struct LindShifting {
+  bool enabled = true;  // -shifting
   ShiftRate rate = ShiftRate::Speed;
   ShiftScales scales = ShiftScales::All;
   double A = -1.0;                              // -1: the rate's default (default_coefficient)
@@ -76,6 +80,7 @@ struct LindShifting {
   int n = 4;                                    // tensile-correction exponent
   static constexpr double max_D_over_h2 = 0.5;  // stability of the explicit shift
 
+  void set_from_options();
   static double default_coefficient(ShiftRate r) { return r == ShiftRate::Speed ? 2.0 : 5.0; }
   double coefficient_A() const { return A >= 0.0 ? A : default_coefficient(rate); }
   // D of a particle: speed: A h U dt; strain: A h^2 |S| dt, at most max_D_over_h2 h^2 (the explicit
@@ -98,6 +103,33 @@ struct LindShifting {
             {"n", n}};
   }
 };
+
+namespace detail {
+inline PetscErrorCode read_shifting_options(PetscBool* enabled, PetscInt* rate, PetscReal* A, PetscInt* scales) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Particle shifting (ISPH and WCSPH)", "Shifting");
+  PetscCall(PetscOptionsBool("-shifting",
+                             "Particle shifting (Lind et al. 2012), the particles' fields Taylor-corrected to their "
+                             "new positions",
+                             "", *enabled, enabled, nullptr));
+  PetscCall(PetscOptionsEList("-shift_rate", shift_rate_help, "", shift_rate_names, 2, shift_rate_names[*rate], rate,
+                              nullptr));
+  PetscCall(PetscOptionsReal("-shift_coefficient", shift_coefficient_help, "", *A, A, nullptr));
+  PetscCall(PetscOptionsEList("-shift_scales", shift_scales_help, "", shift_scales_names, 2, shift_scales_names[*scales],
+                              scales, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+}  // namespace detail
+
+inline void LindShifting::set_from_options() {
+  PetscBool on = enabled ? PETSC_TRUE : PETSC_FALSE;
+  PetscInt r = static_cast<PetscInt>(rate), s = static_cast<PetscInt>(scales);
+  PetscReal a = A;
+  SPH_PETSC(detail::read_shifting_options(&on, &r, &a, &s));
+  require(a >= 0 || a == -1, "-shift_coefficient", "non-negative (or -1: the shift rate's default)", a);
+  enabled = on, rate = static_cast<ShiftRate>(r), A = a, scales = static_cast<ShiftScales>(s);
+}
 
 // g_i minus its kernel average (src/sph/kernel_average.hpp): the part of grad C that varies on the
 // particle scale. Only where the kernel support is all fluid: next to a wall or a free surface the
