@@ -102,6 +102,12 @@ template <int D> double fluid_share(const Particles<D>& P, const std::vector<dou
   return sums[1] > 0.0 ? sums[0] / sums[1] : 0.0;
 }
 
+// A blow-up's advice. A smaller step helps only where the step caused it, and only from a state not yet
+// damaged, which the last checkpoint before a blow-up often is not (docs/user-guide.md, "Failure messages").
+inline constexpr const char* kBlowUpAdvice =
+    "if the time step is the cause, a smaller -cfl or -dt from the start (or from a checkpoint well before, "
+    "-checkpoints_kept) runs past this time; if it fails as soon, look at the particle named";
+
 // Run health: stops a run whose state is no longer a number, whose fluid left the box through a
 // non-periodic side (walls crossed, or the open top of a scene), or whose kinetic energy exceeds
 // `ke_bound`. The message names the first such particle and where it is.
@@ -125,8 +131,7 @@ template <int D> void check_health(const Particles<D>& P, const Domain<D>& domai
   if (bad[0]) {
     const NamedParticle<D> p = first_particle(P, not_finite);
     throw Error("position, velocity or pressure became NaN/Inf" +
-                (p.label >= 0 ? " (" + p.where() + " first)" : std::string()) +
-                ": the run blew up; reduce -cfl or -dt");
+                (p.label >= 0 ? " (" + p.where() + " first)" : std::string()) + ": the run blew up; " + kBlowUpAdvice);
   }
   if (bad[1]) {
     const NamedParticle<D> p = first_particle(P, outside);
@@ -146,7 +151,7 @@ template <int D> void check_health(const Particles<D>& P, const Domain<D>& domai
     const NamedParticle<D> p = first_particle(P, [&](std::size_t i) { return P.v[i].norm() == fastest; });
     std::ostringstream msg;
     msg << "kinetic energy " << ke << " exceeds 1000 x its reference scale (1/2 M U^2), " << p.where()
-        << " the fastest at speed " << fastest << ": the run blew up; reduce -cfl or -dt";
+        << " the fastest at speed " << fastest << ": the run blew up; " << kBlowUpAdvice;
     throw Error(msg.str());
   }
 }
