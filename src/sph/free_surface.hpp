@@ -19,6 +19,7 @@
 
 #include "src/core/options.hpp"
 #include "src/neighbours/neighbourhood.hpp"
+#include "src/sph/free_surface_marrone.hpp"
 #include "src/sph/pair_loop.hpp"
 
 namespace sph {
@@ -65,6 +66,11 @@ template <int D> std::vector<char> near_free_surface(const Particles<D>& P, cons
   return near;
 }
 
+// How the surface is found (-free_surface_detection): div r below a threshold, with hysteresis (above),
+// or Marrone et al. (2010)'s eigenvalue and scan (src/sph/free_surface_marrone.hpp).
+enum class SurfaceDetection { DivR, Marrone };
+inline const char* const surface_detection_names[] = {"div_r", "marrone"};
+
 // Fluid particles with no fluid neighbour (droplets on their own, or stuck on a wall).
 template <int D>
 std::vector<char> isolated_fluid_particles(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) {
@@ -83,8 +89,8 @@ template <int D> struct ShiftBoundary {
   std::vector<Vector<D>> normal;
 };
 
-// The free-surface model of a run: its options (-free_surface_threshold, -free_surface_exit_threshold,
-// read once for every scheme), the flags of the last step that the hysteresis needs (they move with
+// The free-surface model of a run: its options (-free_surface_detection, -free_surface_threshold,
+// -free_surface_exit_threshold, read once for every scheme), the flags of the last step that the hysteresis needs (they move with
 // their particles: a checkpoint field) and what the schemes ask of it.
 template <int D> class FreeSurface {
  public:
@@ -105,19 +111,30 @@ template <int D> class FreeSurface {
     return state_;
   }
   nlohmann::json describe() const {
+    if (detection_ == SurfaceDetection::Marrone)
+      return {{"detection", "Marrone et al. 2010"},
+              {"surface_eigenvalue", marrone::surface_eigenvalue},
+              {"interior_eigenvalue", marrone::interior_eigenvalue}};
     return {{"detection", "div r"}, {"threshold_div_r", threshold_}, {"exit_threshold_div_r", exit_threshold_}};
   }
 
  private:
+  SurfaceDetection detection_ = SurfaceDetection::DivR;
   PetscReal threshold_ = 0.0;       // 0: the dimension's default
   PetscReal exit_threshold_ = 0.0;  // 0: default_free_surface_exit_threshold
   std::vector<double> state_;
 };
 
 namespace detail {
-inline PetscErrorCode read_free_surface_options(PetscReal* threshold, PetscReal* exit_threshold) {
+inline PetscErrorCode read_free_surface_options(PetscInt* detection, PetscReal* threshold, PetscReal* exit_threshold) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Free surface (scenes with one; every scheme)", "FreeSurface");
+  PetscCall(PetscOptionsEList("-free_surface_detection",
+                              "Free-surface particles: div_r (div r below -free_surface_threshold, with hysteresis; "
+                              "Lind et al. 2012) or marrone (the moment matrix's smallest eigenvalue, then a scan "
+                              "beyond the particle; Marrone et al. 2010; ISPH fails three of the violent free-surface scenes with "
+                              "it: docs/verification/free_surface.md)",
+                              "", surface_detection_names, 2, surface_detection_names[*detection], detection, nullptr));
   PetscCall(PetscOptionsReal("-free_surface_threshold",
                              "Free-surface particles: div r below this (0: 1.5 in 2D, 2.4 in 3D; Lind et al. 2012)", "",
                              *threshold, threshold, nullptr));
@@ -131,7 +148,9 @@ inline PetscErrorCode read_free_surface_options(PetscReal* threshold, PetscReal*
 }  // namespace detail
 
 template <int D> void FreeSurface<D>::set_from_options() {
-  SPH_PETSC(detail::read_free_surface_options(&threshold_, &exit_threshold_));
+  PetscInt detection = static_cast<PetscInt>(detection_);
+  SPH_PETSC(detail::read_free_surface_options(&detection, &threshold_, &exit_threshold_));
+  detection_ = static_cast<SurfaceDetection>(detection);
   require(threshold_ >= 0 && threshold_ < D, "-free_surface_threshold", "in [0, dimension)", threshold_);
   require(exit_threshold_ >= 0 && exit_threshold_ < D, "-free_surface_exit_threshold", "in [0, dimension)",
           exit_threshold_);
@@ -147,7 +166,9 @@ template <int D> void FreeSurface<D>::setup() {
 template <int D> std::vector<char> FreeSurface<D>::detect(const Particles<D>& P, const NeighbourList<D>& nl,
                                                           const Kernel<D>& K, bool remember) {
   state_.resize(P.n_owned, 0.0);
-  std::vector<char> surface = free_surface_particles(P, nl, K, threshold_, exit_threshold_, &state_);
+  std::vector<char> surface = detection_ == SurfaceDetection::Marrone
+                                  ? marrone_surface_particles(P, nl, K, &state_)
+                                  : free_surface_particles(P, nl, K, threshold_, exit_threshold_, &state_);
   if (remember) state_.assign(surface.begin(), surface.end());
   return surface;
 }
