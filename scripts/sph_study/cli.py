@@ -6,7 +6,7 @@
 
 A study file (YAML, or JSON when it ends in .json) names a case, the solvers, the resolutions (-nx) and
 the options; every combination of solver x sweep values x resolution is run with the sph program, each
-into its own folder under the study folder (default <repo>/out/studies/<name>/). Then results.csv,
+into its own folder under the study folder (default out/studies/<name>/ in the current folder). Then results.csv,
 report.md and the plots (PNG, and PDF beside each) are written there. Study file keys:
 
     name: taylor_green_re100          # study folder name (default: the file's stem)
@@ -28,6 +28,15 @@ report.md and the plots (PNG, and PDF beside each) are written there. Study file
     metric: l1_velocity               # error norm of the plots and the Pareto ranking
     levels: [1e-3, 3e-4]              # optional: the error levels of the speed table (default: 1-2-5 steps)
     mpi: 1                            # optional default for --mpi
+
+A scene of one's own at several resolutions: 'scene:' instead of 'case:', and each resolution runs
+-case scene on a file made for it (in <study folder>/scenes/, made once):
+
+    scene: [falling_block, --obstacle-shape, wedge]      # scripts/make-scene's arguments (it adds --nx, -o)
+    scene: {command: [./my_scene.py, --nx, "{nx}", -o, "{file}"]}   # or a program of one's own, run in the
+                                                         # study file's folder ('{nx}', '{file}' filled in)
+
+Relative paths in a study file (the scene's command, a scene_file option) are the study file's folder's.
 
 A sweep value that is a mapping sets several options at once (its optional 'label' key names it).
 An option value null sets a flag without a value. Runs are skipped when their folder holds a
@@ -68,7 +77,7 @@ def main(argv=None):
     ap.add_argument("--mpi", type=int, default=None, help="MPI ranks per run (mpirun -n N ...); default: the "
                     "study's 'mpi', else no mpirun")
     ap.add_argument("--sph", default=os.path.join(REPO, "build", "sph"), help="sph executable (default <repo>/build/sph)")
-    ap.add_argument("--out", default=None, help="study folder (default <repo>/out/studies/<name>)")
+    ap.add_argument("--out", default=None, help="study folder (default out/studies/<name> in the current folder)")
     ap.add_argument("--nx", type=int, nargs="+", default=None, metavar="NX",
                     help="run these resolutions instead of the study's (e.g. --nx 32 64 128)")
     ap.add_argument("--force", action="store_true", help="rerun runs that are up to date")

@@ -65,16 +65,25 @@ _scene_lock = threading.Lock()
 
 
 def make_scene(scene):
-    """Writes a matrix row's scene file (scripts/make-scene) unless an earlier column made it; returns an
-    error message, or None."""
+    """Writes a run's scene file (scripts/make-scene's arguments, or the study's own command) unless an
+    earlier run made it; returns an error message, or None."""
     with _scene_lock:
         if os.path.exists(scene["file"]):
             return None
         os.makedirs(os.path.dirname(scene["file"]), exist_ok=True)
-        cmd = [os.path.join(REPO, "scripts", "make-scene")] + scene["args"] + ["-o", scene["file"]]
-        p = subprocess.run(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        if "command" in scene:
+            cmd, cwd, what = scene["command"], scene["cwd"], " ".join(scene["command"])
+        else:
+            cmd = [os.path.join(REPO, "scripts", "make-scene")] + scene["args"] + ["-o", scene["file"]]
+            cwd, what = REPO, "make-scene " + " ".join(scene["args"])
+        try:
+            p = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        except OSError as e:
+            return "%s failed: %s" % (what, e)
         if p.returncode != 0:
-            return "make-scene %s failed: %s" % (" ".join(scene["args"]), (p.stderr.strip().splitlines() or ["?"])[-1])
+            return "%s failed: %s" % (what, (p.stderr.strip().splitlines() or ["?"])[-1])
+        if not os.path.exists(scene["file"]):
+            return "%s wrote no %s" % (what, scene["file"])
     return None
 
 
@@ -180,7 +189,7 @@ def study_settings(a, study):
     """(mpi ranks per run, absolute sph path, study folder) from the command line and the study file."""
     mpi = a.mpi if a.mpi is not None else int(study.get("mpi") or 0)
     sph = os.path.abspath(a.sph)
-    out_dir = os.path.abspath(a.out or os.path.join(REPO, "out", "studies", study["name"]))
+    out_dir = os.path.abspath(a.out or os.path.join(os.getcwd(), "out", "studies", study["name"]))
     return mpi, sph, out_dir
 
 

@@ -26,10 +26,11 @@ def load_study(path):
         return load_matrix(study, path)
     known = {"name", "case", "solvers", "solver", "resolutions", "options", "sweeps", "solver_options",
              "solver_sweeps", "resolution_options", "solver_resolution_options", "metric", "levels", "mpi",
-             "description"}
+             "description", "scene"}
     unknown = sorted(set(study) - known)
     if unknown:
         sys.exit("study: %s: unknown key(s) %s (known: %s)" % (path, ", ".join(unknown), ", ".join(sorted(known))))
+    load_scene(study, path)
     for key in ("case", "resolutions"):
         if key not in study:
             sys.exit("study: %s: missing '%s'" % (path, key))
@@ -72,6 +73,42 @@ def load_study(path):
             sys.exit("study: %s: 'levels' must be a list of positive error levels, e.g. [1e-3, 3e-4]" % path)
         study["levels"] = sorted(values, reverse=True)
     return study
+
+
+def load_scene(study, path):
+    """A study of a scene at several resolutions: 'scene:' gives scripts/make-scene's arguments (a list)
+    or {command: [...]}, a program of one's own that writes the scene for '{nx}' into '{file}', run in the
+    study file's folder. Each resolution then runs -case scene on its own file. A relative scene_file
+    option is taken from the study file's folder too."""
+    here = os.path.dirname(os.path.abspath(path))
+    options = study.get("options")
+    if isinstance(options, dict) and isinstance(options.get("scene_file"), str):
+        options["scene_file"] = os.path.join(here, options["scene_file"])
+    scene = study.get("scene")
+    if scene is None:
+        return
+    if study.get("case", "scene") != "scene":
+        sys.exit("study: %s: 'scene' runs -case scene; remove 'case: %s'" % (path, study["case"]))
+    study["case"] = "scene"
+    if isinstance(scene, list) and scene:
+        study["scene"] = {"args": [str(a) for a in scene]}
+    elif isinstance(scene, dict) and set(scene) == {"command"} and isinstance(scene["command"], list) and \
+            scene["command"] and any("{file}" in str(a) for a in scene["command"]):
+        study["scene"] = {"command": [str(a) for a in scene["command"]], "cwd": here}
+    else:
+        sys.exit("study: %s: 'scene' must be a non-empty list of scripts/make-scene arguments (without --nx and "
+                 "-o), or {command: [...]} with '{nx}' and '{file}' where the scene's resolution and file go" % path)
+
+
+def scene_for(scene, nx, out_dir):
+    """The scene of one resolution: where its file goes and how it is made (execute.make_scene)."""
+    if "args" in scene:
+        name = safe_name("_".join(scene["args"]))
+        file = os.path.join(out_dir, "scenes", "%s-nx%d.vtp" % (name, nx))
+        return {"args": scene["args"] + ["--nx", str(nx)], "file": file}
+    file = os.path.join(out_dir, "scenes", "scene-nx%d.vtp" % nx)
+    return {"command": [a.replace("{nx}", str(nx)).replace("{file}", file) for a in scene["command"]],
+            "cwd": scene["cwd"], "file": file}
 
 
 def option_value(v):
@@ -127,6 +164,10 @@ def plan_runs(study, out_dir, sph, mpi):
             sweep = {k: c[0] for k, c in zip(keys, combo)}
             for i, nx in enumerate(study["resolutions"]):
                 options = {"case": study["case"], "solver": solver, "nx": nx}
+                scene = scene_for(study["scene"], nx, out_dir) if study.get("scene") else None
+                if scene:  # the resolution is the scene file's: -case scene takes no -nx
+                    del options["nx"]
+                    options["scene_file"] = scene["file"]
                 options.update(study["options"])
                 options.update(study["solver_options"].get(solver) or {})
                 options.update(resolution_options(study, solver, i))
@@ -139,7 +180,7 @@ def plan_runs(study, out_dir, sph, mpi):
                 args = option_args(options) + ["-output_dir", run_dir]
                 label = solver + "".join(", %s=%s" % (k, sweep[k]) for k in keys)
                 runs.append({"solver": solver, "nx": nx, "sweep": sweep, "args": args, "dir": run_dir,
-                             "label": label, "name": name,
+                             "label": label, "name": name, "scene": scene,
                              "command": (["mpirun", "-n", str(mpi), "--allow-run-as-root", "--oversubscribe"]
                                          if mpi and mpi > 0 else []) + [sph] + args,
                              "mpi": mpi or 0})

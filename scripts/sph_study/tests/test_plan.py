@@ -107,7 +107,7 @@ class LoadStudy(TempDirCase):
     def test_refusals(self):
         msg, path = self.refused("case: c\nsolvers: [wcsph]\nresolutions: [8]\nbogus: 1\n")
         self.assertEqual(msg, "study: %s: unknown key(s) bogus (known: case, description, levels, metric, mpi, "
-                              "name, options, resolution_options, resolutions, solver, solver_options, "
+                              "name, options, resolution_options, resolutions, scene, solver, solver_options, "
                               "solver_resolution_options, solver_sweeps, solvers, sweeps)" % path)
         msg, path = self.refused("solvers: [wcsph]\nresolutions: [8]\n")
         self.assertEqual(msg, "study: %s: missing 'case'" % path)
@@ -228,6 +228,47 @@ solver_sweeps:
         self.assertEqual((w["c0_factor"], w["shifting"]), ("10", "0"))
         self.assertNotIn("c0_factor", options_of(isph[0]))
         self.assertEqual(wcsph[0]["name"], "wcsph-shifting=0-nx8")
+
+
+class SceneStudy(TempDirCase):
+    """A scene at several resolutions: one file per resolution, made by scripts/make-scene or the study's
+    own command (run in the study file's folder), and -case scene without -nx."""
+
+    def plan(self, text):
+        path = self.write("studies/scene.yaml", text)
+        return path, plan_runs(load_study(path), os.path.join(self.tmp, "out"), SPH, 0)
+
+    def test_make_scene_arguments_per_resolution(self):
+        _, runs = self.plan("scene: [falling_block, --obstacle-shape, wedge]\nsolvers: [isph]\nresolutions: [40, 20]\n")
+        self.assertEqual([r["nx"] for r in runs], [20, 40])
+        for r in runs:
+            o = options_of(r)
+            self.assertEqual(o["case"], "scene")
+            self.assertNotIn("nx", o)
+            self.assertEqual(o["scene_file"], r["scene"]["file"])
+            self.assertEqual(r["scene"]["args"], ["falling_block", "--obstacle-shape", "wedge", "--nx", str(r["nx"])])
+        self.assertNotEqual(runs[0]["scene"]["file"], runs[1]["scene"]["file"])
+
+    def test_own_command_runs_in_the_study_file_s_folder(self):
+        path, runs = self.plan('scene: {command: [./make.py, --nx, "{nx}", -o, "{file}"]}\nsolvers: [wcsph]\n'
+                               'resolutions: [16]\n')
+        scene = runs[0]["scene"]
+        self.assertEqual(scene["command"], ["./make.py", "--nx", "16", "-o", scene["file"]])
+        self.assertEqual(scene["cwd"], os.path.dirname(path))
+        self.assertTrue(scene["file"].startswith(os.path.join(self.tmp, "out", "scenes")))
+
+    def test_relative_scene_file_is_the_study_file_s(self):
+        path, runs = self.plan("case: scene\nsolvers: [isph]\nresolutions: [8]\noptions: {scene_file: block.vtp}\n")
+        self.assertEqual(options_of(runs[0])["scene_file"], os.path.join(os.path.dirname(path), "block.vtp"))
+
+    def test_refusals(self):
+        for text in ("case: taylor_green\nscene: [cavity]\nsolvers: [isph]\nresolutions: [8]\n",
+                     "scene: []\nsolvers: [isph]\nresolutions: [8]\n",
+                     "scene: {command: [./make.py, --nx, '{nx}']}\nsolvers: [isph]\nresolutions: [8]\n"):
+            path = self.write("bad.yaml", text)
+            with self.assertRaises(SystemExit) as e:
+                load_study(path)
+            self.assertIn("scene", str(e.exception))
 
 
 class MatrixPlan(TempDirCase):
