@@ -1,5 +1,6 @@
 #include "app/simulation.hpp"
 
+#include <filesystem>
 #include <memory>
 
 #include "cases/registry.hpp"
@@ -26,9 +27,13 @@ template <int D> void run_in_dim(const RunOptions& names) {
   control.t_end = scene_case->default_t_end();
   read_run_control(control, scene_case->steady_tolerance(), D);
   const KernelChoice kernel = read_kernel_options();
+  // A restart continues its run where the checkpoint is, unless -output_dir says otherwise.
+  const std::string checkpoint_folder = std::filesystem::path(control.restart).parent_path().string();
   const std::string output_dir = control.output_dir[0] ? std::string(control.output_dir)
-                                                       : "out/" + scene_case->output_name() + "-" + names.solver_name +
-                                                             "-" + std::to_string(scene_case->resolution());
+                                 : control.restarting()
+                                     ? (checkpoint_folder.empty() ? std::string(".") : checkpoint_folder)
+                                     : "out/" + scene_case->output_name() + "-" + names.solver_name + "-" +
+                                           std::to_string(scene_case->resolution());
   check_unused_options(option_owners(names));
   check_valueless_options(valueless, option_owners(names));
   run_time_loop<D>({*scene_case, *solver, names.case_name, names.solver_name, control, kernel, output_dir,

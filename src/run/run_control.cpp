@@ -22,7 +22,7 @@ PetscErrorCode read_options(RunControl* o) {
                             nullptr));
   PetscCall(PetscOptionsReal("-output_interval", "Time between VTK frames (-1: t_end/20, 0: first and last only)", "",
                              o->output_interval, &o->output_interval, nullptr));
-  PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/<case>-<solver>-<nx>)", "", o->output_dir,
+  PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/<case>-<solver>-<nx>; with -restart, the checkpoint's folder)", "", o->output_dir,
                                o->output_dir, sizeof(o->output_dir), nullptr));
   PetscCall(PetscOptionsString("-output_fields",
                                "Extra point arrays in the VTK frames: vorticity (the solver's own fields, e.g. ISPH's "

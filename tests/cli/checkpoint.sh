@@ -18,6 +18,10 @@ expect_error "written with -solver isph.*-solver wcsph" ${run/isph/wcsph} -resta
 expect_error "-nx 8.*-nx 16" $run -nx 16 -restart "$ck" -output_dir "$tmp/b"
 expect_ok $run -re 100 -restart "$ck" -output_dir "$tmp/c"  # 100 is the default
 expect_ok $run -t_end 0.06 -restart "$ck" -output_dir "$tmp/d"  # continuing further is allowed
+# Without -output_dir a restart continues in the checkpoint's folder, not in the default one.
+cp -r "$(dirname "$ck")" "$tmp/own"
+expect_ok $run -t_end 0.06 -restart "$tmp/own/checkpoint.bin"
+expect_json "$tmp/own/summary.json" 's["status"] == "completed" and len(s["history"]) == 2 and abs(s["history"][-1]["t"][1] - 0.06) < 1e-9' "a restart without -output_dir continues in the checkpoint's folder"
 # A failing run is rescued with a smaller step or another linear solver: the numerics of the steps to
 # come may change on restart, and the change is recorded in the history.
 expect_ok $run -t_end 0.06 -cfl 0.1 -dt 0.004 -ksp_type bcgs -restart "$ck" -output_dir "$tmp/e"
