@@ -71,6 +71,13 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
         "-closed_volume 1 needs a scene without a free surface (a free surface lets the fluid's volume "
         "change); remove the option");
   closed_volume_ = closed_volume_option_ < 0 ? !scene.physics.free_surface : closed_volume_option_ > 0;
+  // The corrected gradient sees no pressure beyond a free surface, and WCSPH has no surface condition
+  // that gives it one (docs/verification/free_surface.md, "What moves WCSPH's lattice").
+  if (gradient_ == WcsphGradient::Corrected && scene.physics.free_surface)
+    throw Error(
+        "-pressure_gradient corrected needs a scene without a free surface (WCSPH imposes the surface's zero "
+        "pressure through the symmetric form; with the corrected one still water blows up at once): use "
+        "-pressure_gradient auto or symmetric");
   if (gradient_ == WcsphGradient::Auto)
     gradient_ = scene.physics.free_surface ? WcsphGradient::Symmetric : WcsphGradient::Corrected;
   scene.neighbourhood.update(P, true);
