@@ -80,10 +80,14 @@ def write_report(path, study, study_file, rows, groups, errors, metric, plots, p
                 for k, v in table.items()) + "."]
     ran, skipped, failed = counts
     n_ok = len(completed(rows))
-    L += ["", "Runs: %d in all, %d completed, %d failed (the last invocation ran %d and found %d up to date). "
-          "Error metric of the plots and the speed comparison: `%s`. Observed order between successive "
-          "resolutions: p = log(e₁/e₂) / log(h₁/h₂), shown in the row of the finer run." %
-          (len(rows), n_ok, len([r for r in rows if r["status"] == "failed"]), ran, skipped, metric), ""]
+    # A scene has no reference solution: its runs report no error norm, and the report says so.
+    measured = any(r["errors"] for r in rows)
+    L += ["", "Runs: %d in all, %d completed, %d failed (the last invocation ran %d and found %d up to date). " %
+          (len(rows), n_ok, len([r for r in rows if r["status"] == "failed"]), ran, skipped) +
+          ("Error metric of the plots and the speed comparison: `%s`. Observed order between successive "
+           "resolutions: p = log(e₁/e₂) / log(h₁/h₂), shown in the row of the finer run." % metric if measured else
+           "The runs report no error norm (a scene has no reference solution): the tables give their status, "
+           "steps, wall time and KSP iterations."), ""]
     if jobs > 1:
         L += ["Note: runs were made %d at a time, so wall times include contention for the cores." % jobs, ""]
     # One run at a time: other work on more than half a core at a run's start. Several at a time: the

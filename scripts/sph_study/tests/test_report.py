@@ -175,6 +175,14 @@ class Report(SyntheticStudy):
     def test_no_speed_table_without_completed_runs(self):
         self.assertIn("No completed runs with the metric `l1_velocity` and a wall time.", self.report(pareto=[]))
 
+    def test_runs_without_error_norms_say_so(self):
+        # A scene's runs (no reference solution) report no norm: the report names no metric for them.
+        rows = [dict(r, errors={}) for r in self.rows]
+        text = self.report(rows=rows, pareto=[])
+        self.assertIn("The runs report no error norm (a scene has no reference solution)", text)
+        self.assertNotIn("Error metric of the plots", text)
+        self.assertIn("Error metric of the plots and the speed comparison: `l1_velocity`.", self.report())
+
     def test_remarks_on_growing_and_stagnating_errors(self):
         for r in self.rows:
             if r["solver"] == "isph" and r["nx"] == 20:
