@@ -71,9 +71,8 @@ template <int D> class IsphSolver : public Solver<D> {
   // Measured: the PPE matrix, BoomerAMG's hierarchy and the step's arrays (docs/performance.md,
   // "Memory per particle").
   double bytes_per_particle() const override { return D == 3 ? 3.6e3 : 1.6e3; }
-  // The lists' pairs are a fifth of ISPH's peak memory in 3D; the pressure solve, not the rebuild,
-  // sets its step's cost, so a thinner skin than the explicit schemes' costs no time (docs/performance.md,
-  // "Memory per particle").
+  // The pressure solve, not the list rebuild, sets ISPH's step's cost: a thinner skin saves memory for
+  // no time (docs/performance.md, "Memory per particle").
   double neighbour_skin() const override { return 0.1; }
   void set_from_options() override;
   void setup(Scene<D>& scene) override;

@@ -82,8 +82,8 @@ template <int D> class PressurePoisson {
                    bool use_guess = true, bool correction = false);
 
   // Frees the matrix, its rows, the KSP and the preconditioner until the next assemble. A step's system
-  // serves that step only: kept to the next, its rows (1.2 kB a particle in 3D) and the AMG hierarchy
-  // added to the peak of the neighbour search and the forces (docs/performance.md, "Memory per particle").
+  // serves that step only; kept to the next, it adds to the peak of the neighbour search and the forces
+  // (docs/performance.md, "Memory per particle").
   void release();
 
   ::Mat matrix() const { return A_; }

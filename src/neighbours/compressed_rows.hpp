@@ -20,9 +20,8 @@ template <class MakeRowFiller>
 void build_compressed_rows_per_thread(std::size_t n_rows, std::vector<std::size_t>& offset, std::vector<int>& index,
                                       MakeRowFiller&& make_row_filler) {
   // Each thread's buffer starts at its share of the last list's length (lists change little between
-  // builds), so that it seldom doubles, and the last list is freed first: the build's peak is about
-  // the list once on one thread and twice on several, not three times (docs/performance.md, "Memory
-  // per particle").
+  // builds), so that it seldom doubles, and the last list is freed first: the peak memory of a build
+  // (docs/performance.md, "Memory per particle").
   const double last_row_length = offset.size() > 1 ? double(index.size()) / double(offset.size() - 1) : 0.0;
   std::vector<int>().swap(index);
   offset.assign(n_rows + 1, 0);
