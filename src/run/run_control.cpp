@@ -22,8 +22,9 @@ PetscErrorCode read_options(RunControl* o) {
                             nullptr));
   PetscCall(PetscOptionsReal("-output_interval", "Time between VTK frames (-1: t_end/20, 0: first and last only)", "",
                              o->output_interval, &o->output_interval, nullptr));
-  PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/<case>-<solver>-<nx>; with -restart, the checkpoint's folder)", "", o->output_dir,
-                               o->output_dir, sizeof(o->output_dir), nullptr));
+  PetscCall(PetscOptionsString(
+      "-output_dir", "Output directory (default out/<case>-<solver>-<nx>; with -restart, the checkpoint's folder)", "",
+      o->output_dir, o->output_dir, sizeof(o->output_dir), nullptr));
   PetscCall(PetscOptionsString("-output_fields",
                                "Extra point arrays in the VTK frames: vorticity (the solver's own fields, e.g. ISPH's "
                                "free_surface, are always written)",
@@ -31,10 +32,11 @@ PetscErrorCode read_options(RunControl* o) {
   PetscCall(PetscOptionsBool("-overwrite",
                              "Replace the run already in -output_dir (its frames, tables, summary, checkpoint)", "",
                              o->overwrite, &o->overwrite, nullptr));
-  PetscCall(PetscOptionsReal("-neighbour_skin",
-                             "Verlet-list skin as a fraction of the kernel support (-1: the solver's, 0.1 for ISPH, "
-                             "0.2 for the explicit schemes; a wider skin rebuilds the lists less often and holds more pairs)",
-                             "", o->skin, &o->skin, nullptr));
+  PetscCall(
+      PetscOptionsReal("-neighbour_skin",
+                       "Verlet-list skin as a fraction of the kernel support (-1: the solver's, 0.1 for ISPH, "
+                       "0.2 for the explicit schemes; a wider skin rebuilds the lists less often and holds more pairs)",
+                       "", o->skin, &o->skin, nullptr));
   PetscCall(PetscOptionsReal("-steady_tol",
                              "Stop when |dKE/dt| / KE over the last time unit falls below this (0: run to t_end; "
                              "-1: the case's default)",

@@ -90,8 +90,8 @@ template <int D> struct ShiftBoundary {
 };
 
 // The free-surface model of a run: its options (-free_surface_detection, -free_surface_threshold,
-// -free_surface_exit_threshold, read once for every scheme), the flags of the last step that the hysteresis needs (they move with
-// their particles: a checkpoint field) and what the schemes ask of it.
+// -free_surface_exit_threshold, read once for every scheme), the flags of the last step that the hysteresis needs (they
+// move with their particles: a checkpoint field) and what the schemes ask of it.
 template <int D> class FreeSurface {
  public:
   void set_from_options();
@@ -129,12 +129,13 @@ namespace detail {
 inline PetscErrorCode read_free_surface_options(PetscInt* detection, PetscReal* threshold, PetscReal* exit_threshold) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Free surface (scenes with one; every scheme)", "FreeSurface");
-  PetscCall(PetscOptionsEList("-free_surface_detection",
-                              "Free-surface particles: div_r (div r below -free_surface_threshold, with hysteresis; "
-                              "Lind et al. 2012) or marrone (the moment matrix's smallest eigenvalue, then a scan "
-                              "beyond the particle; Marrone et al. 2010; ISPH fails three of the violent free-surface scenes with "
-                              "it: docs/verification/free_surface.md)",
-                              "", surface_detection_names, 2, surface_detection_names[*detection], detection, nullptr));
+  PetscCall(PetscOptionsEList(
+      "-free_surface_detection",
+      "Free-surface particles: div_r (div r below -free_surface_threshold, with hysteresis; "
+      "Lind et al. 2012) or marrone (the moment matrix's smallest eigenvalue, then a scan "
+      "beyond the particle; Marrone et al. 2010; ISPH fails three of the violent free-surface scenes with "
+      "it: docs/verification/free_surface.md)",
+      "", surface_detection_names, 2, surface_detection_names[*detection], detection, nullptr));
   PetscCall(PetscOptionsReal("-free_surface_threshold",
                              "Free-surface particles: div r below this (0: 1.5 in 2D, 2.4 in 3D; Lind et al. 2012)", "",
                              *threshold, threshold, nullptr));

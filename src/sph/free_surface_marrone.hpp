@@ -21,7 +21,7 @@
 namespace sph {
 
 namespace marrone {
-inline constexpr double surface_eigenvalue = 0.2;   // at or below: on the surface
+inline constexpr double surface_eigenvalue = 0.2;    // at or below: on the surface
 inline constexpr double interior_eigenvalue = 0.75;  // above: inside the fluid
 }  // namespace marrone
 
@@ -74,8 +74,7 @@ template <int D> std::vector<char> marrone_surface_particles(const Particles<D>&
     const Vector<D>& nrm = normal[i];
     const Vector<D> to_T = -g.rij - h * nrm;  // x_j - T, with T = x_i + h n
     const double along = nrm.dot(to_T);
-    const bool in_umbrella = g.r >= sqrt2h ? to_T.norm() < h
-                                           : std::abs(along) + (to_T - along * nrm).norm() < h;
+    const bool in_umbrella = g.r >= sqrt2h ? to_T.norm() < h : std::abs(along) + (to_T - along * nrm).norm() < h;
     if (in_umbrella) covered[i] = 1;
   });
   for (std::size_t i = 0; i < n; ++i)

@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "src/core/integer_power.hpp"
-#include "src/core/options.hpp"
 #include "src/core/log_events.hpp"
+#include "src/core/options.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/sph/free_surface.hpp"
 #include "src/sph/kernel_average.hpp"
@@ -115,8 +115,8 @@ inline PetscErrorCode read_shifting_options(PetscBool* enabled, PetscInt* rate, 
   PetscCall(PetscOptionsEList("-shift_rate", shift_rate_help, "", shift_rate_names, 2, shift_rate_names[*rate], rate,
                               nullptr));
   PetscCall(PetscOptionsReal("-shift_coefficient", shift_coefficient_help, "", *A, A, nullptr));
-  PetscCall(PetscOptionsEList("-shift_scales", shift_scales_help, "", shift_scales_names, 2, shift_scales_names[*scales],
-                              scales, nullptr));
+  PetscCall(PetscOptionsEList("-shift_scales", shift_scales_help, "", shift_scales_names, 2,
+                              shift_scales_names[*scales], scales, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
