@@ -55,7 +55,6 @@ template <int D> double IsphSolver<D>::stable_dt() const {
   // The reference speed bounds the step too, so a fluid at rest does not take an unbounded step.
   double dt = cfl_ * h / std::max(max_speed(), phys.U);
   if (phys.viscous()) dt = std::min(dt, kViscousStepFactor * h * h / phys.nu);  // Morris et al. (1997)
-  if (shifting_model_.enabled) dt = std::min(dt, shifting_model_.max_dt(h, largest_speed(scene_->particles)));
   return dt;
 }
 

@@ -293,7 +293,6 @@ template <int D> double WcsphSolver<D>::stable_dt() const {
   double dt = cfl_ * h / (buf[1] + std::sqrt(buf[0]));
   if (phys.viscous()) dt = std::min(dt, kViscousStepFactor * h * h / phys.nu);
   if (max_acc_ > 0.0) dt = std::min(dt, kForceStepFactor * std::sqrt(h / max_acc_));
-  if (shifting_model_.enabled) dt = std::min(dt, shifting_model_.max_dt(h, largest_speed(scene_->particles)));
   return dt;
 }
 

@@ -6,8 +6,8 @@
 //
 // D = A h U dt (Lind et al. 2012; U the largest particle speed, largest_speed): a shift per unit time, so that
 // the total shift over a time interval does not depend on how many steps cut it: a shift per step
-// (A h^2) made the error grow as dt fell. The explicit update is stable for D <= 0.5 h^2 per step, which
-// the solvers add to their time-step limit (max_dt) (docs/verification/taylor_green.md, "Design measurements").
+// (A h^2) made the error grow as dt fell. The explicit update is stable for D <= 0.5 h^2 per step: D is
+// capped there, so shifting sets no time-step limit (docs/verification/speed_against_error.md, "Larger steps").
 //   grad C_i = sum_j V_j [1 + R (W_ij / W(dx))^n] grad_i W_ij  (R = 0.2, n = 4: the tensile-instability
 //   term of Monaghan 2000 that Lind et al. add to stop pairing).
 #include <algorithm>
@@ -38,8 +38,7 @@ enum class ShiftRate { Speed, Strain };
 inline const char* const shift_rate_names[] = {"speed", "strain"};
 inline const char* const shift_rate_help =
     "Shift diffusivity: speed (D = A h U dt, U the largest particle speed, Lind et al. 2012) or strain (D = A h^2 |S| "
-    "dt, S the local strain "
-    "rate: no shift where the flow does not deform, no time-step limit)";
+    "dt, S the local strain rate: no shift where the flow does not deform)";
 // Which part of grad C particles shift along (-shift_scales). The kernel sum C is not 1 on a uniform
 // but anisotropic arrangement, and the flow's strain makes such arrangements systematically: C then has
 // a smooth, resolved-scale part of O(1) in h, and shifting along its gradient (D = A h U dt) moves
@@ -55,8 +54,8 @@ inline const char* const shift_scales_help =
     "What shifting removes: all (the whole grad C, Lind et al. 2012) or particle (grad C minus its kernel average: "
     "particle-scale disorder only, not the resolved-scale part that the flow's strain gives C)";
 inline const char* const shift_coefficient_help =
-    "Shifting coefficient A (-1: 2 with -shift_rate speed, 5 with strain; speed keeps dt below 0.5 h / (A U), "
-    "strain caps D at 0.5 h^2)";
+    "Shifting coefficient A (-1: 2 with -shift_rate speed, 5 with strain; either way D is at most 0.5 h^2, the "
+    "explicit shift's stability)";
 
 // The largest particle speed over all ranks, moving walls included (a lid sets its flow's speed): the
 // speed that -shift_rate speed shifts at. With the case's reference speed instead, a fluid at rest is
@@ -83,21 +82,18 @@ struct LindShifting {
   void set_from_options();
   static double default_coefficient(ShiftRate r) { return r == ShiftRate::Speed ? 2.0 : 5.0; }
   double coefficient_A() const { return A >= 0.0 ? A : default_coefficient(rate); }
-  // D of a particle: speed: A h U dt; strain: A h^2 |S| dt, at most max_D_over_h2 h^2 (the explicit
-  // shift's stability, which the speed form keeps through max_dt instead).
+  // D of a particle: speed: A h U dt; strain: A h^2 |S| dt; either at most max_D_over_h2 h^2, the
+  // explicit shift's stability. Capped rather than bounding the step, so shifting sets no step limit.
   double coefficient(double h, double U, double dt, double strain_rate = 0.0) const {
-    if (rate == ShiftRate::Speed) return coefficient_A() * h * U * dt;
-    return std::min(coefficient_A() * h * h * strain_rate * dt, max_D_over_h2 * h * h);
-  }
-  // The largest step for which D <= max_D_over_h2 h^2 (speed form; the strain form caps D instead).
-  double max_dt(double h, double U) const {
-    return rate == ShiftRate::Speed && coefficient_A() > 0.0 ? max_D_over_h2 * h / (coefficient_A() * U) : 1e300;
+    const double D =
+        rate == ShiftRate::Speed ? coefficient_A() * h * U * dt : coefficient_A() * h * h * strain_rate * dt;
+    return std::min(D, max_D_over_h2 * h * h);
   }
   nlohmann::json describe() const {
     return {{"model", "LindShifting"},
             {"rate", shift_rate_names[static_cast<int>(rate)]},
             {"scales", shift_scales_names[static_cast<int>(scales)]},
-            {"D", rate == ShiftRate::Speed ? "A h U dt" : "min(A h^2 |S| dt, 0.5 h^2)"},
+            {"D", rate == ShiftRate::Speed ? "min(A h U dt, 0.5 h^2)" : "min(A h^2 |S| dt, 0.5 h^2)"},
             {"A", coefficient_A()},
             {"R", R},
             {"n", n}};
