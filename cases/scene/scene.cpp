@@ -8,7 +8,9 @@
 
 #include "cases/common/lattice.hpp"
 #include "cases/scene/scene_geometry.hpp"
+#include "cases/scene/scene_yaml.hpp"
 #include "src/core/options.hpp"
+#include "src/kernels/kernel_options.hpp"
 
 namespace sph {
 
@@ -47,8 +49,10 @@ PetscErrorCode read_options(SceneOptions* o) {
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Scene from a file (-case scene)", "Case");
   PetscCall(PetscOptionsString("-scene_file",
                                "VTK XML PolyData (.vtp) scene: point arrays kind (0 fluid, 1 fixed wall, 2 "
-                               "moving wall), velocity, pressure; parameters as field data",
+                               "moving wall), velocity, pressure; parameters as field data. Or a YAML (.yaml, "
+                               ".yml) scene of shapes, sampled at the run's spacing",
                                "", o->path, o->path, sizeof(o->path), nullptr));
+  PetscCall(PetscOptionsInt("-nx", "YAML scenes: particles per unit length, dx = 1/nx", "", o->nx, &o->nx, &o->nx_set));
   PetscCall(PetscOptionsReal("-scene_dx", "Particle spacing (overrides the file's field data dx)", "", o->dx, &o->dx,
                              &o->dx_set));
   PetscCall(PetscOptionsRealArray("-scene_box",
@@ -83,8 +87,13 @@ template <int D> void SceneCase<D>::set_from_options() {
   opt_.box_n = 6, opt_.gravity_n = 3;
   SPH_PETSC(read_options(&opt_));
   if (!opt_.path[0])
-    throw Error("-case scene needs -scene_file FILE (a VTK .vtp scene; scripts/make-scene writes examples)");
-  file_ = read_scene_file(opt_.path);
+    throw Error(
+        "-case scene needs -scene_file FILE (a YAML scene of shapes such as cases/scenes/falling_block.yaml, "
+        "or a VTK .vtp scene; scripts/make-scene writes examples)");
+  read_file();
+  if (file_.dim != D && yaml_)
+    throw Error(file_.error("has dimension: " + std::to_string(file_.dim) + ", not " + std::to_string(D) +
+                            "; drop -dim, the scene's dimension comes from the file"));
   if (file_.dim != D)
     throw Error(file_.error("holds " + std::to_string(file_.dim) + "D points (" +
                             (file_.dim == 2 ? "all z equal" : "z varies") + "), not " + std::to_string(D) +
@@ -107,6 +116,28 @@ template <int D> void SceneCase<D>::set_from_options() {
   walls_ = w.thickness;
   thinnest_at_ = x[w.particle];
   if (!free_surface_given_) physics_.free_surface = free_surface_detected_;
+}
+
+template <int D> void SceneCase<D>::read_file() {
+  yaml_ = is_yaml_scene(opt_.path);
+  if (!yaml_) {
+    if (opt_.nx_set)
+      throw Error("-nx sets the spacing of YAML scenes; the particles of '" + std::string(opt_.path) +
+                  "' are fixed: remove -nx (the spacing is its field data dx, or -scene_dx)");
+    file_ = read_scene_file(opt_.path);
+    return;
+  }
+  if (opt_.nx_set && opt_.dx_set) throw Error("-nx and -scene_dx both set the particle spacing; give one of them");
+  if (opt_.nx_set) require(opt_.nx >= 1, "-nx", "at least 1", opt_.nx);
+  if (opt_.dx_set) require(opt_.dx > 0, "-scene_dx", "positive", opt_.dx);
+  // Walls as deep as the kernel's support, the depth the run checks them against (TimeLoop).
+  const KernelChoice kernel = read_kernel_options();
+  const double support_dx = kernel.resolved_h_over_dx<D>() * Kernel<D>::support_factor(kernel.type);
+  const int layers = static_cast<int>(std::ceil(support_dx - 1e-9));
+  YamlScene scene = read_yaml_scene(opt_.path, opt_.nx_set ? 1.0 / opt_.nx : opt_.dx_set ? opt_.dx : 0.0, layers);
+  file_ = std::move(scene.file);
+  body_ = std::move(scene.body);
+  bodies_ = std::move(scene.bodies);
 }
 
 template <int D> void SceneCase<D>::resolve_parameters() {
@@ -273,9 +304,11 @@ template <int D> std::string SceneCase<D>::output_name() const {
 }
 
 template <int D> std::string SceneCase<D>::thin_walls(double thickness_dx, double support_dx) const {
+  const std::string fix = yaml_ ? "the solid there is thinner than the support at this spacing: thicken it (a "
+                                  "solid may run past the box), raise -nx or lower -h_over_dx"
+                                : "add wall layers (scripts/make-scene --wall-layers) or lower -h_over_dx";
   return file_.error("the walls near " + point<D>(thinnest_at_) + " are " + number(thickness_dx) +
-                     " dx thick, thinner than the kernel support (" + number(support_dx) +
-                     " dx); add wall layers (scripts/make-scene --wall-layers) or lower -h_over_dx");
+                     " dx thick, thinner than the kernel support (" + number(support_dx) + " dx); " + fix);
 }
 
 template <int D> nlohmann::json SceneCase<D>::parameters() const {
@@ -287,28 +320,34 @@ template <int D> nlohmann::json SceneCase<D>::parameters() const {
   std::vector<int> periodic;
   for (int a = 0; a < D; ++a)
     box.push_back(box_.lo[a]), box.push_back(box_.hi[a]), periodic.push_back(box_.periodic[a]);
-  return {{"scene_file", file_.path},
-          {"scene_checksum", checksum},
-          {"dx", dx_},
-          {"box", box},
-          {"periodic", periodic},
-          {"gravity", std::vector<double>(physics_.gravity.data(), physics_.gravity.data() + D)},
-          {"nu", physics_.nu},
-          {"rho0", physics_.rho0},
-          {"U", physics_.U},
-          {"free_surface", physics_.free_surface},
-          {"free_surface_detected", free_surface_detected_},
-          {"fluid_particles", counts[kSceneFluid]},
-          {"fixed_wall_particles", counts[kSceneFixedWall]},
-          {"moving_wall_particles", counts[kSceneMovingWall]},
-          {"wall_thickness_dx", walls_ / dx_}};
+  nlohmann::json bodies = nlohmann::json::object();  // YAML scenes: wall particles per named body
+  for (std::size_t b = 0; b < bodies_.size(); ++b)
+    bodies[bodies_[b]] = std::count(body_.begin(), body_.end(), static_cast<int>(b));
+  nlohmann::json p = {{"scene_file", file_.path},
+                      {"scene_checksum", checksum},
+                      {"dx", dx_},
+                      {"box", box},
+                      {"periodic", periodic},
+                      {"gravity", std::vector<double>(physics_.gravity.data(), physics_.gravity.data() + D)},
+                      {"nu", physics_.nu},
+                      {"rho0", physics_.rho0},
+                      {"U", physics_.U},
+                      {"free_surface", physics_.free_surface},
+                      {"free_surface_detected", free_surface_detected_},
+                      {"fluid_particles", counts[kSceneFluid]},
+                      {"fixed_wall_particles", counts[kSceneFixedWall]},
+                      {"moving_wall_particles", counts[kSceneMovingWall]},
+                      {"wall_thickness_dx", walls_ / dx_}};
+  if (!bodies_.empty()) p["bodies"] = bodies;
+  return p;
 }
 
 int scene_file_dimension() {
   char path[PETSC_MAX_PATH_LEN] = "";
   PetscBool set = PETSC_FALSE;
   SPH_PETSC(PetscOptionsGetString(nullptr, nullptr, "-scene_file", path, sizeof(path), &set));
-  return set && path[0] ? read_scene_file(path).dim : 2;
+  if (!set || !path[0]) return 2;
+  return is_yaml_scene(path) ? yaml_scene_dimension(path) : read_scene_file(path).dim;
 }
 
 template class SceneCase<2>;

@@ -1,7 +1,9 @@
 #pragma once
 // A scene read from a file (-case scene -scene_file FILE): the particles of a VTK XML PolyData file
-// (cases/scene/scene_file.hpp), with the parameters from its field data, each overridden by its option:
+// (cases/scene/scene_file.hpp), or shapes in a YAML file (.yaml, .yml) sampled at the run's spacing
+// (cases/scene/scene_yaml.hpp), with the parameters from its field data, each overridden by its option:
 //   -scene_dx (dx)           particle spacing; required from one or the other (mass = rho0 dx^D)
+//   -nx                      YAML scenes only: dx = 1/nx (a .vtp scene's particles are fixed)
 //   -scene_box (box)         xmin,xmax,ymin,ymax[,zmin,zmax]; default: the particles' bounding box
 //                            grown by dx/2 (a box is needed along periodic axes)
 //   -scene_periodic (periodic: one 0/1 flag per axis)   periodic axes, "x,y", or "none"
@@ -26,6 +28,8 @@ namespace sph {
 // The options as given; *_set: given on the command line (then they override the file).
 struct SceneOptions {
   char path[PETSC_MAX_PATH_LEN] = "", periodic[64] = "";
+  PetscInt nx = 0;
+  PetscBool nx_set = PETSC_FALSE;
   PetscReal dx = 0, box[6] = {}, gravity[3] = {}, nu = 0, rho0 = 1, U = 0;
   PetscInt box_n = 6, gravity_n = 3;
   PetscBool free_surface = PETSC_FALSE;
@@ -48,11 +52,15 @@ template <int D> class SceneCase : public Case<D> {
   nlohmann::json parameters() const override;
 
  private:
+  void read_file();           // the .vtp file, or the YAML file sampled at -nx, -scene_dx or its dx
   void resolve_parameters();  // file field data, then the options that override it
   void check_particles_in_box() const;
   void check_moving_walls(const PointGrid<D>& grid, const std::vector<Vector<D>>& x) const;
 
   SceneFile file_;
+  bool yaml_ = false;
+  std::vector<int> body_;            // YAML scenes: per particle, index into bodies_ (-1: none)
+  std::vector<std::string> bodies_;  // YAML scenes: the names of the bodies (fixed walls for now)
   Domain<D> box_;
   Physics<D> physics_;
   double dx_ = 0.0, t_end_ = 1.0, walls_ = 0.0;

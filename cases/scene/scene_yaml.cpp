@@ -1,0 +1,460 @@
+#include "cases/scene/scene_yaml.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <sstream>
+
+#include "cases/scene/shapes.hpp"
+#include "src/core/error.hpp"
+
+namespace sph {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Lattice points within this share of dx of a surface or a box face count as on it (inside).
+constexpr double kOnSurface = 1e-6;
+
+std::string number_text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+std::uint64_t fnv1a(std::uint64_t h, const void* data, std::size_t n) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  for (std::size_t k = 0; k < n; ++k) h = (h ^ bytes[k]) * 1099511628211ull;
+  return h;
+}
+
+enum class Role { Fluid, Wall, Body };
+
+struct Region {
+  Role role = Role::Fluid;
+  int body = -1;
+  ShapePtr shape;
+  Point3 velocity = Point3::Zero();
+  double pressure = 0.0;
+  bool hydrostatic = false;
+  double top = 0.0;  // hydrostatic: the region's highest point along -g
+};
+
+// Parses one scene file; every refusal names the file, the line and the key. A key that is absent gives a
+// node on which only IsDefined() may be asked (yaml-cpp throws on the others).
+class Reader {
+ public:
+  explicit Reader(const std::string& path) : path_(path), dir_(std::filesystem::path(path).parent_path()) {}
+
+  [[noreturn]] void fail(const YAML::Node& at, const std::string& key, const std::string& what) const {
+    std::string where = at.IsDefined() && at.Mark().line >= 0 ? "line " + std::to_string(at.Mark().line + 1) : "";
+    if (!key.empty()) where += (where.empty() ? "" : ", ") + key;
+    throw Error("scene file '" + path_ + "': " + (where.empty() ? "" : where + ": ") + what);
+  }
+
+  YAML::Node load(const std::string& text) const {
+    try {
+      return YAML::Load(text);
+    } catch (const YAML::ParserException& e) {
+      throw Error("scene file '" + path_ + "': line " + std::to_string(e.mark.line + 1) + ", column " +
+                  std::to_string(e.mark.column + 1) + ": YAML syntax error (" + e.msg + "); fix the syntax there");
+    }
+  }
+
+  YAML::Node parse() {
+    std::ifstream in(path_, std::ios::binary);
+    if (!in) throw Error("scene file '" + path_ + "': cannot be opened; check the path given to -scene_file");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    checksum = fnv1a(checksum, text.data(), text.size());
+    const YAML::Node root = load(text);
+    if (!root.IsMap())
+      throw Error("scene file '" + path_ +
+                  "': holds no YAML mapping; write keys such as dimension: 2 and regions: "
+                  "(docs/user-guide.md, YAML scenes)");
+    only_keys(root, "", {"dimension", "dx", "box", "periodic", "physics", "regions"});
+    const YAML::Node d = root["dimension"];
+    if (!d.IsDefined()) fail(YAML::Node(), "", "has no key 'dimension'; add dimension: 2 or dimension: 3");
+    const double value = number(d, "dimension");
+    if (value != 2 && value != 3) fail(d, "dimension", "is " + number_text(value) + "; give 2 or 3");
+    dim = static_cast<int>(value);
+    return root;
+  }
+
+  void only_keys(const YAML::Node& map, const std::string& key, std::initializer_list<const char*> allowed) const {
+    if (!map.IsMap()) fail(map, key, "is not a mapping of keys to values; write {key: value, ...}");
+    std::string list;
+    for (const char* k : allowed) list += (list.empty() ? "" : ", ") + std::string(k);
+    for (const auto& item : map) {
+      const std::string name = item.first.Scalar();
+      if (std::none_of(allowed.begin(), allowed.end(), [&](const char* k) { return name == k; }))
+        fail(item.first, key,
+             "unknown key '" + name + "'; the keys " + (key.empty() ? "at the top" : "here") + " are " + list);
+    }
+  }
+
+  double number(const YAML::Node& n, const std::string& key) const {
+    if (!n.IsScalar()) fail(n, key, "is not a number; give one, e.g. 0.5");
+    double v = 0;
+    try {
+      v = n.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(n, key, "is '" + n.Scalar() + "', not a number; give one, e.g. 0.5 (no arithmetic)");
+    }
+    if (!std::isfinite(v)) fail(n, key, "is " + n.Scalar() + "; give a finite number");
+    return v;
+  }
+
+  std::vector<double> numbers(const YAML::Node& n, const std::string& key, std::size_t count,
+                              const std::string& form) const {
+    if (!n.IsSequence() || n.size() != count)
+      fail(n, key,
+           (n.IsSequence() ? "has " + std::to_string(n.size()) + " numbers" : std::string("is not a list")) + "; a " +
+               std::to_string(dim) + "D scene takes " + std::to_string(count) + ": " + form);
+    std::vector<double> v;
+    for (std::size_t k = 0; k < count; ++k) v.push_back(number(n[k], key + "[" + std::to_string(k) + "]"));
+    return v;
+  }
+
+  Point3 point(const YAML::Node& n, const std::string& key) const {
+    const std::vector<double> v = numbers(n, key, dim, dim == 2 ? "[x, y]" : "[x, y, z]");
+    return Point3(v[0], v[1], dim == 3 ? v[2] : 0.0);
+  }
+
+  double radius(const YAML::Node& map, const std::string& key) const {
+    const YAML::Node r = map["radius"];
+    if (!r.IsDefined()) fail(map, key, "has no radius; add radius: R");
+    const double v = number(r, key + ".radius");
+    if (!(v > 0)) fail(r, key + ".radius", "is " + number_text(v) + "; a radius must be positive");
+    return v;
+  }
+
+  // The lower and upper corners of a box [x0, x1, y0, y1(, z0, z1)], each pair increasing.
+  std::pair<Point3, Point3> box(const YAML::Node& n, const std::string& key) const {
+    const std::vector<double> v = numbers(n, key, 2 * dim, dim == 2 ? "[x0, x1, y0, y1]" : "[x0, x1, y0, y1, z0, z1]");
+    Point3 lo = Point3::Zero(), hi = Point3::Zero();
+    for (int a = 0; a < dim; ++a) {
+      lo[a] = v[2 * a], hi[a] = v[2 * a + 1];
+      if (!(hi[a] > lo[a]))
+        fail(n, key, std::string("has ") + "xyz"[a] + "1 <= " + "xyz"[a] + "0; give each axis as min, max");
+    }
+    return {lo, hi};
+  }
+
+  ShapePtr shape(const YAML::Node& n, const std::string& key) {
+    const std::string known = dim == 2 ? "box, circle, polygon, half_space, union, intersection, difference"
+                                       : "box, sphere, cylinder, half_space, mesh, union, intersection, difference";
+    if (!n.IsMap() || n.size() != 1) fail(n, key, "is not one shape; write {SHAPE: ...} with SHAPE one of " + known);
+    const std::string kind = n.begin()->first.Scalar();
+    const YAML::Node v = n.begin()->second;
+    const std::string k = key + "." + kind;
+    auto need_dim = [&](int d, const char* instead) {
+      if (dim != d)
+        fail(n, k, "is a " + std::to_string(d) + "D shape, this scene is " + std::to_string(dim) + "D; use " + instead);
+    };
+    if (kind == "box") {
+      const auto [lo, hi] = box(v, k);
+      return make_box(lo, hi, dim);
+    }
+    if (kind == "circle" || kind == "sphere") {
+      need_dim(kind == "circle" ? 2 : 3, kind == "circle" ? "sphere" : "circle");
+      only_keys(v, k, {"centre", "center", "radius"});
+      const YAML::Node c = v["centre"].IsDefined() ? v["centre"] : v["center"];
+      if (!c.IsDefined()) fail(v, k, "has no centre; add centre: [x, y" + std::string(dim == 3 ? ", z]" : "]"));
+      return make_ball(point(c, k + ".centre"), radius(v, k));
+    }
+    if (kind == "polygon") {
+      need_dim(2, "a mesh, or a union of boxes, spheres and cylinders");
+      if (!v.IsSequence() || v.size() < 3) fail(v, k, "needs a list of at least 3 vertices [[x, y], ...]");
+      std::vector<Eigen::Vector2d> vertices;
+      for (std::size_t i = 0; i < v.size(); ++i)
+        vertices.push_back(point(v[i], k + "[" + std::to_string(i) + "]").head<2>());
+      return make_polygon(vertices);
+    }
+    if (kind == "cylinder") {
+      need_dim(3, "circle");
+      only_keys(v, k, {"ends", "radius"});
+      const YAML::Node ends = v["ends"];
+      if (!ends.IsDefined() || !ends.IsSequence() || ends.size() != 2)
+        fail(ends.IsDefined() ? ends : v, k + ".ends", "needs the centres of both ends: [[x, y, z], [x, y, z]]");
+      const Point3 a = point(ends[0], k + ".ends[0]"), b = point(ends[1], k + ".ends[1]");
+      if ((b - a).norm() == 0) fail(ends, k + ".ends", "are the same point; give a cylinder a length");
+      return make_cylinder(a, b, radius(v, k));
+    }
+    if (kind == "half_space") {
+      only_keys(v, k, {"point", "normal"});
+      if (!v["point"].IsDefined() || !v["normal"].IsDefined())
+        fail(v, k, "needs point and normal: the solid side is where (x - point) . normal <= 0");
+      const Point3 normal = point(v["normal"], k + ".normal");
+      if (normal.norm() == 0) fail(v["normal"], k + ".normal", "is zero; give the outward normal of the solid");
+      return make_half_space(point(v["point"], k + ".point"), normal);
+    }
+    if (kind == "union" || kind == "intersection" || kind == "difference") {
+      const std::size_t least = kind == "difference" ? 2 : 1;
+      if (!v.IsSequence() || v.size() < least)
+        fail(v, k, "needs a list of at least " + std::to_string(least) + " shapes [{SHAPE: ...}, ...]");
+      std::vector<ShapePtr> parts;
+      for (std::size_t i = 0; i < v.size(); ++i) parts.push_back(shape(v[i], k + "[" + std::to_string(i) + "]"));
+      return kind == "union"          ? make_union(parts)
+             : kind == "intersection" ? make_intersection(parts)
+                                      : make_difference(parts);
+    }
+    if (kind == "mesh") {
+      need_dim(3, "polygon");
+      if (!v.IsScalar() || v.Scalar().empty()) fail(v, k, "needs a file name: mesh: surface.stl");
+      std::filesystem::path file(v.Scalar());
+      if (file.is_relative()) file = dir_ / file;
+      try {
+        ShapePtr mesh = make_mesh(file.string());
+        std::ifstream in(file, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        checksum = fnv1a(checksum, bytes.data(), bytes.size());
+        return mesh;
+      } catch (const Error& e) {
+        fail(v, k, std::string(e.what()) + " (paths are relative to the scene file)");
+      }
+    }
+    fail(n.begin()->first, key, "unknown shape '" + kind + "'; use one of " + known);
+  }
+
+  // g: the scene's gravity, for a hydrostatic start.
+  Region region(const YAML::Node& n, const std::string& key, std::vector<std::string>& bodies, const Point3& g) {
+    only_keys(n, key, {"role", "shape", "velocity", "pressure"});
+    Region r;
+    const YAML::Node role = n["role"];
+    if (!role.IsDefined()) fail(n, key, "has no role; add role: fluid, role: wall or role: {body: NAME}");
+    if (role.IsScalar() && role.Scalar() == "fluid") r.role = Role::Fluid;
+    else if (role.IsScalar() && role.Scalar() == "wall") r.role = Role::Wall;
+    else if (role.IsMap() && role.size() == 1 && role["body"].IsDefined() && role["body"].IsScalar() &&
+             !role["body"].Scalar().empty()) {
+      r.role = Role::Body;
+      const std::string name = role["body"].Scalar();
+      r.body = static_cast<int>(std::find(bodies.begin(), bodies.end(), name) - bodies.begin());
+      if (r.body == static_cast<int>(bodies.size())) bodies.push_back(name);
+    } else {
+      fail(role, key + ".role", "is not fluid, wall or {body: NAME}; give one of those");
+    }
+    if (!n["shape"].IsDefined()) fail(n, key, "has no shape; add shape: {box: [...]} or another shape");
+    r.shape = shape(n["shape"], key + ".shape");
+    for (const char* value : {"velocity", "pressure"})
+      if (r.role != Role::Fluid && n[value].IsDefined())
+        fail(n[value], key + "." + value,
+             "is given for a wall; walls are at rest with no pressure of their own: "
+             "remove it or make the region's role fluid");
+    if (n["velocity"].IsDefined()) r.velocity = point(n["velocity"], key + ".velocity");
+    const YAML::Node p = n["pressure"];
+    r.hydrostatic = p.IsDefined() && p.IsScalar() && p.Scalar() == "hydrostatic";
+    if (!r.hydrostatic && p.IsDefined()) r.pressure = number(p, key + ".pressure");
+    if (r.hydrostatic) {
+      if (g.norm() == 0)
+        fail(p, key + ".pressure", "is hydrostatic but the scene has no gravity; add physics: {gravity: [...]}");
+      r.top = r.shape->highest(-g.normalized());
+      if (!std::isfinite(r.top))
+        fail(p, key + ".pressure", "is hydrostatic but the region has no top along -g; bound its shape");
+    }
+    return r;
+  }
+
+  std::uint64_t checksum = 1469598103934665603ull;
+  int dim = 2;
+
+ private:
+  std::string path_;
+  std::filesystem::path dir_;
+};
+
+// Axis flags from `none`, `x` or [x, y].
+std::vector<double> periodic_axes(const Reader& r, const YAML::Node& n) {
+  std::vector<double> flags(r.dim, 0.0);
+  if (n.IsScalar() && n.Scalar() == "none") return flags;
+  std::vector<YAML::Node> axes;
+  if (n.IsScalar()) axes.push_back(n);
+  else if (n.IsSequence())
+    for (const auto& a : n) axes.push_back(a);
+  for (const YAML::Node& a : axes) {
+    const std::size_t k = a.IsScalar() && a.Scalar().size() == 1 ? std::string("xyz").find(a.Scalar()) : 3;
+    if (k >= static_cast<std::size_t>(r.dim))
+      r.fail(a, "periodic",
+             std::string("names no axis of this ") + std::to_string(r.dim) + "D scene; give none, x or " +
+                 (r.dim == 2 ? "[x, y]" : "[x, y, z]"));
+    flags[k] = 1.0;
+  }
+  if (axes.empty()) r.fail(n, "periodic", "is empty; give none, x or [x, y]");
+  return flags;
+}
+
+void read_physics(Reader& r, const YAML::Node& n, SceneFile& s) {
+  r.only_keys(n, "physics", {"gravity", "nu", "rho0", "U", "free_surface", "t_end"});
+  if (n["gravity"].IsDefined())
+    s.field["gravity"] = r.numbers(n["gravity"], "physics.gravity", r.dim, r.dim == 2 ? "[gx, gy]" : "[gx, gy, gz]");
+  // Checked here, where the file can be named; the options that override them are checked by the case.
+  struct Limit {
+    const char* name;
+    bool zero_allowed;
+  };
+  for (const Limit l : {Limit{"nu", true}, Limit{"rho0", false}, Limit{"U", false}, Limit{"t_end", false}}) {
+    if (!n[l.name].IsDefined()) continue;
+    const double v = r.number(n[l.name], std::string("physics.") + l.name);
+    if (v < 0 || (v == 0 && !l.zero_allowed))
+      r.fail(n[l.name], std::string("physics.") + l.name,
+             "is " + number_text(v) + "; give a " + (l.zero_allowed ? "non-negative" : "positive") + " number");
+    s.field[l.name] = {v};
+  }
+  if (const YAML::Node f = n["free_surface"]; f.IsDefined()) {
+    bool on = false;
+    if (!f.IsScalar() || !YAML::convert<bool>::decode(f, on)) {
+      const double v = r.number(f, "physics.free_surface");
+      if (v != 0 && v != 1) r.fail(f, "physics.free_surface", "is " + number_text(v) + "; give true or false");
+      on = v == 1;
+    }
+    s.field["free_surface"] = {on ? 1.0 : 0.0};
+  }
+}
+
+// Lattice points (i + 1/2) dx of one axis within [lo, hi] ([lo, hi) when periodic), as index range.
+std::pair<long, long> lattice_range(double lo, double hi, double dx, bool periodic) {
+  const long first = static_cast<long>(std::ceil(lo / dx - 0.5 - kOnSurface));
+  const long last = periodic ? static_cast<long>(std::ceil(hi / dx - 0.5 - kOnSurface)) - 1
+                             : static_cast<long>(std::floor(hi / dx - 0.5 + kOnSurface));
+  return {first, last};
+}
+
+}  // namespace
+
+bool is_yaml_scene(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".yaml" || ext == ".yml";
+}
+
+int yaml_scene_dimension(const std::string& path) {
+  Reader r(path);
+  r.parse();
+  return r.dim;
+}
+
+YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
+  Reader r(path);
+  const YAML::Node root = r.parse();
+  const int D = r.dim;
+  YamlScene out;
+  SceneFile& s = out.file;
+  s.path = path;
+  s.dim = D;
+
+  if (dx <= 0) {
+    if (!root["dx"].IsDefined())
+      r.fail(YAML::Node(), "", "gives no particle spacing; pass -nx N (dx = 1/N) or -scene_dx, or add dx: to the file");
+    dx = r.number(root["dx"], "dx");
+    if (!(dx > 0)) r.fail(root["dx"], "dx", "is " + number_text(dx) + "; give a positive spacing");
+  }
+  s.field["dx"] = {dx};
+
+  // The domain: a box cuts the lattice (solids may run past it); periodic axes need one.
+  const bool has_box = root["box"].IsDefined();
+  Point3 box_lo = Point3::Constant(-kInf), box_hi = Point3::Constant(kInf);
+  if (has_box) {
+    std::tie(box_lo, box_hi) = r.box(root["box"], "box");
+    for (int a = 0; a < D; ++a) s.field["box"].push_back(box_lo[a]), s.field["box"].push_back(box_hi[a]);
+  }
+  std::vector<double> periodic(D, 0.0);
+  if (root["periodic"].IsDefined()) periodic = periodic_axes(r, root["periodic"]);
+  for (int a = 0; a < D; ++a) {
+    if (!periodic[a]) continue;
+    if (!has_box) r.fail(root["periodic"], "periodic", "needs a box to set the period; add box: [...]");
+    const double cells = (box_hi[a] - box_lo[a]) / dx;
+    if (std::abs(cells - std::round(cells)) > kOnSurface * std::max(1.0, cells))
+      r.fail(root["box"], "box",
+             std::string("is ") + number_text(box_hi[a] - box_lo[a]) + " long along periodic " + "xyz"[a] +
+                 ", not a whole number of dx = " + number_text(dx) +
+                 "; choose -nx (or dx) so that the length holds whole spacings");
+  }
+  s.field["periodic"] = periodic;
+  if (root["physics"].IsDefined()) read_physics(r, root["physics"], s);
+  const double rho0 = s.field.count("rho0") ? s.field["rho0"][0] : 1.0;
+  Point3 g = Point3::Zero();
+  if (s.field.count("gravity"))
+    for (int a = 0; a < D; ++a) g[a] = s.field["gravity"][a];
+
+  const YAML::Node list = root["regions"];
+  if (!list.IsDefined() || !list.IsSequence() || list.size() == 0)
+    r.fail(list.IsDefined() ? list : root, "regions", "needs a list of regions - {role: ..., shape: ...}");
+  std::vector<Region> solids, fluids;
+  Bounds reach{Point3::Constant(kInf), Point3::Constant(-kInf)};
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const Region region = r.region(list[k], "regions[" + std::to_string(k) + "]", out.bodies, g);
+    const Bounds b = region.shape->bounds();
+    reach.lo = reach.lo.cwiseMin(b.lo), reach.hi = reach.hi.cwiseMax(b.hi);
+    (region.role == Role::Fluid ? fluids : solids).push_back(region);
+  }
+
+  // The lattice over the regions' reach, within the box.
+  std::array<std::pair<long, long>, 3> range{};
+  double points = 1;
+  for (int a = 0; a < D; ++a) {
+    const double lo = std::max(reach.lo[a], box_lo[a]), hi = std::min(reach.hi[a], box_hi[a]);
+    if (!std::isfinite(lo) || !std::isfinite(hi))
+      r.fail(list, "regions",
+             std::string("reach to infinity along ") + "xyz"[a] +
+                 " (a half_space); give a box to cut them, or bound them by intersection");
+    range[a] = lattice_range(lo, hi, dx, periodic[a] != 0);
+    points *= std::max(0L, range[a].second - range[a].first + 1);
+  }
+  if (points > 2e9)
+    r.fail(YAML::Node(), "",
+           "spans " + number_text(points) + " lattice points at dx = " + number_text(dx) +
+               "; raise the spacing (a smaller -nx) or cut the regions with a box");
+
+  const double on = kOnSurface * dx, deep = -wall_layers * dx + on;
+  long fluid = 0;
+  std::array<long, 3> i{};
+  for (i[2] = D == 3 ? range[2].first : 0; i[2] <= (D == 3 ? range[2].second : 0); ++i[2])
+    for (i[1] = range[1].first; i[1] <= range[1].second; ++i[1])
+      for (i[0] = range[0].first; i[0] <= range[0].second; ++i[0]) {
+        Point3 x = Point3::Zero();
+        for (int a = 0; a < D; ++a) x[a] = std::clamp((i[a] + 0.5) * dx, box_lo[a], box_hi[a]);
+        // The solids' union: its distance is the nearest part's; the last solid holding x names it.
+        double solid = kInf;
+        const Region* holder = nullptr;
+        for (const Region& w : solids) {
+          const double d = w.shape->distance(x);
+          solid = std::min(solid, d);
+          if (d <= on) holder = &w;
+        }
+        const Region* in_fluid = nullptr;
+        if (!holder)
+          for (const Region& f : fluids)
+            if (f.shape->distance(x) <= on) in_fluid = &f;
+        if (!(holder && solid > deep) && !in_fluid) continue;
+        const std::array<double, 3> xa = {x[0], x[1], x[2]};
+        s.x.push_back(xa);
+        if (holder) {
+          s.v.push_back({0.0, 0.0, 0.0}), s.p.push_back(0.0), s.kind.push_back(kSceneFixedWall);
+          out.body.push_back(holder->body);
+          continue;
+        }
+        const double p =
+            in_fluid->hydrostatic ? rho0 * g.norm() * (in_fluid->top + g.normalized().dot(x)) : in_fluid->pressure;
+        s.v.push_back({in_fluid->velocity[0], in_fluid->velocity[1], in_fluid->velocity[2]});
+        s.p.push_back(p), s.kind.push_back(kSceneFluid), out.body.push_back(-1);
+        ++fluid;
+      }
+  if (fluid == 0)
+    r.fail(list, "regions",
+           "hold no fluid particle at dx = " + number_text(dx) +
+               ": no lattice point lies inside a fluid region, outside the solids and inside the box; refine "
+               "(a larger -nx) or move the fluid regions");
+
+  std::uint64_t h = r.checksum;
+  h = fnv1a(h, &dx, sizeof dx);
+  h = fnv1a(h, &wall_layers, sizeof wall_layers);
+  s.checksum = h;
+  return out;
+}
+
+}  // namespace sph

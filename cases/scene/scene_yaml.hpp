@@ -1,0 +1,55 @@
+#pragma once
+// A scene described by shapes in a YAML file (-scene_file FILE.yaml or .yml), sampled on a lattice at
+// the run's spacing: one file for every resolution. The result is what the .vtp reader gives (particles
+// and field data, cases/scene/scene_file.hpp), so -case scene runs it the same way.
+//
+//   dimension: 2                      # 2 or 3 (required)
+//   dx: 0.025                         # optional: -nx N (dx = 1/N) or -scene_dx override it
+//   box: [-0.3, 1.3, -0.3, 20]        # the domain [x0, x1, y0, y1(, z0, z1)]; optional unless periodic
+//   periodic: none                    # or x, or [x, y]
+//   physics: {gravity: [0, -1], nu: 0.002, rho0: 1, free_surface: true, t_end: 4, U: 1}   # all optional
+//   regions:                          # in order: later fluid regions override earlier ones
+//     - {role: wall, shape: {difference: [{box: [-1, 2, -1, 1.3]}, {box: [0, 1, 0, 2]}]}}
+//     - {role: {body: cylinder}, shape: {circle: {centre: [0.5, 0.45], radius: 0.12}}}
+//     - {role: fluid, shape: {box: [0, 1, 0, 0.15]}, pressure: hydrostatic}
+//     - {role: fluid, shape: {box: [0.3, 0.7, 0.75, 1.05]}, velocity: [0, 0], pressure: 0}
+//
+// Shapes (signed distances, cases/scene/shapes.hpp): box [x0, x1, y0, y1(, z0, z1)]; circle (2D) and
+// sphere (3D) {centre, radius}; polygon (2D) [[x, y], ...]; cylinder (3D) {ends: [[x, y, z], [x, y, z]],
+// radius}; half_space {point, normal}, solid where (x - point) . normal <= 0; union / intersection
+// [shapes]; difference [A, B, ...], A minus the others; mesh FILE, a closed .stl, .obj or .vtp surface
+// (3D; the path relative to the YAML file).
+// Roles: fluid (kind 0); wall (fixed wall, kind 1); {body: NAME}, a fixed wall whose particles keep
+// the body's name (YamlScene::body) for later work on moving bodies.
+// Region values (fluid only): velocity (default zero); pressure, a number (default 0) or hydrostatic:
+// rho0 |g| times the depth below the region's highest point along -g.
+//
+// Sampling: lattice points (i + 1/2) dx within the box (and within the regions' bounds), so a box from
+// 0 to 1 holds 1/dx points per side. A point inside a wall or body is a wall particle when it lies
+// within wall_layers dx of the solids' surface (thick solids do not fill up; a solid may run past the
+// box, which cuts it); a point in no solid and inside a fluid region is fluid; other points are dropped.
+#include <string>
+#include <vector>
+
+#include "cases/scene/scene_file.hpp"
+
+namespace sph {
+
+struct YamlScene {
+  SceneFile file;                   // particles and field data, as read_scene_file gives them
+  std::vector<int> body;            // per particle: index into bodies, -1 for fluid and walls
+  std::vector<std::string> bodies;  // the body names, in order of first appearance
+};
+
+// By the extension: .yaml or .yml.
+bool is_yaml_scene(const std::string& path);
+
+// The file's `dimension` (2 or 3), without sampling it.
+int yaml_scene_dimension(const std::string& path);
+
+// Reads, checks and samples the file at spacing dx (dx <= 0: the file's own dx key), with walls
+// wall_layers particles deep. checksum: the file's bytes (and its meshes'), dx and wall_layers.
+// Throws sph::Error with one line naming the file, the line and key, and the fix.
+YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers);
+
+}  // namespace sph
