@@ -184,6 +184,14 @@ template <int D> void PressurePoisson<D>::set_from_options() {
   PetscBool set = PETSC_FALSE;
   SPH_PETSC(PetscOptionsGetViewer(PETSC_COMM_WORLD, nullptr, nullptr, "-mat_view", &mat_viewer_, &mat_format_, &set));
   if (set) SPH_PETSC(PetscOptionsClearValue(nullptr, "-mat_view"));
+  // A step solves the PPE two or three times with one KSP; PETSc's viewers do not say which solve
+  // they show, so each solve is announced while one of them is on.
+  for (const char* viewer : {"-ksp_monitor", "-ksp_monitor_short", "-ksp_monitor_true_residual",
+                             "-ksp_converged_reason", "-ksp_view", "-ksp_view_final_residual"}) {
+    PetscBool given = PETSC_FALSE;
+    SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, viewer, &given));
+    announce_solves_ = announce_solves_ || given;
+  }
   create_ksp();
 }
 

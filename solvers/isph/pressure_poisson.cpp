@@ -179,6 +179,7 @@ template <int D> void PressurePoisson<D>::prepare_spread() {
   SPH_PETSC(VecGetArray(b_, &e));
   for (PetscInt i = 0; i < n; ++i) e[i] = kind_[i] == kFluid && i != pinned_ ? 1.0 : 0.0;
   SPH_PETSC(VecRestoreArray(b_, &e));
+  announce_solve("closed-domain spread (A z = 1)");
   SPH_PETSC(KSPSolve(ksp_, b_, spread_));
   view_solve();
   KSPConvergedReason reason;
@@ -202,6 +203,10 @@ template <int D> void PressurePoisson<D>::view_solve() const {
     SPH_PETSC(MatView(A_, mat_viewer_));
     SPH_PETSC(PetscViewerPopFormat(mat_viewer_));
   }
+}
+
+template <int D> void PressurePoisson<D>::announce_solve(const char* which) const {
+  if (announce_solves_) SPH_PETSC(PetscPrintf(PETSC_COMM_WORLD, "PPE %s solve\n", which));
 }
 
 // x holds the pinned system's solution; b_k, the pinned row's own right-hand side, is `pinned_rhs`.
@@ -274,6 +279,7 @@ template <int D> StepReport PressurePoisson<D>::solve(const std::vector<double>&
   SPH_PETSC(KSPGetTolerances(ksp_, &rtol, &atol, &dtol, &max_it));
   if (correction) SPH_PETSC(KSPSetTolerances(ksp_, rtol, std::max(atol, rtol * first_rhs_norm_), dtol, max_it));
   else SPH_PETSC(VecNorm(b_, NORM_2, &first_rhs_norm_));
+  announce_solve(correction ? "correction" : "projection");
   SPH_PETSC(KSPSolve(ksp_, b_, x_));
   if (correction) SPH_PETSC(KSPSetTolerances(ksp_, rtol, atol, dtol, max_it));
   view_solve();

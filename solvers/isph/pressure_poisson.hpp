@@ -99,6 +99,7 @@ template <int D> class PressurePoisson {
   // Closed domains: the pinned equation and the response to an even source (see the .cpp).
   void prepare_spread();
   void view_solve() const;
+  void announce_solve(const char* which) const;
   void spread_pinned_residual(double pinned_rhs);
   void destroy_system();
   void create_ksp();
@@ -116,6 +117,7 @@ template <int D> class PressurePoisson {
   bool nonsymmetric_ = false;         // wall rows or the consistent Laplacian
   PetscReal first_rhs_norm_ = 0.0;    // |b| of the last solve that was not a correction
   PetscViewer mat_viewer_ = nullptr;  // -mat_view (see set_from_options)
+  bool announce_solves_ = false;      // a KSP viewer is on: each solve prints which one it is
   PetscViewerFormat mat_format_ = PETSC_VIEWER_DEFAULT;
   long pinned_ = -1;                              // local row pinned to p = 0 (closed domains), -1: none
   bool closed_ = false;                           // walls, no Dirichlet rows: one fluid pressure is pinned on some rank

@@ -90,6 +90,10 @@ expect_ok $small -operators classic -ksp_type cg
   >"$tmp/stdout" 2>"$tmp/stderr" || { echo "FAIL: late-read PETSc options refused:"; cat "$tmp/stderr"; fail=1; }
 # Two steps, two solves each (the projection and its correction pass).
 [ "$(grep -c "Linear solve converged" "$tmp/stdout")" -eq 4 ] || { echo "FAIL: -ksp_converged_reason not once per solve"; fail=1; }
+# Each solve is named before PETSc's lines about it: projection, then correction, every step.
+[ "$(grep -E "^PPE (projection|correction) solve$|Linear solve converged" "$tmp/stdout" | sed 's/ due to.*//' | tr '\n' '|')" = \
+  "$(printf 'PPE projection solve|Linear solve converged|PPE correction solve|Linear solve converged|%.0s' 1 2)" ] \
+  || { echo "FAIL: the solves are not named before their -ksp_converged_reason lines:"; cat "$tmp/stdout"; fail=1; }
 grep -q "SPH time loop" "$tmp/log.txt" || { echo "FAIL: -log_view wrote no log"; fail=1; }
 [ -s "$tmp/stderr" ] && { echo "FAIL: warnings from a run with late-read options:"; cat "$tmp/stderr"; fail=1; }
 
