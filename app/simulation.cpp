@@ -19,24 +19,24 @@ namespace {
 
 template <int D> void run_in_dim(const RunOptions& names) {
   const std::vector<std::string> valueless = check_finite_option_values(option_owners(names));
-  const std::unique_ptr<Case<D>> scene_case = create_case<D>(names.case_name);
+  const std::unique_ptr<Case<D>> run_case = create_case<D>(names.case_name);
   const std::unique_ptr<Solver<D>> solver = create_solver<D>(names.solver_name);
-  scene_case->set_from_options();
+  run_case->set_from_options();
   solver->set_from_options();
   RunControl control;
-  control.t_end = scene_case->default_t_end();
-  read_run_control(control, scene_case->steady_tolerance(), D);
+  control.t_end = run_case->default_t_end();
+  read_run_control(control, run_case->steady_tolerance(), D);
   const KernelChoice kernel = read_kernel_options();
   // A restart continues its run where the checkpoint is, unless -output_dir says otherwise.
   const std::string checkpoint_folder = std::filesystem::path(control.restart).parent_path().string();
-  const std::string output_dir = control.output_dir[0] ? std::string(control.output_dir)
-                                 : control.restarting()
-                                     ? (checkpoint_folder.empty() ? std::string(".") : checkpoint_folder)
-                                     : "out/" + scene_case->output_name() + "-" + names.solver_name + "-" +
-                                           std::to_string(scene_case->resolution());
+  const std::string output_dir =
+      control.output_dir[0] ? std::string(control.output_dir)
+      : control.restarting()
+          ? (checkpoint_folder.empty() ? std::string(".") : checkpoint_folder)
+          : "out/" + run_case->output_name() + "-" + names.solver_name + "-" + std::to_string(run_case->resolution());
   check_unused_options(option_owners(names));
   check_valueless_options(valueless, option_owners(names));
-  run_time_loop<D>({*scene_case, *solver, names.case_name, names.solver_name, control, kernel, output_dir,
+  run_time_loop<D>({*run_case, *solver, names.case_name, names.solver_name, control, kernel, output_dir,
                     [&names] { check_late_options(option_owners(names)); }});
   finish_options_check();
 }

@@ -102,7 +102,7 @@ template <int D> void CompressibleSolver<D>::set_from_options() {
 }
 
 template <int D> nlohmann::json CompressibleSolver<D>::describe() const {
-  const Physics<D>& phys = scene_->physics;
+  const Physics<D>& phys = disc_->physics;
   nlohmann::json models = nlohmann::json::object();
   models["equation_of_state"] = {{"model", "IdealGas"}, {"gamma", gamma_}};
   models["energy_equation"] =
@@ -125,7 +125,7 @@ template <int D> nlohmann::json CompressibleSolver<D>::describe() const {
 
   // Conservation since setup: momentum relative to the larger of the initial and current sum of |m v|
   // (a gas starting at rest has no initial scale), energy = kinetic + thermal + external potential.
-  const Particles<D>& P = scene_->particles;
+  const Particles<D>& P = disc_->particles;
   double scale = 0.0;
   for (std::size_t i = 0; i < P.n_owned; ++i) scale += P.m[i] * P.v[i].norm();
   MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
@@ -141,7 +141,7 @@ template <int D> nlohmann::json CompressibleSolver<D>::describe() const {
           {"smoothing_length_range", {h_min_seen_, h_max_seen_}},
           {"density_iterations_max", density_iterations_max_},
           {"search_radius_changes", radius_changes_},
-          {"neighbour_rebuilds", scene_->neighbourhood.rebuilds()},
+          {"neighbour_rebuilds", disc_->neighbourhood.rebuilds()},
           {"conservation", conservation}};
 }
 

@@ -38,10 +38,10 @@ double mpi_max(double x) {
 
 }  // namespace
 
-template <int D> void CompressibleSolver<D>::setup(Scene<D>& scene) {
-  scene_ = &scene;
-  Particles<D>& P = scene.particles;
-  const Physics<D>& phys = scene.physics;
+template <int D> void CompressibleSolver<D>::setup(Discretisation<D>& disc) {
+  disc_ = &disc;
+  Particles<D>& P = disc.particles;
+  const Physics<D>& phys = disc.physics;
   if (!phys.is_gas())
     throw Error(
         "the compressible solver needs a gas scene (the case declares no adiabatic index gamma); "
@@ -51,7 +51,7 @@ template <int D> void CompressibleSolver<D>::setup(Scene<D>& scene) {
     throw Error("the compressible solver has no physical (Navier-Stokes) viscosity; the case asks for nu > 0");
   gamma_ = phys.gamma;
   entropy_ = phys.isentropic;
-  const KernelType type = scene.kernel.type();
+  const KernelType type = disc.kernel.type();
   kappa_ = Kernel<D>::support_factor(type);
   if (eta_ == 0.0) eta_ = Kernel<D>::default_eta(type);
 
@@ -75,8 +75,8 @@ template <int D> void CompressibleSolver<D>::setup(Scene<D>& scene) {
 
   double h_max = 0.0;
   for (std::size_t i = 0; i < n; ++i) h_max = std::max(h_max, h_[i]);
-  scene.neighbourhood.set_support_radius(kSearchHeadroom * kappa_ * mpi_max(h_max));
-  scene.neighbourhood.update(P, true);
+  disc.neighbourhood.set_support_radius(kSearchHeadroom * kappa_ * mpi_max(h_max));
+  disc.neighbourhood.update(P, true);
   prune_pairs();
   solve_density();
   // With the energy equation, u = P / ((gamma - 1) rho) from the summation density keeps the case's
@@ -95,11 +95,11 @@ template <int D> void CompressibleSolver<D>::setup(Scene<D>& scene) {
 }
 
 template <int D> void CompressibleSolver<D>::ensure_search_radius(double h_max, bool allow_shrink) {
-  Neighbourhood<D>& nh = scene_->neighbourhood;
+  Neighbourhood<D>& nh = disc_->neighbourhood;
   const double need = kappa_ * h_max;
   if (need > nh.support_radius() || (allow_shrink && need < kSearchShrink * nh.support_radius())) {
     nh.set_support_radius(kSearchHeadroom * need);
-    nh.update(scene_->particles, true);
+    nh.update(disc_->particles, true);
     ++radius_changes_;
   }
 }
@@ -109,8 +109,8 @@ constexpr double prune_margin = 1.2;
 
 template <int D> void CompressibleSolver<D>::prune_pairs() {
   const LogEventScope log_pairs(pairs_event());
-  Particles<D>& P = scene_->particles;
-  const Neighbourhood<D>& nh = scene_->neighbourhood;
+  Particles<D>& P = disc_->particles;
+  const Neighbourhood<D>& nh = disc_->neighbourhood;
   h_.resize(P.n_owned);
   nh.halo().update(h_);
   pairs_.build(P, nh.list(), h_, kappa_, prune_margin);
@@ -118,7 +118,7 @@ template <int D> void CompressibleSolver<D>::prune_pairs() {
 }
 
 template <int D> bool CompressibleSolver<D>::pairs_valid() const {
-  if (pairs_built_at_rebuild_ != scene_->neighbourhood.rebuilds() || pairs_.size() != scene_->particles.n_owned)
+  if (pairs_built_at_rebuild_ != disc_->neighbourhood.rebuilds() || pairs_.size() != disc_->particles.n_owned)
     return false;
   int ok = 1;
   for (std::size_t i = 0; i < pairs_.size() && ok; ++i) ok = kappa_ * h_[i] <= pairs_.reach(i);
@@ -129,9 +129,9 @@ template <int D> bool CompressibleSolver<D>::pairs_valid() const {
 template <int D> void CompressibleSolver<D>::solve_density() {
   using namespace compressible;
   const LogEventScope log_density_h(density_h_event());
-  Particles<D>& P = scene_->particles;
+  Particles<D>& P = disc_->particles;
   const std::size_t n = P.n_owned;
-  const KernelType type = scene_->kernel.type();
+  const KernelType type = disc_->kernel.type();
   const bool need_div = switch_ == ViscositySwitch::MorrisMonaghan || balsara_;
   omega_.resize(std::max(omega_.size(), n));
   divv_.assign(n, 0.0), curlv_.assign(n, 0.0);
@@ -144,8 +144,8 @@ template <int D> void CompressibleSolver<D>::solve_density() {
     double h_max = 0.0;
     for (std::size_t k : active) h_max = std::max(h_max, h_[k]);
     ensure_search_radius(mpi_max(h_max), false);
-    if (pairs_built_at_rebuild_ != scene_->neighbourhood.rebuilds()) prune_pairs();
-    const NeighbourList<D>& nl = scene_->neighbourhood.list();
+    if (pairs_built_at_rebuild_ != disc_->neighbourhood.rebuilds()) prune_pairs();
+    const NeighbourList<D>& nl = disc_->neighbourhood.list();
 
     // Threads share the active particles; each writes only its own entries. Which ones stay active
     // is collected afterwards, in order.
@@ -213,7 +213,7 @@ template <int D> void CompressibleSolver<D>::solve_density() {
 
 template <int D> void CompressibleSolver<D>::update_thermodynamics() {
   const LogEventScope log_density(LogEvent::Density);
-  Particles<D>& P = scene_->particles;
+  Particles<D>& P = disc_->particles;
   const std::size_t n = P.n_owned;
   u_.resize(n), cs_.resize(n), balsara_factor_.resize(n), q_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -229,11 +229,11 @@ template <int D> void CompressibleSolver<D>::update_thermodynamics() {
     balsara_factor_[i] = balsara_ ? compressible::balsara_factor(divv_[i], curlv_[i], cs_[i], h_[i]) : 1.0;
     q_[i] = P.p[i] / (omega_[i] * rho * rho);
   }
-  const Halo<D>& halo = scene_->neighbourhood.halo();
+  const Halo<D>& halo = disc_->neighbourhood.halo();
   halo.update(P.rho), halo.update(P.p), halo.update(h_), halo.update(u_), halo.update(cs_), halo.update(q_);
   if (av_.active()) halo.update(alpha_), halo.update(balsara_factor_);
   omega_.resize(n), halo.update(omega_);
-  const KernelType type = scene_->kernel.type();
+  const KernelType type = disc_->kernel.type();
   kernels_.clear();
   kernels_.reserve(P.size());
   for (std::size_t k = 0; k < P.size(); ++k) kernels_.emplace_back(type, h_[k]);
@@ -242,8 +242,8 @@ template <int D> void CompressibleSolver<D>::update_thermodynamics() {
 template <int D> void CompressibleSolver<D>::compute_forces() {
   using namespace compressible;
   const LogEventScope log_forces(LogEvent::Forces);
-  Particles<D>& P = scene_->particles;
-  const Physics<D>& phys = scene_->physics;
+  Particles<D>& P = disc_->particles;
+  const Physics<D>& phys = disc_->physics;
   const std::size_t n = P.n_owned;
   acc_.assign(n, phys.gravity);
   if (phys.has_external_force())
@@ -280,7 +280,7 @@ template <int D> void CompressibleSolver<D>::compute_forces() {
 }
 
 template <int D> double CompressibleSolver<D>::stable_dt() const {
-  const Particles<D>& P = scene_->particles;
+  const Particles<D>& P = disc_->particles;
   double dt = std::numeric_limits<double>::max();
   for (std::size_t i = 0; i < P.n_owned; ++i) {
     if (vsig_[i] > 0.0) dt = std::min(dt, cfl_ * h_[i] / vsig_[i]);
@@ -289,12 +289,12 @@ template <int D> double CompressibleSolver<D>::stable_dt() const {
   }
   dt = -mpi_max(-dt);
   // A gas without pressure or neighbours: the reference speed bounds the step.
-  if (dt == std::numeric_limits<double>::max()) dt = cfl_ * h_min_seen_ / std::max(scene_->physics.U, 1e-300);
+  if (dt == std::numeric_limits<double>::max()) dt = cfl_ * h_min_seen_ / std::max(disc_->physics.U, 1e-300);
   return dt;
 }
 
 template <int D> void CompressibleSolver<D>::check_thermal_state() const {
-  const Particles<D>& P = scene_->particles;
+  const Particles<D>& P = disc_->particles;
   int bad = -1;
   for (std::size_t i = 0; i < P.n_owned && bad < 0; ++i)
     if (!(thermal_[i] >= 0.0) || !std::isfinite(thermal_[i])) bad = static_cast<int>(i);
@@ -309,7 +309,7 @@ template <int D> void CompressibleSolver<D>::check_thermal_state() const {
 }
 
 template <int D> StepReport CompressibleSolver<D>::step(double dt) {
-  Particles<D>& P = scene_->particles;
+  Particles<D>& P = disc_->particles;
   const std::size_t n = P.n_owned;
   const bool mm = switch_ == ViscositySwitch::MorrisMonaghan;
   // Kick-drift-kick; velocity, thermal variable and viscosity switch are predicted to t^{n+1} for the
@@ -320,7 +320,7 @@ template <int D> StepReport CompressibleSolver<D>::step(double dt) {
       dt, n, P.x, P.v, acc_, scalars, [](std::size_t) { return true; },
       [&] {
         check_thermal_state();
-        scene_->neighbourhood.update(P);
+        disc_->neighbourhood.update(P);
         prune_pairs();  // particles moved: distances changed
         solve_density();
         update_thermodynamics();
@@ -341,8 +341,8 @@ template <int D> StepReport CompressibleSolver<D>::step(double dt) {
 }
 
 template <int D> double CompressibleSolver<D>::total_energy() const {
-  const Particles<D>& P = scene_->particles;
-  const Physics<D>& phys = scene_->physics;
+  const Particles<D>& P = disc_->particles;
+  const Physics<D>& phys = disc_->physics;
   double E = 0.0;
   for (std::size_t i = 0; i < P.n_owned; ++i) {
     double e = 0.5 * P.v[i].squaredNorm() + u_[i] - phys.gravity.dot(P.x[i]);
@@ -354,7 +354,7 @@ template <int D> double CompressibleSolver<D>::total_energy() const {
 }
 
 template <int D> Vector<D> CompressibleSolver<D>::total_momentum() const {
-  const Particles<D>& P = scene_->particles;
+  const Particles<D>& P = disc_->particles;
   Vector<D> M = Vector<D>::Zero();
   for (std::size_t i = 0; i < P.n_owned; ++i) M += P.m[i] * P.v[i];
   MPI_Allreduce(MPI_IN_PLACE, M.data(), D, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
@@ -362,7 +362,7 @@ template <int D> Vector<D> CompressibleSolver<D>::total_momentum() const {
 }
 
 template <int D> std::vector<CheckpointField> CompressibleSolver<D>::checkpoint_fields() {
-  const std::size_t n = scene_->particles.n_owned;
+  const std::size_t n = disc_->particles.n_owned;
   for (auto* f : {&thermal_, &u_, &h_, &alpha_, &dthermal_, &dalpha_, &vsig_}) f->resize(n);
   acc_.resize(n);
   return {{"thermal_variable", thermal_.data(), 1},
@@ -379,7 +379,7 @@ template <int D> nlohmann::json CompressibleSolver<D>::checkpoint_scalars() cons
   return {{"energy_initial", energy0_},
           {"momentum_initial", std::vector<double>(momentum0_.data(), momentum0_.data() + D)},
           {"momentum_scale_initial", momentum_scale0_},
-          {"search_radius", scene_->neighbourhood.support_radius()},
+          {"search_radius", disc_->neighbourhood.support_radius()},
           {"density_iterations_max", density_iterations_max_},
           {"search_radius_changes", radius_changes_},
           {"h_range", {h_min_seen_, h_max_seen_}}};
@@ -393,7 +393,7 @@ template <int D> void CompressibleSolver<D>::restore_scalars(const nlohmann::jso
   density_iterations_max_ = j.at("density_iterations_max").get<long>();
   radius_changes_ = j.at("search_radius_changes").get<long>();
   h_min_seen_ = j.at("h_range")[0].get<double>(), h_max_seen_ = j.at("h_range")[1].get<double>();
-  scene_->neighbourhood.set_support_radius(j.at("search_radius").get<double>());  // the driver rebuilds next
+  disc_->neighbourhood.set_support_radius(j.at("search_radius").get<double>());  // the driver rebuilds next
 }
 
 template class CompressibleSolver<1>;

@@ -29,7 +29,7 @@ template <int D> class CompressibleSolver : public Solver<D> {
   // "Memory per particle").
   double bytes_per_particle() const override { return D == 3 ? 2.5e3 : 0.87e3; }
   void set_from_options() override;
-  void setup(Scene<D>& scene) override;
+  void setup(Discretisation<D>& disc) override;
   double stable_dt() const override;
   StepReport step(double dt) override;
   nlohmann::json describe() const override;
@@ -40,7 +40,7 @@ template <int D> class CompressibleSolver : public Solver<D> {
   void restore_scalars(const nlohmann::json& j) override;
   // Smoothing length and specific internal energy (both move with their particle, as checkpoint fields).
   std::vector<ScalarField> output_fields() override {
-    for (auto* f : {&u_, &h_}) f->resize(scene_->particles.n_owned);
+    for (auto* f : {&u_, &h_}) f->resize(disc_->particles.n_owned);
     return {{"smoothing_length", &h_}, {"internal_energy", &u_}};
   }
 
@@ -62,7 +62,7 @@ template <int D> class CompressibleSolver : public Solver<D> {
   bool pairs_valid() const;
   void check_thermal_state() const;
 
-  Scene<D>* scene_ = nullptr;
+  Discretisation<D>* disc_ = nullptr;
   compressible::ArtificialViscosity av_;
   ViscositySwitch switch_ = ViscositySwitch::None;
   PetscBool balsara_ = PETSC_FALSE;  // Balsara switch on

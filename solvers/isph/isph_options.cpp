@@ -93,7 +93,7 @@ template <int D> void IsphSolver<D>::set_from_options() {
 }
 
 template <int D> nlohmann::json IsphSolver<D>::describe() const {
-  const Physics<D>& phys = scene_->physics;
+  const Physics<D>& phys = disc_->physics;
   nlohmann::json models = nlohmann::json::object();
   const bool consistent = operators_ == OperatorSet::Consistent;
   models["pressure_laplacian"] = consistent ? "ConsistentLaplacian" : "CumminsRudman";
@@ -124,7 +124,7 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
   return {{"models", models},
           {"cfl", cfl_},
           {"ksp", ppe_.describe()},
-          {"conservation", {{"energy_budget", energy_.describe(scene_->particles)}}}};
+          {"conservation", {{"energy_budget", energy_.describe(disc_->particles)}}}};
 }
 
 // The solver's other members are instantiated with the class in its own file.

@@ -25,24 +25,24 @@ PetscLogEvent ppe_solve_event() {
 
 }  // namespace
 
-template <int D> void IsphSolver<D>::setup(Scene<D>& scene) {
-  refuse_unmodelled(scene.physics, name(), false, false);
-  scene_ = &scene;
-  Particles<D>& P = scene.particles;
+template <int D> void IsphSolver<D>::setup(Discretisation<D>& disc) {
+  refuse_unmodelled(disc.physics, name(), false, false);
+  disc_ = &disc;
+  Particles<D>& P = disc.particles;
   // Divergence-free ISPH: density stays at its reference value (walls included).
-  for (std::size_t i = 0; i < P.n_owned; ++i) P.rho[i] = scene.physics.rho0;
+  for (std::size_t i = 0; i < P.n_owned; ++i) P.rho[i] = disc.physics.rho0;
   walls_ = has_walls(P);
-  ppe_.use_nonsymmetric(walls_ || scene.physics.free_surface || operators_ == OperatorSet::Consistent);
+  ppe_.use_nonsymmetric(walls_ || disc.physics.free_surface || operators_ == OperatorSet::Consistent);
   free_surface_model_.setup();
   // In a closed domain fluid meets walls at the speed of its flow along them, not head on, and the
   // impact term only adds the noise of the walls' normals at corners (docs/verification/free_surface.md,
   // "Design measurements").
-  wall_impact_ = walls_ && (wall_impact_option_ < 0 ? scene.physics.free_surface : wall_impact_option_ > 0);
-  scene.neighbourhood.update(P, true);
+  wall_impact_ = walls_ && (wall_impact_option_ < 0 ? disc.physics.free_surface : wall_impact_option_ > 0);
+  disc.neighbourhood.update(P, true);
 }
 
 template <int D> double IsphSolver<D>::max_speed() const {
-  const Particles<D>& P = scene_->particles;
+  const Particles<D>& P = disc_->particles;
   double u2 = 0.0;
   for (std::size_t i = 0; i < P.n_owned; ++i) u2 = std::max(u2, P.v[i].squaredNorm());
   MPI_Allreduce(MPI_IN_PLACE, &u2, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
@@ -50,8 +50,8 @@ template <int D> double IsphSolver<D>::max_speed() const {
 }
 
 template <int D> double IsphSolver<D>::stable_dt() const {
-  const double h = scene_->kernel.h();
-  const Physics<D>& phys = scene_->physics;
+  const double h = disc_->kernel.h();
+  const Physics<D>& phys = disc_->physics;
   // The reference speed bounds the step too, so a fluid at rest does not take an unbounded step.
   double dt = cfl_ * h / std::max(max_speed(), phys.U);
   if (phys.viscous()) dt = std::min(dt, kViscousStepFactor * h * h / phys.nu);  // Morris et al. (1997)
@@ -62,9 +62,9 @@ template <int D> double IsphSolver<D>::stable_dt() const {
 // keep their prescribed velocity, their PPE rows extrapolate the fluid pressure, and nothing reads an
 // operator's value at a wall.
 template <int D> std::vector<Vector<D>> IsphSolver<D>::pressure_gradient(const std::vector<double>& p) const {
-  const Particles<D>& P = scene_->particles;
-  const NeighbourList<D>& nl = scene_->neighbourhood.list();
-  const Kernel<D>& K = scene_->kernel;
+  const Particles<D>& P = disc_->particles;
+  const NeighbourList<D>& nl = disc_->neighbourhood.list();
+  const Kernel<D>& K = disc_->kernel;
   switch (gradient_) {
     case PressureGradient::Corrected:
       return nodes_.empty() ? gradient_corrected(P, nl, K, p, Rows::Fluid)
@@ -77,16 +77,16 @@ template <int D> std::vector<Vector<D>> IsphSolver<D>::pressure_gradient(const s
 
 template <int D> std::vector<LaplacianCorrection<D>> IsphSolver<D>::laplacian_corrections_if_used() const {
   if (operators_ != OperatorSet::Consistent) return {};
-  const Neighbourhood<D>& nh = scene_->neighbourhood;
-  return laplacian_corrections(scene_->particles, nh.list(), scene_->kernel, Rows::Fluid);
+  const Neighbourhood<D>& nh = disc_->neighbourhood;
+  return laplacian_corrections(disc_->particles, nh.list(), disc_->kernel, Rows::Fluid);
 }
 
 template <int D>
 std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vector<D>>& u,
                                                            std::vector<LaplacianCorrection<D>>* factors) const {
-  const Particles<D>& P = scene_->particles;
-  const Neighbourhood<D>& nh = scene_->neighbourhood;
-  const Kernel<D>& K = scene_->kernel;
+  const Particles<D>& P = disc_->particles;
+  const Neighbourhood<D>& nh = disc_->neighbourhood;
+  const Kernel<D>& K = disc_->kernel;
   // No-slip walls: the viscous term sees the mirrored wall velocity (Adami et al. 2012).
   std::vector<Vector<D>> u_wall;
   if (walls_) {
@@ -96,25 +96,25 @@ std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vec
   const std::vector<Vector<D>>& uv = walls_ ? u_wall : u;
   if (operators_ != OperatorSet::Consistent) {
     std::vector<Vector<D>> lap = laplacian_morris(P, nh.list(), K, uv);
-    for (auto& a : lap) a *= scene_->physics.nu;
+    for (auto& a : lap) a *= disc_->physics.nu;
     return lap;
   }
   std::vector<LaplacianCorrection<D>> own_factors;
   std::vector<LaplacianCorrection<D>>& F = factors ? *factors : own_factors;
   std::vector<Vector<D>> lap = laplacian_consistent_one_pass(P, nh.list(), K, uv, Rows::Fluid, &F);
   // The surface cuts the supports there, where the fourth moments are one-sided, not isotropic.
-  if (viscous_laplacian_ == ViscousLaplacian::Fourth && !scene_->physics.free_surface)
+  if (viscous_laplacian_ == ViscousLaplacian::Fourth && !disc_->physics.free_surface)
     remove_laplacian_smoothing_error(P, nh, K, F, lap);
-  for (auto& a : lap) a *= scene_->physics.nu;
+  for (auto& a : lap) a *= disc_->physics.nu;
   return lap;
 }
 
 template <int D> std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences(
     const std::vector<const std::vector<Vector<D>>*>& fields, const std::vector<char>& near_surface,
     const Vector<D>& first_wall_velocity) const {
-  const Particles<D>& P = scene_->particles;
-  const NeighbourList<D>& nl = scene_->neighbourhood.list();
-  const Kernel<D>& K = scene_->kernel;
+  const Particles<D>& P = disc_->particles;
+  const NeighbourList<D>& nl = disc_->neighbourhood.list();
+  const Kernel<D>& K = disc_->kernel;
   // The walls count as at rest (-ppe_wall_velocity zero, the default), as in WCSPH's continuity
   // equation: wall particles keep their place, so a wall's velocity is tangential and its normal
   // component, the only part the constraint needs, is zero. With the prescribed velocities the cavity's
@@ -155,10 +155,10 @@ template <int D> std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences
 
 template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double tau,
                                                    const std::vector<LaplacianCorrection<D>>& corrections) {
-  Particles<D>& P = scene_->particles;
-  Neighbourhood<D>& nh = scene_->neighbourhood;
-  const Kernel<D>& K = scene_->kernel;
-  const Physics<D>& phys = scene_->physics;
+  Particles<D>& P = disc_->particles;
+  Neighbourhood<D>& nh = disc_->neighbourhood;
+  const Kernel<D>& K = disc_->kernel;
+  const Physics<D>& phys = disc_->physics;
   const bool consistent = operators_ == OperatorSet::Consistent;
   const bool nodes = phys.free_surface && surface_condition_ == SurfaceCondition::Node;
 
@@ -168,7 +168,7 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
   nodes_ = {};
   if (phys.free_surface) {
     surface = free_surface_model_.detect(P, nh.list(), K, true);
-    if (nodes) nodes_ = surface_nodes(P, nh, K, surface, 0.5 * scene_->dx);
+    if (nodes) nodes_ = surface_nodes(P, nh, K, surface, 0.5 * disc_->dx);
     if (consistent && !nodes) {
       std::vector<double> flags(surface.begin(), surface.end());
       flags.resize(P.size(), 0.0);
@@ -302,9 +302,9 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
 }
 
 template <int D> StepReport IsphSolver<D>::step(double dt) {
-  Particles<D>& P = scene_->particles;
-  Neighbourhood<D>& nh = scene_->neighbourhood;
-  const Physics<D>& phys = scene_->physics;
+  Particles<D>& P = disc_->particles;
+  Neighbourhood<D>& nh = disc_->neighbourhood;
+  const Physics<D>& phys = disc_->physics;
   const std::size_t n = P.n_owned;
   auto fluid = [&](std::size_t i) { return P.kind[i] == kFluid; };  // walls keep their prescribed motion
   nh.update(P);
@@ -317,8 +317,8 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   const bool have_pressure = solves_ > 0;
   // The surface nodes at x^n, for the pressure gradient of the opening kick.
   if (phys.free_surface && surface_condition_ == SurfaceCondition::Node)
-    nodes_ = surface_nodes(P, nh, scene_->kernel, free_surface_model_.detect(P, nh.list(), scene_->kernel, false),
-                           0.5 * scene_->dx);
+    nodes_ = surface_nodes(P, nh, disc_->kernel, free_surface_model_.detect(P, nh.list(), disc_->kernel, false),
+                           0.5 * disc_->dx);
   std::vector<Vector<D>> acc(n, Vector<D>::Zero()), pressure_acc(n, Vector<D>::Zero());
   // The factors at x^n serve this one operator: gathered in its pass (one pass over the pairs, not two).
   if (phys.viscous()) acc = viscous_acceleration(P.v);
@@ -390,17 +390,17 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
 }
 
 template <int D> void IsphSolver<D>::shift(double dt) {
-  Particles<D>& P = scene_->particles;
-  Neighbourhood<D>& nh = scene_->neighbourhood;
-  const Kernel<D>& K = scene_->kernel;
+  Particles<D>& P = disc_->particles;
+  Neighbourhood<D>& nh = disc_->neighbourhood;
+  const Kernel<D>& K = disc_->kernel;
   nh.update(P);  // shifting works on the new positions
   ShiftBoundary<D> boundary;
-  if (scene_->physics.free_surface)
+  if (disc_->physics.free_surface)
     boundary = free_surface_model_.shift_boundary(P, nh, K, free_surface_model_.detect(P, nh.list(), K, false));
   // The pressures move with the particles too: the next opening kick and extrapolation use them.
   nh.halo().update(mean_pressure_);
-  shift_particles(P, nh, K, shifting_model_, scene_->dx, largest_speed(P), dt, {&P.p, &mean_pressure_},
-                  scene_->physics.free_surface ? &boundary : nullptr);
+  shift_particles(P, nh, K, shifting_model_, disc_->dx, largest_speed(P), dt, {&P.p, &mean_pressure_},
+                  disc_->physics.free_surface ? &boundary : nullptr);
 }
 
 template class IsphSolver<1>;

@@ -75,7 +75,7 @@ template <int D> class IsphSolver : public Solver<D> {
   // no time (docs/performance.md, "Memory per particle").
   double neighbour_skin() const override { return 0.1; }
   void set_from_options() override;
-  void setup(Scene<D>& scene) override;
+  void setup(Discretisation<D>& disc) override;
   double stable_dt() const override;
   StepReport step(double dt) override;
   nlohmann::json describe() const override;
@@ -83,15 +83,15 @@ template <int D> class IsphSolver : public Solver<D> {
   nlohmann::json checkpoint_scalars() const override { return {{"pressure_solves", solves_}}; }
   // The last step's mean pressure pm and free-surface flag move with their particle (migration, checkpoints).
   std::vector<CheckpointField> checkpoint_fields() override {
-    mean_pressure_.resize(scene_->particles.n_owned);
-    std::vector<double>& state = free_surface_model_.state(scene_->particles.n_owned);
+    mean_pressure_.resize(disc_->particles.n_owned);
+    std::vector<double>& state = free_surface_model_.state(disc_->particles.n_owned);
     return {{"mean_step_pressure", mean_pressure_.data(), 1}, {"free_surface_state", state.data(), 1}};
   }
   void restore_scalars(const nlohmann::json& j) override { solves_ = j.value("pressure_solves", 0L); }
   // The free-surface flag of the last projection (1: on the surface), in free-surface scenes.
   std::vector<ScalarField> output_fields() override {
-    if (!scene_->physics.free_surface) return {};
-    return {{"free_surface", &free_surface_model_.state(scene_->particles.n_owned)}};
+    if (!disc_->physics.free_surface) return {};
+    return {{"free_surface", &free_surface_model_.state(disc_->particles.n_owned)}};
   }
 
  private:
@@ -114,7 +114,7 @@ template <int D> class IsphSolver : public Solver<D> {
   void shift(double dt);
   double max_speed() const;
 
-  Scene<D>* scene_ = nullptr;
+  Discretisation<D>* disc_ = nullptr;
   PressurePoisson<D> ppe_;
   double cfl_ = 0.2;
   LindShifting shifting_model_;

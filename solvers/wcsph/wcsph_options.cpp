@@ -122,7 +122,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
 }
 
 template <int D> nlohmann::json WcsphSolver<D>::describe() const {
-  const Physics<D>& phys = scene_->physics;
+  const Physics<D>& phys = disc_->physics;
   nlohmann::json models = nlohmann::json::object();
   models["equation_of_state"] = {{"model", "Tait"}, {"c0", eos_.c0}, {"gamma", eos_.gamma}, {"rho0", eos_.rho0}};
   if (c0_ == 0) models["equation_of_state"]["c0_set_by"] = speed_scale_name_;
@@ -148,7 +148,7 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
   if (closed_volume_ && density_ == DensityMethod::Continuity) models["closed_volume"] = true;
   if (prepared_start_) models["start"] = "slow manifold (case's compressive velocity added)";
   // Mean fluid density over rho0, minus 1: the volume drift of a closed scene (the cavity).
-  const Particles<D>& P = scene_->particles;
+  const Particles<D>& P = disc_->particles;
   double sums[2] = {0.0, 0.0};
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (P.kind[i] == kFluid) sums[0] += P.rho[i], sums[1] += 1.0;

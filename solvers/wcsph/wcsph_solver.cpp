@@ -15,11 +15,11 @@
 
 namespace sph {
 
-template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
-  refuse_unmodelled(scene.physics, name(), false, false);
-  scene_ = &scene;
-  Particles<D>& P = scene.particles;
-  eos_.rho0 = scene.physics.rho0;
+template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
+  refuse_unmodelled(disc.physics, name(), false, false);
+  disc_ = &disc;
+  Particles<D>& P = disc.particles;
+  eos_.rho0 = disc.physics.rho0;
   eos_.c0 = c0_ > 0 ? c0_ : c0_factor_ * speed_scale();
   // The Tait EOS cannot give a density for p <= -B: such a start would be NaN from t = 0.
   double p_min = 0.0;
@@ -38,12 +38,12 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
   // O(Mach) times the flow's. Under c0 ~ 1/h that is an O(h) pressure error, which the prepared start
   // removes (docs/verification/taylor_green.md, "WCSPH with particle-scale delta-SPH").
   if (prepared_start_) {
-    if (!scene.physics.slow_manifold_velocity)
+    if (!disc.physics.slow_manifold_velocity)
       throw Error(
           "-prepared_start needs a case that gives its start's slow-manifold velocity (taylor_green "
           "does; this case does not): remove the option");
     for (std::size_t i = 0; i < P.n_owned; ++i)
-      if (P.kind[i] == kFluid) P.v[i] += scene.physics.slow_manifold_velocity(P.x[i], eos_.c0);
+      if (P.kind[i] == kFluid) P.v[i] += disc.physics.slow_manifold_velocity(P.x[i], eos_.c0);
   }
   for (std::size_t i = 0; i < P.n_owned; ++i) {
     // The case's initial pressure sets the density (inverse EOS); particle volumes stay as laid out.
@@ -56,36 +56,36 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
   // Under gravity Molteni's term diffuses the hydrostatic stratification: mass flows down, and still
   // water sank into its floor (t = 19 at 40 particles a unit). Fourtakas et al. (2019) diffuse the
   // density's difference from the hydrostatic one instead.
-  if (!diffusion_chosen_ && diffusion_ == DensityDiffusion::Molteni && scene.physics.has_body_force())
+  if (!diffusion_chosen_ && diffusion_ == DensityDiffusion::Molteni && disc.physics.has_body_force())
     diffusion_ = DensityDiffusion::Fourtakas;
   // Where a wall or a free surface cuts the kernel support, the kernel average of rho is not its
   // resolved part, and rho minus it would not be particle-scale noise.
-  if (diffusion_ == DensityDiffusion::Particle && (walls_ || scene.physics.free_surface))
+  if (diffusion_ == DensityDiffusion::Particle && (walls_ || disc.physics.free_surface))
     throw Error(
         "-density_diffusion particle needs a scene without walls or a free surface (the kernel average that "
         "separates the particle scale is cut there); use -density_diffusion molteni");
   // A closed or periodic box fixes the fluid's volume; a free surface lets the weakly compressible
   // fluid change it (hydrostatic compression), so there the constraint would be wrong.
-  if (closed_volume_option_ > 0 && scene.physics.free_surface)
+  if (closed_volume_option_ > 0 && disc.physics.free_surface)
     throw Error(
         "-closed_volume 1 needs a scene without a free surface (a free surface lets the fluid's volume "
         "change); remove the option");
-  closed_volume_ = closed_volume_option_ < 0 ? !scene.physics.free_surface : closed_volume_option_ > 0;
+  closed_volume_ = closed_volume_option_ < 0 ? !disc.physics.free_surface : closed_volume_option_ > 0;
   // The corrected gradient sees no pressure beyond a free surface, and WCSPH has no surface condition
   // that gives it one (docs/verification/free_surface.md, "What moves WCSPH's lattice").
-  if (gradient_ == WcsphGradient::Corrected && scene.physics.free_surface)
+  if (gradient_ == WcsphGradient::Corrected && disc.physics.free_surface)
     throw Error(
         "-pressure_gradient corrected needs a scene without a free surface (WCSPH imposes the surface's zero "
         "pressure through the symmetric form; with the corrected one still water blows up at once): use "
         "-pressure_gradient auto or symmetric");
   if (gradient_ == WcsphGradient::Auto)
-    gradient_ = scene.physics.free_surface ? WcsphGradient::Symmetric : WcsphGradient::Corrected;
-  scene.neighbourhood.update(P, true);
+    gradient_ = disc.physics.free_surface ? WcsphGradient::Symmetric : WcsphGradient::Corrected;
+  disc.neighbourhood.update(P, true);
   if (density_ == DensityMethod::Summation) {
-    const std::vector<double> rho = density_summation(P, scene.neighbourhood.list(), scene.kernel);
+    const std::vector<double> rho = density_summation(P, disc.neighbourhood.list(), disc.kernel);
     std::copy(rho.begin(), rho.end(), P.rho.begin());
   }
-  scene.neighbourhood.halo().update(P.rho);
+  disc.neighbourhood.halo().update(P.rho);
   update_pressure();
   compute_rates();
 }
@@ -97,14 +97,14 @@ template <int D> void WcsphSolver<D>::setup(Scene<D>& scene) {
 // number). With U alone a Stokes flow driven by a body force is compressed and its drag too low
 // (docs/user-guide.md, "Drag of a periodic array of cylinders").
 template <int D> double WcsphSolver<D>::speed_scale() {
-  const Particles<D>& P = scene_->particles;
-  const Physics<D>& phys = scene_->physics;
+  const Particles<D>& P = disc_->particles;
+  const Physics<D>& phys = disc_->physics;
   Vector<D> lo = Vector<D>::Constant(1e300), hi = Vector<D>::Constant(-1e300);
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (P.kind[i] == kFluid) lo = lo.cwiseMin(P.x[i]), hi = hi.cwiseMax(P.x[i]);
   MPI_Allreduce(MPI_IN_PLACE, lo.data(), D, MPI_DOUBLE, MPI_MIN, PETSC_COMM_WORLD);
   MPI_Allreduce(MPI_IN_PLACE, hi.data(), D, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
-  const Vector<D> extent = (hi - lo).cwiseMax(0.0) + Vector<D>::Constant(scene_->dx);  // particle centres: + dx
+  const Vector<D> extent = (hi - lo).cwiseMax(0.0) + Vector<D>::Constant(disc_->dx);  // particle centres: + dx
   const double g = phys.gravity.norm();
   const double H = g > 0 ? (phys.gravity.cwiseAbs() / g).dot(extent) : 0.0;
   const double speeds[3] = {phys.U, std::sqrt(g * H), std::sqrt(phys.nu * phys.U / extent.minCoeff())};
@@ -115,12 +115,12 @@ template <int D> double WcsphSolver<D>::speed_scale() {
 }
 
 template <int D> void WcsphSolver<D>::update_pressure() {
-  Particles<D>& P = scene_->particles;
+  Particles<D>& P = disc_->particles;
   for (std::size_t i = 0; i < P.size(); ++i) P.p[i] = eos_.pressure(P.rho[i]);  // ghosts too: rho is current there
   if (!walls_) return;
   // Adami et al. (2012): wall pressure extrapolated from the fluid, wall density from the EOS.
-  const Neighbourhood<D>& nh = scene_->neighbourhood;
-  AdamiWall<D>::extrapolate_pressure(AdamiWall<D>::stencil(P, nh.list(), scene_->kernel), P, scene_->physics.gravity);
+  const Neighbourhood<D>& nh = disc_->neighbourhood;
+  AdamiWall<D>::extrapolate_pressure(AdamiWall<D>::stencil(P, nh.list(), disc_->kernel), P, disc_->physics.gravity);
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (P.kind[i] == kWall) P.rho[i] = eos_.density(std::max(P.p[i], -0.9 * eos_.B()));
   nh.halo().update(P.p);
@@ -128,11 +128,11 @@ template <int D> void WcsphSolver<D>::update_pressure() {
 }
 
 template <int D> void WcsphSolver<D>::compute_rates() {
-  Particles<D>& P = scene_->particles;
-  const Neighbourhood<D>& nh = scene_->neighbourhood;
+  Particles<D>& P = disc_->particles;
+  const Neighbourhood<D>& nh = disc_->neighbourhood;
   const NeighbourList<D>& nl = nh.list();
-  const Kernel<D>& K = scene_->kernel;
-  const Physics<D>& phys = scene_->physics;
+  const Kernel<D>& K = disc_->kernel;
+  const Physics<D>& phys = disc_->physics;
   const std::size_t n = P.n_owned;
   const double h = K.h();
 
@@ -155,7 +155,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   std::vector<double> rho_fine;
   if (diffusion_ == DensityDiffusion::Particle && density_ == DensityMethod::Continuity) {
     rho_fine.assign(P.rho.begin(), P.rho.begin() + n);
-    const KernelAverage<double> average = kernel_average_in_fluid(P, scene_->neighbourhood, K, rho_fine, nullptr);
+    const KernelAverage<double> average = kernel_average_in_fluid(P, disc_->neighbourhood, K, rho_fine, nullptr);
     for (std::size_t i = 0; i < n; ++i) rho_fine[i] = P.rho[i] - average.average[i];
     nh.halo().update(rho_fine);
   }
@@ -264,7 +264,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
 // which no flow in the box can have, is taken out as a uniform compression rate, as ISPH spreads a
 // closed domain's net PPE source evenly over its rows.
 template <int D> void WcsphSolver<D>::remove_net_volume_rate() {
-  const Particles<D>& P = scene_->particles;
+  const Particles<D>& P = disc_->particles;
   // Volume rate of the fluid, sum_i dV_i/dt = -sum_i V_i (d rho_i/dt) / rho_i, and its volume.
   double sums[2] = {0.0, 0.0};
   for (std::size_t i = 0; i < P.n_owned; ++i)
@@ -281,9 +281,9 @@ template <int D> void WcsphSolver<D>::remove_net_volume_rate() {
 }
 
 template <int D> double WcsphSolver<D>::stable_dt() const {
-  const Particles<D>& P = scene_->particles;
-  const Physics<D>& phys = scene_->physics;
-  const double h = scene_->kernel.h();
+  const Particles<D>& P = disc_->particles;
+  const Physics<D>& phys = disc_->physics;
+  const double h = disc_->kernel.h();
   double buf[2] = {0.0, 0.0};  // max |u|^2, max c
   for (std::size_t i = 0; i < P.n_owned; ++i) {
     buf[0] = std::max(buf[0], P.v[i].squaredNorm());
@@ -297,8 +297,8 @@ template <int D> double WcsphSolver<D>::stable_dt() const {
 }
 
 template <int D> StepReport WcsphSolver<D>::step(double dt) {
-  Particles<D>& P = scene_->particles;
-  Neighbourhood<D>& nh = scene_->neighbourhood;
+  Particles<D>& P = disc_->particles;
+  Neighbourhood<D>& nh = disc_->neighbourhood;
   const std::size_t n = P.n_owned;
   const bool continuity = density_ == DensityMethod::Continuity;
 
@@ -316,11 +316,11 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
     if (!nh.update(P)) nh.halo().update(P.rho);
     // At a free surface particles shift only along it (Lind et al. 2012), beside it never outwards.
     ShiftBoundary<D> boundary;
-    if (scene_->physics.free_surface)
+    if (disc_->physics.free_surface)
       boundary =
-          free_surface_.shift_boundary(P, nh, scene_->kernel, free_surface_.detect(P, nh.list(), scene_->kernel, true));
-    shift_particles(P, nh, scene_->kernel, shifting_model_, scene_->dx, largest_speed(P), dt, {&P.rho},
-                    scene_->physics.free_surface ? &boundary : nullptr);
+          free_surface_.shift_boundary(P, nh, disc_->kernel, free_surface_.detect(P, nh.list(), disc_->kernel, true));
+    shift_particles(P, nh, disc_->kernel, shifting_model_, disc_->dx, largest_speed(P), dt, {&P.rho},
+                    disc_->physics.free_surface ? &boundary : nullptr);
   }
   const LogEventScope log_density(LogEvent::Density);
   nh.halo().update(P.rho);

@@ -31,23 +31,23 @@ template <int D> class WcsphSolver : public Solver<D> {
   // Measured (docs/performance.md, "Memory per particle").
   double bytes_per_particle() const override { return D == 3 ? 1.6e3 : 0.56e3; }
   void set_from_options() override;
-  void setup(Scene<D>& scene) override;
+  void setup(Discretisation<D>& disc) override;
   double stable_dt() const override;
   StepReport step(double dt) override;
   nlohmann::json describe() const override;
   // The leapfrog carries the last accelerations and density rates into the next step.
   // The free-surface flags of the last step move with their particles (their hysteresis).
   std::vector<CheckpointField> checkpoint_fields() override {
-    acc_.resize(scene_->particles.n_owned), drho_.resize(scene_->particles.n_owned);
-    std::vector<double>& surface = free_surface_.state(scene_->particles.n_owned);
+    acc_.resize(disc_->particles.n_owned), drho_.resize(disc_->particles.n_owned);
+    std::vector<double>& surface = free_surface_.state(disc_->particles.n_owned);
     return {{"acceleration", acc_.empty() ? nullptr : acc_[0].data(), D},
             {"density_rate", drho_.data(), 1},
             {"free_surface_state", surface.data(), 1}};
   }
   // The free-surface flag of the last step (1: on the surface), in free-surface scenes.
   std::vector<ScalarField> output_fields() override {
-    if (!scene_->physics.free_surface) return {};
-    return {{"free_surface", &free_surface_.state(scene_->particles.n_owned)}};
+    if (!disc_->physics.free_surface) return {};
+    return {{"free_surface", &free_surface_.state(disc_->particles.n_owned)}};
   }
 
  private:
@@ -59,7 +59,7 @@ template <int D> class WcsphSolver : public Solver<D> {
   // Removes the fluid's net volume rate from the density rates (closed or periodic scenes).
   void remove_net_volume_rate();
 
-  Scene<D>* scene_ = nullptr;
+  Discretisation<D>* disc_ = nullptr;
   wcsph::TaitEos eos_;
   wcsph::MonaghanAV av_;
   PetscReal c0_factor_ = 10.0;  // c0 = factor * U_ref unless -c0 is given

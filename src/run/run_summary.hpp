@@ -14,7 +14,7 @@
 
 namespace sph {
 
-template <int D> void add_final_state(nlohmann::json& summary, const Solver<D>& solver, const Case<D>& scene_case,
+template <int D> void add_final_state(nlohmann::json& summary, const Solver<D>& solver, const Case<D>& run_case,
                                       const Particles<D>& P, double t, const StepStats& stats,
                                       const Totals<D>& initial) {
   nlohmann::json solver_info = solver.describe();
@@ -37,10 +37,10 @@ template <int D> void add_final_state(nlohmann::json& summary, const Solver<D>& 
     else summary["solver_parameters"][it.key()] = it.value();
   }
   summary["errors"] = nlohmann::json::object();
-  for (const auto& [name, value] : scene_case.errors(P, t)) {
+  for (const auto& [name, value] : run_case.errors(P, t)) {
     summary["errors"][name] = value;  // NaN becomes null: a metric that could not be measured
     if (std::isfinite(value)) continue;
-    const std::string why = scene_case.unmeasured_reason(name);
+    const std::string why = run_case.unmeasured_reason(name);
     summary["errors_unmeasured"][name] = why.empty() ? "not a finite number at the end of the run" : why;
   }
 }

@@ -1,6 +1,6 @@
 #pragma once
 // The interface every scheme implements (one folder per scheme under solvers/). A solver reads its
-// options, takes the scene once, then advances it by one time step at a time.
+// options, takes the discretisation once, then advances it by one time step at a time.
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -20,8 +20,10 @@ struct StepReport {
   double linear_residual = 0.0;
 };
 
-// The scene a solver works on; owned by the driver, outliving the solver's steps.
-template <int D> struct Scene {
+// The discretised problem a solver works on: the particles, their neighbourhood, the kernel, the
+// physics and the spacing. Owned by the time loop (RunState), outliving the solver's steps. (A
+// "scene" is a particle file or a YAML scene read by -case scene; a "case" is any problem definition.)
+template <int D> struct Discretisation {
   Particles<D>& particles;
   Neighbourhood<D>& neighbourhood;
   const Kernel<D>& kernel;
@@ -49,12 +51,12 @@ template <int D> class Solver {
   // Options PETSc reads for this solver only during its steps (a linear solve's viewers, sub-solver
   // options), named without the dash: checked after the first step rather than at start-up.
   virtual bool reads_late(const std::string&) const { return false; }
-  virtual void setup(Scene<D>& scene) = 0;
+  virtual void setup(Discretisation<D>& disc) = 0;
   // Largest time step the scheme's stability limits allow for the current state.
   virtual double stable_dt() const = 0;
   virtual StepReport step(double dt) = 0;
   // Peak memory of a run per particle, measured (docs/performance.md, "Memory per particle"): the
-  // memory check refuses a scene that cannot fit before it is allocated (src/run/memory_budget.hpp).
+  // memory check refuses a run that cannot fit before it is allocated (src/run/memory_budget.hpp).
   virtual double bytes_per_particle() const = 0;
   // Default Verlet skin (-neighbour_skin) as a fraction of the support: a wider one rebuilds the lists
   // less often and holds more pairs (docs/performance.md, "Memory per particle").

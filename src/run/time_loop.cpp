@@ -38,23 +38,23 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // The particles of a run, spread along the space-filling curve, and what the solver sees of them.
-template <int D> struct RunScene {
+template <int D> struct RunState {
   Particles<D> P;
   Domain<D> domain;
   double imbalance;  // of the last partition
   Kernel<D> kernel;
   Neighbourhood<D> nh;
-  Scene<D> scene;
+  Discretisation<D> disc;
 
-  RunScene(Case<D>& scene_case, const KernelChoice& choice, double skin)
-      : imbalance(create(scene_case)),
-        kernel(choice.template make<D>(scene_case.spacing())),
+  RunState(Case<D>& run_case, const KernelChoice& choice, double skin)
+      : imbalance(create(run_case)),
+        kernel(choice.template make<D>(run_case.spacing())),
         nh(domain, kernel.support_radius(), skin * kernel.support_radius()),
-        scene{P, nh, kernel, scene_case.physics(), scene_case.spacing()} {}
+        disc{P, nh, kernel, run_case.physics(), run_case.spacing()} {}
 
  private:
-  double create(Case<D>& scene_case) {
-    scene_case.create(P, domain);
+  double create(Case<D>& run_case) {
+    run_case.create(P, domain);
     assign_global_indices(P);
     return partition_along_curve(P, domain);
   }
@@ -97,7 +97,7 @@ template <int D> class TimeLoop {
   const nlohmann::json resumed_run_;
   const nlohmann::json numerics_changed_;  // by this restart: -cfl, -dt, -ksp_*, ...
   const MemoryBudgetScope memory_;         // checked as the scene is created, before the solver allocates
-  RunScene<D> s_;
+  RunState<D> s_;
   long partitions_ = 1;
   CheckpointState<D> resumed_;
   const std::string checkpoint_path_;
@@ -131,21 +131,21 @@ template <int D> class TimeLoop {
 template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
     : run_(run),
       opt_(run.control),
-      case_(run.scene_case),
+      case_(run.run_case),
       solver_(run.solver),
-      identity_(run_identity(run.case_name, run.solver_name, D, run.scene_case.parameters())),
+      identity_(run_identity(run.case_name, run.solver_name, D, run.run_case.parameters())),
       resumed_run_(resumed_run_header()),
       numerics_changed_(checked_restart()),
       memory_(run.solver.bytes_per_particle(), run.solver_name),
-      s_(run.scene_case, run.kernel, run.control.skin >= 0 ? run.control.skin : run.solver.neighbour_skin()),
+      s_(run.run_case, run.kernel, run.control.skin >= 0 ? run.control.skin : run.solver.neighbour_skin()),
       checkpoint_path_(run.output_dir + "/checkpoint.bin"),
       steady_(run.control.steady_tol),
-      check_neighbours_(s_.scene.physics.free_surface) {
+      check_neighbours_(s_.disc.physics.free_surface) {
   memory_.check_scene(s_.P.n_owned);
   const double wall = case_.wall_thickness(), support = s_.kernel.support_radius();
   if (wall > 0 && wall < support * (1 - 1e-12))
     throw Error(case_.thin_walls(wall / case_.spacing(), support / case_.spacing()));
-  solver_.setup(s_.scene);
+  solver_.setup(s_.disc);
   if (opt_.restarting()) resume();
   check_initial_state(s_.P, resumed_.t);
   if (opt_.dt > 0 && !opt_.dt_force && opt_.dt > solver_.stable_dt())
@@ -239,7 +239,7 @@ template <int D> void TimeLoop<D>::open_outputs() {
   for (const auto& e : case_.errors(s_.P, 0.0)) columns.push_back(e.first);
   // Free-surface and wall health: the share of fluid particles on the surface (the scheme's flags) and
   // the fluid particles inside a wall (diagnostics.hpp).
-  surface_column_ = s_.scene.physics.free_surface && has_output_field(solver_.output_fields(), "free_surface");
+  surface_column_ = s_.disc.physics.free_surface && has_output_field(solver_.output_fields(), "free_surface");
   walls_column_ = has_walls(s_.P);
   if (surface_column_) columns.push_back("free_surface_share");
   if (walls_column_) columns.push_back("fluid_in_walls");
@@ -259,7 +259,7 @@ template <int D> void TimeLoop<D>::describe_run() {
       {"type", s_.kernel.name()}, {"h", s_.kernel.h()}, {"h_over_dx", run_.kernel.template resolved_h_over_dx<D>()}};
   j["t_end"] = opt_.t_end;
   j["parameters"] = case_.parameters();
-  j["physics"] = s_.scene.physics.describe();
+  j["physics"] = s_.disc.physics.describe();
   PetscMPIInt ranks;
   MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
   ranks_ = ranks;
@@ -284,7 +284,7 @@ template <int D> void TimeLoop<D>::set_start_state() {
   checkpoints_.emplace(opt_.checkpoint_interval < 0 ? frame_interval : opt_.checkpoint_interval, t_);
   if (!opt_.restarting()) writer_->write(s_.P, t_, frame_fields());
   last_frame_t_ = t_;
-  const double U = s_.scene.physics.U;
+  const double U = s_.disc.physics.U;
   ke_bound_ = kBlowUpKineticEnergy * 0.5 * fluid_mass(s_.P) * U * U;
   check_neighbours_(s_.P, s_.nh.list(), s_.nh.support_radius());  // the reference counts
   loop_start_ = Clock::now();

@@ -1,5 +1,5 @@
 #pragma once
-// The time loop of one run: builds the scene from the case, hands it to the solver, resumes from a
+// The time loop of one run: builds the particles from the case, hands them to the solver, resumes from a
 // checkpoint, advances to t_end (or to steady state, or -max_steps) and writes every output: VTK frames,
 // timeseries.csv, checkpoints and summary.json. Health checks stop a run that blows up; a failed run
 // writes its summary and keeps its last good frame and checkpoint.
@@ -15,7 +15,7 @@ namespace sph {
 
 // What a run is made of; the case and the solver have read their options.
 template <int D> struct RunParts {
-  Case<D>& scene_case;
+  Case<D>& run_case;
   Solver<D>& solver;
   std::string case_name, solver_name;  // as chosen: the checkpoint's identity and summary.json
   RunControl control;
