@@ -19,10 +19,10 @@ namespace sph {
 namespace {
 
 std::uint64_t fnv1a_file(std::ifstream& in) {
-  std::uint64_t h = 1469598103934665603ull;
+  std::uint64_t h = kFnv1aBasis;
   char buf[1 << 16];
   while (in.read(buf, sizeof buf) || in.gcount() > 0) {
-    for (std::streamsize k = 0; k < in.gcount(); ++k) h = (h ^ static_cast<unsigned char>(buf[k])) * 1099511628211ull;
+    h = fnv1a(h, buf, static_cast<std::size_t>(in.gcount()));
     if (!in) break;
   }
   return h;

@@ -7,6 +7,7 @@
 //                 free_surface, t_end), each an array of numbers; see cases/scene/scene.hpp
 // The points are 3D in VTK; the scene is 2D when all z coordinates are equal.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -28,6 +29,14 @@ struct SceneFile {
   // "scene file 'PATH': " + what, for one-line errors.
   std::string error(const std::string& what) const;
 };
+
+// 64-bit FNV-1a: h continued over n bytes (start from kFnv1aBasis). The scenes' identity (checksum).
+constexpr std::uint64_t kFnv1aBasis = 1469598103934665603ull;
+inline std::uint64_t fnv1a(std::uint64_t h, const void* data, std::size_t n) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  for (std::size_t k = 0; k < n; ++k) h = (h ^ bytes[k]) * 1099511628211ull;
+  return h;
+}
 
 // Reads and checks the file: readable VTK XML PolyData with points, a `kind` array of 0/1/2, finite
 // coordinates, velocities and pressures, at least one fluid particle. Throws sph::Error otherwise.

@@ -28,12 +28,6 @@ std::string number_text(double v) {
   return s.str();
 }
 
-std::uint64_t fnv1a(std::uint64_t h, const void* data, std::size_t n) {
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  for (std::size_t k = 0; k < n; ++k) h = (h ^ bytes[k]) * 1099511628211ull;
-  return h;
-}
-
 enum class Role { Fluid, Wall, Body };
 
 struct Region {
@@ -260,7 +254,7 @@ class Reader {
     return r;
   }
 
-  std::uint64_t checksum = 1469598103934665603ull;
+  std::uint64_t checksum = kFnv1aBasis;
   int dim = 2;
 
  private:
