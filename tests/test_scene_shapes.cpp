@@ -8,6 +8,7 @@
 #include <vtkPolyData.h>
 #include <vtkSTLWriter.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -228,6 +229,37 @@ TEST(SceneShapes, BodiesAreFixedWallsThatKeepTheirNames) {
   EXPECT_EQ(s.file.checksum, sample("bodies", text, 0.05).file.checksum);
 }
 
+// The flat form (physics keys at the top, role: body with name:, shapes inline with their parameters
+// beside them) samples the same particles as the nested one.
+TEST(SceneShapes, InlineShapesAndTopLevelPhysicsMatchTheNestedForm) {
+  const std::string flat =
+      "dimension: 2\nbox: [-0.2, 2.2, -0.2, 1.6]\ngravity: [0, -1]\nnu: 0.01\nrho0: 1\nfree_surface: true\n"
+      "regions:\n"
+      "  - {role: wall, shape: difference, of: [{box: [-0.2, 2.2, -0.2, 1.4]}, {box: [0, 2, 0, 1.5]}]}\n"
+      "  - {role: fluid, shape: difference, of: [{box: [0, 2, 0, 1]}, {circle: {centre: [1, 0.5], radius: 0.2}}], "
+      "pressure: hydrostatic}\n"
+      "  - {role: body, name: c, shape: circle, centre: [1, 0.5], radius: 0.2}\n"
+      "  - {role: wall, shape: box, bounds: [1.8, 1.9, 0.1, 0.2]}\n";
+  const std::string nested =
+      "dimension: 2\nbox: [-0.2, 2.2, -0.2, 1.6]\n"
+      "physics: {gravity: [0, -1], nu: 0.01, rho0: 1, free_surface: true}\nregions:\n"
+      "  - {role: wall, shape: {difference: [{box: [-0.2, 2.2, -0.2, 1.4]}, {box: [0, 2, 0, 1.5]}]}}\n"
+      "  - {role: fluid, shape: {difference: [{box: [0, 2, 0, 1]}, {circle: {centre: [1, 0.5], radius: 0.2}}]}, "
+      "pressure: hydrostatic}\n"
+      "  - {role: {body: c}, shape: {circle: {centre: [1, 0.5], radius: 0.2}}}\n"
+      "  - {role: wall, shape: {box: [1.8, 1.9, 0.1, 0.2]}}\n";
+  const sph::YamlScene a = sample("flat", flat, 0.05), b = sample("nested", nested, 0.05);
+  EXPECT_EQ(a.file.x, b.file.x);
+  EXPECT_EQ(a.file.kind, b.file.kind);
+  EXPECT_EQ(a.file.p, b.file.p);
+  EXPECT_EQ(a.body, b.body);
+  EXPECT_EQ(a.bodies, std::vector<std::string>{"c"});
+  EXPECT_EQ(a.file.field.at("gravity"), b.file.field.at("gravity"));
+  EXPECT_EQ(a.file.field.at("nu"), b.file.field.at("nu"));
+  EXPECT_EQ(a.file.field.at("free_surface"), b.file.field.at("free_surface"));
+  EXPECT_GT(std::count(a.body.begin(), a.body.end(), 0), 0);
+}
+
 TEST(SceneShapes, RefusalsNameTheFileTheKeyAndTheFix) {
   struct Case {
     const char* name;
@@ -266,6 +298,16 @@ TEST(SceneShapes, RefusalsNameTheFileTheKeyAndTheFix) {
        "regions: reach to infinity along x (a half_space); give a box"},
       {"periodic", "dimension: 2\nbox: [0, 1.05, 0, 1]\nperiodic: [x]\nregions:\n" + ok_region,
        "box: is 1.05 long along periodic x, not a whole number of dx = 0.1"},
+      {"body_name", "dimension: 2\nregions:\n" + ok_region + "  - {role: body, shape: {box: [0, 1, -1, 0]}}\n",
+       "regions[1]: is a body without a name; add name: NAME"},
+      {"walls_body", "dimension: 2\nregions:\n" + ok_region + "  - {role: {body: walls}, shape: {box: [0, 1, -1, 0]}}\n",
+       "names a body 'walls', the name of the walls' own force columns; rename it"},
+      {"inline_missing", "dimension: 2\nregions:\n  - {role: fluid, shape: difference}\n",
+       "regions[0]: has shape: difference but no of; add of: ... beside it"},
+      {"inline_mixed", "dimension: 2\nregions:\n  - {role: fluid, shape: {box: [0, 1, 0, 1]}, radius: 1}\n",
+       "regions[0]: gives radius beside a nested shape; write shape: NAME for the inline form"},
+      {"physics_twice", "dimension: 2\nnu: 1\nphysics: {nu: 2}\nregions:\n" + ok_region,
+       "line 2, nu: is given at the top and under physics; keep one"},
   };
   for (const Case& c : cases) {
     const std::string path = folder() + "/" + c.name + ".yaml";

@@ -50,6 +50,8 @@ template <int D> class SceneCase : public Case<D> {
   double wall_thickness() const override { return walls_; }
   std::string thin_walls(double thickness_dx, double support_dx) const override;
   nlohmann::json parameters() const override;
+  std::vector<std::string> body_names() const override { return bodies_; }
+  std::vector<int> body_of_particles() const override { return body_; }
 
  private:
   void read_file();           // the .vtp file, or the YAML file sampled at -nx, -scene_dx or its dx
@@ -60,7 +62,7 @@ template <int D> class SceneCase : public Case<D> {
   SceneFile file_;
   bool yaml_ = false;
   std::vector<int> body_;            // YAML scenes: per particle, index into bodies_ (-1: none)
-  std::vector<std::string> bodies_;  // YAML scenes: the names of the bodies (fixed walls for now)
+  std::vector<std::string> bodies_;  // YAML scenes: the names of the bodies (fixed walls)
   Domain<D> box_;
   Physics<D> physics_;
   double dx_ = 0.0, t_end_ = 1.0, walls_ = 0.0;

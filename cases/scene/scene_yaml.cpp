@@ -9,6 +9,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <limits>
+#include <set>
 #include <sstream>
 
 #include "cases/scene/shapes.hpp"
@@ -29,6 +30,10 @@ std::string number_text(double v) {
 }
 
 enum class Role { Fluid, Wall, Body };
+
+// A region's keys that hold an inline shape's parameters (Reader::inline_shape).
+const std::set<std::string> kInlineParameters = {"of",     "bounds", "vertices", "file",  "centre",
+                                                 "center", "radius", "ends",     "point", "normal"};
 
 struct Region {
   Role role = Role::Fluid;
@@ -71,7 +76,8 @@ class Reader {
       throw Error("scene file '" + path_ +
                   "': holds no YAML mapping; write keys such as dimension: 2 and regions: "
                   "(docs/user-guide.md, YAML scenes)");
-    only_keys(root, "", {"dimension", "dx", "box", "periodic", "physics", "regions"});
+    only_keys(root, "", {"dimension", "dx", "box", "periodic", "physics", "regions", "gravity", "nu", "rho0", "U",
+                         "free_surface", "t_end"});
     const YAML::Node d = root["dimension"];
     if (!d.IsDefined()) fail(YAML::Node(), "", "has no key 'dimension'; add dimension: 2 or dimension: 3");
     const double value = number(d, "dimension");
@@ -217,24 +223,64 @@ class Reader {
   }
 
   // g: the scene's gravity, for a hydrostatic start.
+  // A shape written inline, `shape: NAME` with its parameters beside it in the region (`shape: circle,
+  // centre: [..], radius: R`; `shape: difference, of: [..]`; box: bounds, polygon: vertices, mesh: file),
+  // as the nested form {NAME: value}.
+  YAML::Node inline_shape(const YAML::Node& n, const std::string& key) const {
+    const std::string kind = n["shape"].Scalar();
+    YAML::Node nested;
+    if (kind == "circle" || kind == "sphere" || kind == "cylinder" || kind == "half_space") {
+      YAML::Node params(YAML::NodeType::Map);
+      for (const auto& item : n)
+        if (kInlineParameters.count(item.first.Scalar())) params[item.first.Scalar()] = item.second;
+      nested[kind] = params;
+      return nested;
+    }
+    const char* value = kind == "box" ? "bounds" : kind == "polygon" ? "vertices" : kind == "mesh" ? "file" : "of";
+    if (!n[value].IsDefined())
+      fail(n, key, "has shape: " + kind + " but no " + value + "; add " + value + ": ... beside it");
+    nested[kind] = n[value];
+    return nested;
+  }
+
   Region region(const YAML::Node& n, const std::string& key, std::vector<std::string>& bodies, const Point3& g) {
-    only_keys(n, key, {"role", "shape", "velocity", "pressure"});
+    only_keys(n, key,
+              {"role", "shape", "velocity", "pressure", "name", "of", "bounds", "vertices", "file", "centre", "center",
+               "radius", "ends", "point", "normal"});
     Region r;
     const YAML::Node role = n["role"];
-    if (!role.IsDefined()) fail(n, key, "has no role; add role: fluid, role: wall or role: {body: NAME}");
+    if (!role.IsDefined()) fail(n, key, "has no role; add role: fluid, role: wall or role: body with name: NAME");
+    std::string body;
     if (role.IsScalar() && role.Scalar() == "fluid") r.role = Role::Fluid;
     else if (role.IsScalar() && role.Scalar() == "wall") r.role = Role::Wall;
-    else if (role.IsMap() && role.size() == 1 && role["body"].IsDefined() && role["body"].IsScalar() &&
-             !role["body"].Scalar().empty()) {
-      r.role = Role::Body;
-      const std::string name = role["body"].Scalar();
-      r.body = static_cast<int>(std::find(bodies.begin(), bodies.end(), name) - bodies.begin());
-      if (r.body == static_cast<int>(bodies.size())) bodies.push_back(name);
+    else if (role.IsScalar() && role.Scalar() == "body") {
+      if (!n["name"].IsDefined() || !n["name"].IsScalar() || n["name"].Scalar().empty())
+        fail(n, key, "is a body without a name; add name: NAME");
+      body = n["name"].Scalar();
+    } else if (role.IsMap() && role.size() == 1 && role["body"].IsDefined() && role["body"].IsScalar() &&
+               !role["body"].Scalar().empty()) {
+      body = role["body"].Scalar();
     } else {
-      fail(role, key + ".role", "is not fluid, wall or {body: NAME}; give one of those");
+      fail(role, key + ".role", "is not fluid, wall or body; give one of those");
     }
-    if (!n["shape"].IsDefined()) fail(n, key, "has no shape; add shape: {box: [...]} or another shape");
-    r.shape = shape(n["shape"], key + ".shape");
+    if (!body.empty()) {
+      r.role = Role::Body;
+      if (body.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") != std::string::npos)
+        fail(n, key, "names body '" + body + "'; a body's name takes letters, digits and _ (it names timeseries columns)");
+      if (body == "walls") fail(n, key, "names a body 'walls', the name of the walls' own force columns; rename it");
+      r.body = static_cast<int>(std::find(bodies.begin(), bodies.end(), body) - bodies.begin());
+      if (r.body == static_cast<int>(bodies.size())) bodies.push_back(body);
+    } else if (n["name"].IsDefined()) {
+      fail(n["name"], key + ".name", "names a region that is no body; only role: body takes a name");
+    }
+    const YAML::Node s = n["shape"];
+    if (!s.IsDefined()) fail(n, key, "has no shape; add shape: {box: [...]} or another shape");
+    const bool inline_form = s.IsScalar();
+    for (const auto& item : n)
+      if (kInlineParameters.count(item.first.Scalar()) && !inline_form)
+        fail(item.first, key,
+             "gives " + item.first.Scalar() + " beside a nested shape; write shape: NAME for the inline form");
+    r.shape = shape(inline_form ? inline_shape(n, key) : s, key + ".shape");
     for (const char* value : {"velocity", "pressure"})
       if (r.role != Role::Fluid && n[value].IsDefined())
         fail(n[value], key + "." + value,
@@ -282,10 +328,11 @@ std::vector<double> periodic_axes(const Reader& r, const YAML::Node& n) {
   return flags;
 }
 
-void read_physics(Reader& r, const YAML::Node& n, SceneFile& s) {
+// prefix: where the keys stand, "physics." or "" (at the top), for the messages.
+void read_physics(Reader& r, const YAML::Node& n, SceneFile& s, const std::string& prefix) {
   r.only_keys(n, "physics", {"gravity", "nu", "rho0", "U", "free_surface", "t_end"});
   if (n["gravity"].IsDefined())
-    s.field["gravity"] = r.numbers(n["gravity"], "physics.gravity", r.dim, r.dim == 2 ? "[gx, gy]" : "[gx, gy, gz]");
+    s.field["gravity"] = r.numbers(n["gravity"], prefix + "gravity", r.dim, r.dim == 2 ? "[gx, gy]" : "[gx, gy, gz]");
   // Checked here, where the file can be named; the options that override them are checked by the case.
   struct Limit {
     const char* name;
@@ -293,17 +340,17 @@ void read_physics(Reader& r, const YAML::Node& n, SceneFile& s) {
   };
   for (const Limit l : {Limit{"nu", true}, Limit{"rho0", false}, Limit{"U", false}, Limit{"t_end", false}}) {
     if (!n[l.name].IsDefined()) continue;
-    const double v = r.number(n[l.name], std::string("physics.") + l.name);
+    const double v = r.number(n[l.name], prefix + l.name);
     if (v < 0 || (v == 0 && !l.zero_allowed))
-      r.fail(n[l.name], std::string("physics.") + l.name,
+      r.fail(n[l.name], prefix + l.name,
              "is " + number_text(v) + "; give a " + (l.zero_allowed ? "non-negative" : "positive") + " number");
     s.field[l.name] = {v};
   }
   if (const YAML::Node f = n["free_surface"]; f.IsDefined()) {
     bool on = false;
     if (!f.IsScalar() || !YAML::convert<bool>::decode(f, on)) {
-      const double v = r.number(f, "physics.free_surface");
-      if (v != 0 && v != 1) r.fail(f, "physics.free_surface", "is " + number_text(v) + "; give true or false");
+      const double v = r.number(f, prefix + "free_surface");
+      if (v != 0 && v != 1) r.fail(f, prefix + "free_surface", "is " + number_text(v) + "; give true or false");
       on = v == 1;
     }
     s.field["free_surface"] = {on ? 1.0 : 0.0};
@@ -369,7 +416,16 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
                  "; choose -nx (or dx) so that the length holds whole spacings");
   }
   s.field["periodic"] = periodic;
-  if (root["physics"].IsDefined()) read_physics(r, root["physics"], s);
+  if (root["physics"].IsDefined()) read_physics(r, root["physics"], s, "physics.");
+  // The physics keys may also stand at the top (gravity: [0, -1]), but not in both places.
+  YAML::Node top(YAML::NodeType::Map);
+  for (const char* k : {"gravity", "nu", "rho0", "U", "free_surface", "t_end"})
+    if (root[k].IsDefined()) {
+      if (root["physics"].IsDefined() && root["physics"][k].IsDefined())
+        r.fail(root[k], k, std::string("is given at the top and under physics; keep one"));
+      top[k] = root[k];
+    }
+  if (top.size() > 0) read_physics(r, top, s, "");
   const double rho0 = s.field.count("rho0") ? s.field["rho0"][0] : 1.0;
   Point3 g = Point3::Zero();
   if (s.field.count("gravity"))
@@ -424,7 +480,10 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
         if (!holder)
           for (const Region& f : fluids)
             if (f.shape->distance(x) <= on) in_fluid = &f;
-        if (!(holder && solid > deep) && !in_fluid) continue;
+        // A body is kept whole: it is a solid with a mass, and a hollow shell's inner face would read
+        // as a wall thinner than the support where the shell curves (scene_geometry.hpp's measure).
+        const bool kept_solid = holder && (solid > deep || holder->role == Role::Body);
+        if (!kept_solid && !in_fluid) continue;
         const std::array<double, 3> xa = {x[0], x[1], x[2]};
         s.x.push_back(xa);
         if (holder) {

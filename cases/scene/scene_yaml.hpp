@@ -19,15 +19,19 @@
 // radius}; half_space {point, normal}, solid where (x - point) . normal <= 0; union / intersection
 // [shapes]; difference [A, B, ...], A minus the others; mesh FILE, a closed .stl, .obj or .vtp surface
 // (3D; the path relative to the YAML file).
-// Roles: fluid (kind 0); wall (fixed wall, kind 1); {body: NAME}, a fixed wall whose particles keep
-// the body's name (YamlScene::body) for later work on moving bodies.
+// The flat form says the same: the physics keys at the top (gravity: [0, -1], nu: 0.01), a shape
+// inline with its parameters beside it (shape: circle, centre: [1, 0.5], radius: 0.2; shape:
+// difference, of: [...]; box: bounds, polygon: vertices, mesh: file), role: body with name: NAME.
+// Roles: fluid (kind 0); wall (fixed wall, kind 1); {body: NAME} (or role: body, name: NAME), a fixed
+// wall whose particles keep the body's name (YamlScene::body): timeseries.csv reports its force.
 // Region values (fluid only): velocity (default zero); pressure, a number (default 0) or hydrostatic:
 // rho0 |g| times the depth below the region's highest point along -g.
 //
 // Sampling: lattice points (i + 1/2) dx within the box (and within the regions' bounds), so a box from
 // 0 to 1 holds 1/dx points per side. A point inside a wall or body is a wall particle when it lies
-// within wall_layers dx of the solids' surface (thick solids do not fill up; a solid may run past the
-// box, which cuts it); a point in no solid and inside a fluid region is fluid; other points are dropped.
+// within wall_layers dx of the solids' surface (thick walls do not fill up; a solid may run past the
+// box, which cuts it), and anywhere inside a body (bodies are whole); a point in no solid and inside a
+// fluid region is fluid; other points are dropped.
 #include <string>
 #include <vector>
 
