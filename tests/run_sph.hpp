@@ -5,7 +5,9 @@
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "src/io/checkpoint.hpp"
 
@@ -41,6 +43,24 @@ inline std::string checkpoint_state(const std::string& path) {
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const auto header = nlohmann::json::parse(bytes.substr(data, bytes.size() - data - 24));
   return bytes.substr(0, data) + header["t"].dump() + header["step"].dump() + header["scalars"].dump();
+}
+
+// One column of a run's timeseries.csv, by its header name (empty when the file or column is missing).
+inline std::vector<double> timeseries_column(const RunResult& r, const std::string& name) {
+  std::ifstream in(r.output_dir + "/timeseries.csv");
+  std::string line, cell;
+  std::getline(in, line);
+  std::stringstream header(line);
+  int column = -1;
+  for (int k = 0; std::getline(header, cell, ','); ++k)
+    if (cell == name) column = k;
+  std::vector<double> values;
+  while (column >= 0 && std::getline(in, line)) {
+    std::stringstream row(line);
+    for (int k = 0; k <= column && std::getline(row, cell, ','); ++k)
+      if (k == column) values.push_back(std::atof(cell.c_str()));
+  }
+  return values;
 }
 
 }  // namespace sph::testing

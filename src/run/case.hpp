@@ -5,6 +5,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "src/core/domain.hpp"
 #include "src/core/physics.hpp"
@@ -34,6 +35,12 @@ template <int D> class Case {
   // Why the error norm `name` of the last errors() call is NaN (it could not be measured), for
   // summary.json; empty when the case gives no reason.
   virtual std::string unmeasured_reason(const std::string& name) const { return ""; }
+
+  // Named bodies: fixed walls whose force and moment timeseries.csv reports (src/run/wall_groups.hpp).
+  // body_of_particles() gives, by particle id (the order create() makes the particles in, over all
+  // ranks), the body's index in body_names(), or -1; empty when no particle is in a body.
+  virtual std::vector<std::string> body_names() const { return {}; }
+  virtual std::vector<int> body_of_particles() const { return {}; }
 
   // Thickness of the wall-particle layers (0 without walls): the kernel support must fit in it.
   virtual double wall_thickness() const { return 0.0; }

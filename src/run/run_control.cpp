@@ -29,6 +29,10 @@ PetscErrorCode read_options(RunControl* o) {
                                "Extra point arrays in the VTK frames: vorticity (the solver's own fields, e.g. ISPH's "
                                "free_surface, are always written)",
                                "", o->output_fields, o->output_fields, sizeof(o->output_fields), nullptr));
+  PetscCall(PetscOptionsBool("-wall_forces",
+                             "Write the force and moment on every body and on the walls to timeseries.csv each step "
+                             "(force_<body>_x, ..., moment_<body>; pressure and viscous parts)",
+                             "", o->wall_forces, &o->wall_forces, nullptr));
   PetscCall(PetscOptionsBool("-overwrite",
                              "Replace the run already in -output_dir (its frames, tables, summary, checkpoint)", "",
                              o->overwrite, &o->overwrite, nullptr));

@@ -30,7 +30,8 @@ template <int D> void add_final_state(nlohmann::json& summary, const Solver<D>& 
   // cavity) has no initial scale to measure against.
   const Totals<D> now = totals(P);
   summary["conservation"] = {{"momentum_drift", (now.momentum - initial.momentum).norm() /
-                                                    std::max({initial.momentum_scale, now.momentum_scale, 1e-300})}};
+                                                    std::max({initial.momentum_scale, now.momentum_scale, 1e-300})},
+                             {"fluid_mass", fluid_mass(P)}};
   for (auto it = solver_info.begin(); it != solver_info.end(); ++it) {
     if (it.key() == "models" || it.key() == "ksp") continue;
     if (it.key() == "conservation") summary["conservation"].update(it.value());

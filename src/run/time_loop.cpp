@@ -26,6 +26,7 @@
 #include "src/run/run_statistics.hpp"
 #include "src/run/run_summary.hpp"
 #include "src/run/schedule.hpp"
+#include "src/run/wall_groups.hpp"
 #include "src/sph/vorticity.hpp"
 
 namespace sph {
@@ -106,6 +107,7 @@ template <int D> class TimeLoop {
   OutputDirLock dir_lock_;  // held to the end of the run
   std::optional<ParticleWriter<D>> writer_;
   std::optional<CsvWriter> series_;
+  std::optional<WallGroups<D>> wall_groups_;  // timeseries.csv's force columns
   std::vector<std::vector<double>> vorticity_;
   nlohmann::json summary_;
   int ranks_ = 1;
@@ -243,6 +245,11 @@ template <int D> void TimeLoop<D>::open_outputs() {
   walls_column_ = has_walls(s_.P);
   if (surface_column_) columns.push_back("free_surface_share");
   if (walls_column_) columns.push_back("fluid_in_walls");
+  if (walls_column_ && opt_.wall_forces) {
+    wall_groups_.emplace(case_, s_.P);
+    const std::vector<std::string> forces = wall_groups_->columns();
+    columns.insert(columns.end(), forces.begin(), forces.end());
+  }
   if (restarting) series_.emplace(dir + "/timeseries.csv", columns, 1, resumed_.t);
   else series_.emplace(dir + "/timeseries.csv", columns);
 }
@@ -266,6 +273,7 @@ template <int D> void TimeLoop<D>::describe_run() {
   j["mpi_ranks"] = ranks_;
   j["threads_per_rank"] = opt_.threads;
   j["provenance"] = provenance(static_cast<int>(opt_.threads));
+  if (wall_groups_) j["wall_groups"] = wall_groups_->describe();
 }
 
 // The state the loop starts from, its first frame, and the reference values the health checks compare with.
@@ -320,6 +328,10 @@ template <int D> void TimeLoop<D>::advance() {
   for (const auto& e : case_.errors(s_.P, t_)) row.push_back(e.second);
   if (surface_column_) row.push_back(fluid_share(s_.P, *output_field(solver_.output_fields(), "free_surface")));
   if (walls_column_) row.push_back(static_cast<double>(fluid_in_walls(s_.P, s_.nh.list(), case_.spacing())));
+  if (wall_groups_) {
+    const std::vector<double> forces = wall_groups_->row(s_.P, s_.nh, s_.kernel, s_.disc.physics.nu);
+    row.insert(row.end(), forces.begin(), forces.end());
+  }
   series_->row(row);
   log_diagnostics.end();
   progress_->update(step_, t_, dt, report.linear_iterations);

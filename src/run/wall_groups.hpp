@@ -1,0 +1,101 @@
+#pragma once
+// The groups of wall particles whose force timeseries.csv reports each step: every named body of the
+// case, and "walls", the wall particles in no body (src/sph/wall_forces.hpp gives the forces).
+// Membership is by the particles' permanent id, so it survives migration, reordering and restarts.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "src/neighbours/neighbourhood.hpp"
+#include "src/run/case.hpp"
+#include "src/sph/wall_forces.hpp"
+
+namespace sph {
+
+template <int D> class WallGroups {
+ public:
+  // The case's bodies (labels by id, the order create() made the particles in) and the wall particles
+  // left over. No groups without wall particles.
+  WallGroups(const Case<D>& run_case, const Particles<D>& P) : label_(run_case.body_of_particles()) {
+    const std::vector<std::string> bodies = run_case.body_names();
+    std::vector<double> count(bodies.size() + 1, 0.0);
+    std::vector<Vector<D>> sum(bodies.size() + 1, Vector<D>::Zero());
+    for (std::size_t i = 0; i < P.n_owned; ++i) {
+      if (P.kind[i] != kWall) continue;
+      const std::size_t k = static_cast<std::size_t>(body_of(P.id[i]) + 1);  // 0: walls
+      count[k] += 1.0, sum[k] += P.x[i];
+    }
+    MPI_Allreduce(MPI_IN_PLACE, count.data(), static_cast<int>(count.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    for (Vector<D>& s : sum) MPI_Allreduce(MPI_IN_PLACE, s.data(), D, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    // Body b is group b; the leftover walls come last, and only when there are any.
+    for (std::size_t b = 0; b < bodies.size(); ++b) add(bodies[b], count[b + 1], sum[b + 1]);
+    walls_group_ = count[0] > 0 ? static_cast<int>(names_.size()) : -1;
+    if (count[0] > 0) add("walls", count[0], sum[0]);
+  }
+
+  bool empty() const { return names_.empty(); }
+
+  // force_<g>_x (total), force_<g>_pressure_x, force_<g>_viscous_x (and _y, _z), moment_<g> (2D;
+  // moment_<g>_x, _y, _z in 3D), for every group.
+  std::vector<std::string> columns() const {
+    std::vector<std::string> c;
+    for (const std::string& g : names_) {
+      for (const char* part : {"", "_pressure", "_viscous"})
+        for (int a = 0; a < D; ++a) c.push_back("force_" + g + part + "_" + "xyz"[a]);
+      if (D == 2) c.push_back("moment_" + g);
+      else
+        for (int a = 0; a < 3; ++a) c.push_back("moment_" + g + "_" + "xyz"[a]);
+    }
+    return c;
+  }
+
+  // The columns' values for the current state. Refreshes the ghosts' positions and velocities as the
+  // step left the owned ones (as the solvers do before their own pair loops) and reads the pressure
+  // and density through copies, so the run goes on bitwise the same.
+  std::vector<double> row(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, double nu) const {
+    nh.update(P);
+    std::vector<double> p = P.p, rho = P.rho;
+    nh.halo().update(p);
+    nh.halo().update(rho);
+    std::vector<int> group(P.n_owned, -1);
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      if (P.kind[i] == kWall) group[i] = body_of(P.id[i]) >= 0 ? body_of(P.id[i]) : walls_group_;
+    const std::vector<GroupForce<D>> F = wall_group_forces(P, nh.list(), K, p, rho, group, nu, about_);
+    std::vector<double> r;
+    for (const GroupForce<D>& f : F) {
+      for (const Vector<D>& v : {f.total(), f.pressure, f.viscous}) r.insert(r.end(), v.data(), v.data() + D);
+      if (D == 2) r.push_back(f.moment[2]);
+      else r.insert(r.end(), f.moment.data(), f.moment.data() + 3);
+    }
+    return r;
+  }
+
+  // For summary.json: each group's wall particles and the point its moment is taken about.
+  nlohmann::json describe() const {
+    nlohmann::json j = nlohmann::json::object();
+    for (std::size_t g = 0; g < names_.size(); ++g)
+      j[names_[g]] = {{"particles", particles_[g]},
+                      {"moment_about", std::vector<double>(about_[g].data(), about_[g].data() + D)}};
+    return j;
+  }
+
+ private:
+  int body_of(GlobalIndex id) const {
+    return id >= 0 && static_cast<std::size_t>(id) < label_.size() ? label_[static_cast<std::size_t>(id)] : -1;
+  }
+  // The moment is taken about the group's centroid as laid out (a body's centre when its particles lie
+  // symmetrically about it).
+  void add(const std::string& name, double count, const Vector<D>& sum) {
+    names_.push_back(name);
+    particles_.push_back(static_cast<long>(count));
+    about_.push_back(count > 0 ? Vector<D>(sum / count) : Vector<D>::Zero());
+  }
+
+  std::vector<int> label_;  // by id: the body's index, -1 for none
+  std::vector<std::string> names_;
+  std::vector<long> particles_;
+  std::vector<Vector<D>> about_;
+  int walls_group_ = -1;
+};
+
+}  // namespace sph

@@ -1,0 +1,98 @@
+#pragma once
+// The force the fluid exerts on groups of wall particles (a body, or the walls), split into its
+// pressure and viscous parts, and its moment: the counterpart, by Newton's third law, of the
+// momentum-conserving pair forces the fluid feels from those walls,
+//   pressure  F_w = -m_w sum_f m_f (p_f / rho_f^2 + p_w / rho_w^2) grad_w W_wf
+//   viscous   F_w =  m_w sum_f m_f (mu_w + mu_f) / (rho_w rho_f) F_wf (u~_w - u_f)   (Morris et al. 1997)
+// with the wall's pressure as its scheme left it (Adami et al. 2012's extrapolation) and u~_w its
+// no-slip mirror velocity. For WCSPH's symmetric pressure gradient and Morris viscosity these are the
+// scheme's own pair forces; for ISPH's corrected operators the same sums are the SPH form of the
+// surface integral of the stress, consistent to the same order (docs/verification/body_forces.md).
+#include <mpi.h>
+#include <petscsys.h>
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "src/boundary/adami_wall.hpp"
+#include "src/sph/pair_loop.hpp"
+#include "src/sph/pair_terms.hpp"
+
+namespace sph {
+
+// One group's force and its moment about the group's reference point (the z component in 2D).
+template <int D> struct GroupForce {
+  Vector<D> pressure = Vector<D>::Zero(), viscous = Vector<D>::Zero();
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  Vector<D> total() const { return pressure + viscous; }
+};
+
+// r x F, with 2D vectors in the z = 0 plane.
+template <int D> Eigen::Vector3d moment_of(const Vector<D>& r, const Vector<D>& f) {
+  Eigen::Vector3d r3 = Eigen::Vector3d::Zero(), f3 = Eigen::Vector3d::Zero();
+  r3.head<D>() = r, f3.head<D>() = f;
+  return r3.cross(f3);
+}
+
+// Forces on groups 0..n_groups-1 of owned wall particles (group[i] < 0: in none), reduced over all
+// ranks. p, rho: the pressure and density with current ghost values; nu: the kinematic viscosity (0: no
+// viscous part); about[g]: group g's moment reference point.
+template <int D>
+std::vector<GroupForce<D>> wall_group_forces(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                             const std::vector<double>& p, const std::vector<double>& rho,
+                                             const std::vector<int>& group, double nu,
+                                             const std::vector<Vector<D>>& about) {
+  const std::size_t n_groups = about.size();
+  // Per wall particle, in one pass over its fluid pairs: the two pressure sums (the wall's own p_w
+  // factors out) and the viscous sums, with the Shepard average of the fluid velocity that the
+  // mirror velocity needs (AdamiWall::viscous_velocity's, without gathering a stencil).
+  struct Sums {
+    Vector<D> fluid_pressure = Vector<D>::Zero(), mass_gradient = Vector<D>::Zero(), viscous_u = Vector<D>::Zero(),
+              shepard_u = Vector<D>::Zero();
+    double viscous_weight = 0.0, shepard_weight = 0.0;
+  };
+  const double h = K.h();
+  const std::vector<Sums> sums = sum_over_pairs(
+      P, nl, K, Sums{},
+      [&](Sums& s, int w, int f, const PairGeometry<D>& g) {
+        if (P.kind[f] != kFluid || group[w] < 0) return;
+        s.fluid_pressure += (P.m[f] * p[f] / (rho[f] * rho[f])) * g.gradW;
+        s.mass_gradient += P.m[f] * g.gradW;
+        if (nu > 0.0) {
+          const double k = P.m[f] * (rho[w] * nu + rho[f] * nu) / (rho[w] * rho[f]) * morris_factor(g, h);
+          s.viscous_u += k * P.v[f], s.viscous_weight += k;
+          s.shepard_u += g.W * P.v[f], s.shepard_weight += g.W;
+        }
+      },
+      Rows::Walls);
+  std::vector<GroupForce<D>> out(n_groups);
+  for (std::size_t w = 0; w < P.n_owned; ++w) {
+    if (P.kind[w] != kWall || group[w] < 0) continue;
+    const Sums& s = sums[w];
+    GroupForce<D>& F = out[static_cast<std::size_t>(group[w])];
+    const Vector<D> pressure = -P.m[w] * (s.fluid_pressure + (p[w] / (rho[w] * rho[w])) * s.mass_gradient);
+    Vector<D> viscous = Vector<D>::Zero();
+    if (s.shepard_weight > 0.0) {
+      const Vector<D> mirror = 2.0 * P.v[w] - s.shepard_u / s.shepard_weight;
+      viscous = P.m[w] * (s.viscous_weight * mirror - s.viscous_u);
+    }
+    F.pressure += pressure, F.viscous += viscous;
+    F.moment += moment_of<D>(P.x[w] - about[static_cast<std::size_t>(group[w])], pressure + viscous);
+  }
+  std::vector<double> flat;
+  for (const GroupForce<D>& F : out) {
+    flat.insert(flat.end(), F.pressure.data(), F.pressure.data() + D);
+    flat.insert(flat.end(), F.viscous.data(), F.viscous.data() + D);
+    flat.insert(flat.end(), F.moment.data(), F.moment.data() + 3);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, flat.data(), static_cast<int>(flat.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  const double* v = flat.data();
+  for (GroupForce<D>& F : out) {
+    for (int a = 0; a < D; ++a) F.pressure[a] = *v++;
+    for (int a = 0; a < D; ++a) F.viscous[a] = *v++;
+    for (int a = 0; a < 3; ++a) F.moment[a] = *v++;
+  }
+  return out;
+}
+
+}  // namespace sph
