@@ -21,7 +21,7 @@ void expect_restart_is_exact(const std::string& solver, double dt, const std::st
                              " -checkpoint_interval " + std::to_string(20 * dt);
   std::string tag = solver + "_" + scene;  // one folder per scene: ctest runs these side by side
   for (char& ch : tag)
-    if (ch == ' ' || ch == '-') ch = '_';
+    if (ch == ' ' || ch == '-' || ch == '/' || ch == '.') ch = '_';
   const auto a = run_sph("restart_a_" + tag, common);
   const auto b = run_sph("restart_b_" + tag, common + " -max_steps 20");
   ASSERT_EQ(a.exit_code, 0);
@@ -51,6 +51,14 @@ TEST(Restart, IsphFreeSurfaceMatchesUninterruptedRunExactly) {
 TEST(Restart, Isph3DMatchesUninterruptedRunExactly) { expect_restart_is_exact("isph", 0.02, "beltrami -nx 8"); }
 TEST(Restart, Isph3DFreeSurfaceMatchesUninterruptedRunExactly) {
   expect_restart_is_exact("isph", 0.01, "dam_break -dim 3 -nx 6");
+}
+
+// A body with prescribed motion resumes where it was, with its velocity (both schemes).
+TEST(Restart, MovingBodyMatchesUninterruptedRunExactly) {
+  const std::string scene = "scene -scene_file " + std::string(SPH_SOURCE_DIR) +
+                            "/cases/scenes/oscillating_cylinder.yaml -nx 20";
+  expect_restart_is_exact("isph", 0.005, scene);
+  expect_restart_is_exact("wcsph", 0.001, scene);
 }
 
 TEST(Restart, MismatchedCheckpointIsRefused) {

@@ -308,6 +308,22 @@ TEST(SceneShapes, RefusalsNameTheFileTheKeyAndTheFix) {
        "regions[0]: gives radius beside a nested shape; write shape: NAME for the inline form"},
       {"physics_twice", "dimension: 2\nnu: 1\nphysics: {nu: 2}\nregions:\n" + ok_region,
        "line 2, nu: is given at the top and under physics; keep one"},
+      {"wall_motion",
+       "dimension: 2\nregions:\n" + ok_region +
+           "  - {role: wall, shape: {box: [0, 1, -1, 0]}, motion: {type: constant, velocity: [1, 0]}}\n",
+       "regions[1].motion: is given for a region that is no body; only role: body moves"},
+      {"motion_type",
+       "dimension: 2\nregions:\n" + ok_region + "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: spin}}\n",
+       "regions[1].motion.type: is 'spin'; give fixed, constant or sinusoidal"},
+      {"motion_period",
+       "dimension: 2\nregions:\n" + ok_region +
+           "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: sinusoidal, amplitude: [1, 0], period: 0}}\n",
+       "regions[1].motion.period: is 0; give a positive period"},
+      {"motion_twice",
+       "dimension: 2\nregions:\n" + ok_region +
+           "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: constant, velocity: [1, 0]}}\n"
+           "  - {role: {body: b}, shape: {box: [2, 3, -1, 0]}, motion: {type: constant, velocity: [1, 0]}}\n",
+       "regions[2].motion: moves body 'b' a second time; give its motion on one region"},
   };
   for (const Case& c : cases) {
     const std::string path = folder() + "/" + c.name + ".yaml";

@@ -137,6 +137,15 @@ template <int D> void SceneCase<D>::read_file() {
   YamlScene scene = read_yaml_scene(opt_.path, opt_.nx_set ? 1.0 / opt_.nx : opt_.dx_set ? opt_.dx : 0.0, layers);
   file_ = std::move(scene.file);
   body_ = std::move(scene.body);
+  for (const MotionSpec& spec : scene.motions) {
+    PrescribedMotion<D> m;
+    m.type = spec.type == "constant"     ? PrescribedMotion<D>::Type::Constant
+             : spec.type == "sinusoidal" ? PrescribedMotion<D>::Type::Sinusoidal
+                                         : PrescribedMotion<D>::Type::Fixed;
+    for (int a = 0; a < D; ++a) m.velocity[a] = spec.velocity[a], m.amplitude[a] = spec.amplitude[a];
+    m.period = spec.period, m.phase = spec.phase_degrees * M_PI / 180.0;
+    motions_.push_back(m);
+  }
   bodies_ = std::move(scene.bodies);
 }
 
@@ -235,6 +244,7 @@ template <int D> void SceneCase<D>::resolve_parameters() {
       lo = std::min(lo, x.dot(physics_.gravity) / g), hi = std::max(hi, x.dot(physics_.gravity) / g);
   }
   if (g > 0) U = std::max(U, std::sqrt(2.0 * g * (hi - lo + dx_)));
+  for (const PrescribedMotion<D>& m : motions_) U = std::max(U, m.top_speed());  // moving bodies
   physics_.U = opt_.U_set ? opt_.U : scalar("U", PETSC_FALSE, 0.0, U);
   if (!(physics_.U > 0))
     throw Error(opt_.U_set || file_.field.count("U")

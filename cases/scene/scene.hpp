@@ -52,6 +52,7 @@ template <int D> class SceneCase : public Case<D> {
   nlohmann::json parameters() const override;
   std::vector<std::string> body_names() const override { return bodies_; }
   std::vector<int> body_of_particles() const override { return body_; }
+  std::vector<PrescribedMotion<D>> body_motions() const override { return motions_; }
 
  private:
   void read_file();           // the .vtp file, or the YAML file sampled at -nx, -scene_dx or its dx
@@ -62,7 +63,8 @@ template <int D> class SceneCase : public Case<D> {
   SceneFile file_;
   bool yaml_ = false;
   std::vector<int> body_;            // YAML scenes: per particle, index into bodies_ (-1: none)
-  std::vector<std::string> bodies_;  // YAML scenes: the names of the bodies (fixed walls)
+  std::vector<std::string> bodies_;  // YAML scenes: the names of the bodies
+  std::vector<PrescribedMotion<D>> motions_;  // YAML scenes: per body
   Domain<D> box_;
   Physics<D> physics_;
   double dx_ = 0.0, t_end_ = 1.0, walls_ = 0.0;

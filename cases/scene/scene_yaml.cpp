@@ -43,6 +43,7 @@ struct Region {
   double pressure = 0.0;
   bool hydrostatic = false;
   double top = 0.0;  // hydrostatic: the region's highest point along -g
+  MotionSpec motion;
 };
 
 // Parses one scene file; every refusal names the file, the line and the key. A key that is absent gives a
@@ -222,6 +223,42 @@ class Reader {
     fail(n.begin()->first, key, "unknown shape '" + kind + "'; use one of " + known);
   }
 
+  // {type: fixed}, {type: constant, velocity: [..]} or {type: sinusoidal, amplitude: [..], period: T,
+  // phase: degrees (optional)}.
+  MotionSpec motion(const YAML::Node& m, const std::string& key) const {
+    only_keys(m, key, {"type", "velocity", "amplitude", "period", "phase"});
+    MotionSpec spec;
+    const YAML::Node type = m["type"];
+    if (!type.IsDefined() || !type.IsScalar())
+      fail(m, key, "has no type; give type: constant (with velocity) or sinusoidal (with amplitude and period)");
+    spec.type = type.Scalar();
+    auto vector = [&](const char* name, std::array<double, 3>& out) {
+      if (!m[name].IsDefined()) fail(m, key, "of type " + spec.type + " needs " + name + ": [...]");
+      const Point3 v = point(m[name], key + "." + name);
+      out = {v[0], v[1], v[2]};
+    };
+    auto refuse_extra = [&](std::initializer_list<const char*> extra) {
+      for (const char* name : extra)
+        if (m[name].IsDefined()) fail(m[name], key + "." + name, "does not apply to type " + spec.type + "; remove it");
+    };
+    if (spec.type == "fixed") {
+      refuse_extra({"velocity", "amplitude", "period", "phase"});
+    } else if (spec.type == "constant") {
+      vector("velocity", spec.velocity);
+      refuse_extra({"amplitude", "period", "phase"});
+    } else if (spec.type == "sinusoidal") {
+      vector("amplitude", spec.amplitude);
+      if (!m["period"].IsDefined()) fail(m, key, "of type sinusoidal needs period: T");
+      spec.period = number(m["period"], key + ".period");
+      if (!(spec.period > 0)) fail(m["period"], key + ".period", "is " + number_text(spec.period) + "; give a positive period");
+      if (m["phase"].IsDefined()) spec.phase_degrees = number(m["phase"], key + ".phase");
+      refuse_extra({"velocity"});
+    } else {
+      fail(type, key + ".type", "is '" + spec.type + "'; give fixed, constant or sinusoidal (translations)");
+    }
+    return spec;
+  }
+
   // g: the scene's gravity, for a hydrostatic start.
   // A shape written inline, `shape: NAME` with its parameters beside it in the region (`shape: circle,
   // centre: [..], radius: R`; `shape: difference, of: [..]`; box: bounds, polygon: vertices, mesh: file),
@@ -245,8 +282,8 @@ class Reader {
 
   Region region(const YAML::Node& n, const std::string& key, std::vector<std::string>& bodies, const Point3& g) {
     only_keys(n, key,
-              {"role", "shape", "velocity", "pressure", "name", "of", "bounds", "vertices", "file", "centre", "center",
-               "radius", "ends", "point", "normal"});
+              {"role", "shape", "velocity", "pressure", "motion", "name", "of", "bounds", "vertices", "file", "centre",
+               "center", "radius", "ends", "point", "normal"});
     Region r;
     const YAML::Node role = n["role"];
     if (!role.IsDefined()) fail(n, key, "has no role; add role: fluid, role: wall or role: body with name: NAME");
@@ -287,6 +324,11 @@ class Reader {
              "is given for a wall; walls are at rest with no pressure of their own: "
              "remove it or make the region's role fluid");
     if (n["velocity"].IsDefined()) r.velocity = point(n["velocity"], key + ".velocity");
+    if (const YAML::Node m = n["motion"]; m.IsDefined()) {
+      if (r.role != Role::Body)
+        fail(m, key + ".motion", "is given for a region that is no body; only role: body moves (fixed walls do not)");
+      r.motion = motion(m, key + ".motion");
+    }
     const YAML::Node p = n["pressure"];
     r.hydrostatic = p.IsDefined() && p.IsScalar() && p.Scalar() == "hydrostatic";
     if (!r.hydrostatic && p.IsDefined()) r.pressure = number(p, key + ".pressure");
@@ -436,8 +478,20 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
     r.fail(list.IsDefined() ? list : root, "regions", "needs a list of regions - {role: ..., shape: ...}");
   std::vector<Region> solids, fluids;
   Bounds reach{Point3::Constant(kInf), Point3::Constant(-kInf)};
+  std::vector<char> given;  // per body: its motion was given
   for (std::size_t k = 0; k < list.size(); ++k) {
     const Region region = r.region(list[k], "regions[" + std::to_string(k) + "]", out.bodies, g);
+    // A body's motion, given once (on any of its regions).
+    if (region.role == Role::Body) {
+      out.motions.resize(out.bodies.size());
+      given.resize(out.bodies.size(), 0);
+      if (list[k]["motion"].IsDefined()) {
+        if (given[region.body])
+          r.fail(list[k]["motion"], "regions[" + std::to_string(k) + "].motion",
+                 "moves body '" + out.bodies[region.body] + "' a second time; give its motion on one region");
+        given[region.body] = 1, out.motions[region.body] = region.motion;
+      }
+    }
     const Bounds b = region.shape->bounds();
     reach.lo = reach.lo.cwiseMin(b.lo), reach.hi = reach.hi.cwiseMax(b.hi);
     (region.role == Role::Fluid ? fluids : solids).push_back(region);

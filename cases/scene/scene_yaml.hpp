@@ -32,6 +32,7 @@
 // within wall_layers dx of the solids' surface (thick walls do not fill up; a solid may run past the
 // box, which cuts it), and anywhere inside a body (bodies are whole); a point in no solid and inside a
 // fluid region is fluid; other points are dropped.
+#include <array>
 #include <string>
 #include <vector>
 
@@ -39,10 +40,19 @@
 
 namespace sph {
 
+// A body's prescribed motion (src/boundary/moving_bodies.hpp): `fixed`, `constant` (velocity) or
+// `sinusoidal` (displacement amplitude (sin(2 pi t / period + phase) - sin phase), phase in degrees).
+struct MotionSpec {
+  std::string type = "fixed";
+  std::array<double, 3> velocity{}, amplitude{};
+  double period = 1.0, phase_degrees = 0.0;
+};
+
 struct YamlScene {
   SceneFile file;                   // particles and field data, as read_scene_file gives them
   std::vector<int> body;            // per particle: index into bodies, -1 for fluid and walls
   std::vector<std::string> bodies;  // the body names, in order of first appearance
+  std::vector<MotionSpec> motions;  // per body
 };
 
 // By the extension: .yaml or .yml.

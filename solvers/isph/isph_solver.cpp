@@ -111,7 +111,7 @@ std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vec
 
 template <int D> std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences(
     const std::vector<const std::vector<Vector<D>>*>& fields, const std::vector<char>& near_surface,
-    const Vector<D>& first_wall_velocity) const {
+    double tau) const {
   const Particles<D>& P = disc_->particles;
   const NeighbourList<D>& nl = disc_->neighbourhood.list();
   const Kernel<D>& K = disc_->kernel;
@@ -122,14 +122,22 @@ template <int D> std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences
   // compression of order U/dx there: it raises that corner's stagnation pressure and drives the vortex
   // harder, a first-order error that on coarse grids at Re 1000 happens to offset the under-resolved
   // vortex's weakness (docs/verification/lid_driven_cavity.md, "Why the best corner depends on Re").
+  // A moving body's normal velocity is what the constraint is about: it keeps it.
+  const Vector<D> g = disc_->physics.gravity;
+  const double t = disc_->bodies.time();
   std::vector<std::vector<Vector<D>>> at_rest;
   std::vector<const std::vector<Vector<D>>*> us = fields;
   if (source_walls_at_rest_ && walls_) {
     at_rest.reserve(fields.size());
     for (std::size_t f = 0; f < fields.size(); ++f) {
       at_rest.push_back(*fields[f]);
-      for (std::size_t i = 0; i < at_rest[f].size(); ++i)
-        if (P.kind[i] == kWall) at_rest[f][i] = f == 0 ? first_wall_velocity : Vector<D>::Zero();
+      for (std::size_t i = 0; i < at_rest[f].size(); ++i) {
+        if (P.kind[i] != kWall) continue;
+        const PrescribedMotion<D>* body = disc_->bodies.motion_of(P, i);
+        const Vector<D> head = f == 0 ? Vector<D>(tau * (g - (body ? body->acceleration(t) : Vector<D>::Zero())))
+                                      : Vector<D>::Zero();
+        at_rest[f][i] = (body ? Vector<D>(P.v[i]) : Vector<D>::Zero()) + head;
+      }
       us[f] = &at_rest[f];
     }
   }
@@ -197,11 +205,10 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
   // the closing kick's gravity increment tau g as a compression too, and the fluid's weight twice,
   // which pushes still water up (docs/verification/free_surface.md, "The causes, and how each was
   // found"). So in the source the walls move with tau g.
-  const Vector<D> wall_gravity = tau * phys.gravity;
   // div u* and, for the particle-scale part below, div u^n: one pass over the pairs for both.
   std::vector<std::vector<double>> divergences = remove_particle_scale
-                                                     ? ppe_divergences({&u_star, &P.v}, near_surface, wall_gravity)
-                                                     : ppe_divergences({&u_star}, near_surface, wall_gravity);
+                                                     ? ppe_divergences({&u_star, &P.v}, near_surface, tau)
+                                                     : ppe_divergences({&u_star}, near_surface, tau);
   std::vector<double>& source = divergences[0];
   if (remove_particle_scale) {
     std::vector<double>& div_u = divergences[1];  // its ghost values are filled for the average
@@ -235,9 +242,12 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
     dirichlet = isolated_fluid_particles(P, nh.list(), K);
     for (std::size_t i = 0; i < P.n_owned; ++i) dirichlet[i] = nodes_.is_splash(i) || (dirichlet[i] && !nodes_.has(i));
   }
+  // Moving bodies' rows extrapolate with g - a_w (Adami et al. 2012).
+  const std::vector<Vector<D>> wall_acceleration = disc_->bodies.accelerations(P, disc_->bodies.time());
   auto assemble = [&] {
     ppe_.assemble(P, nh, K, phys.gravity, nodes ? &dirichlet : surface_flags, consistent ? &factors : nullptr,
-                  nodes ? &nodes_ : nullptr, wall_impact_ ? &impact : nullptr);
+                  nodes ? &nodes_ : nullptr, wall_impact_ ? &impact : nullptr,
+                  wall_acceleration.empty() ? nullptr : &wall_acceleration);
   };
   assemble();
   log_assembly.end();
@@ -277,7 +287,7 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
   for (PetscInt pass = 0; pass < projection_corrections_; ++pass) {
     LogEventScope log_pass_source(ppe_assembly_event());
     nh.halo().update(P.v);
-    std::vector<double> remaining = ppe_divergences({&P.v}, near_surface, Vector<D>::Zero())[0];
+    std::vector<double> remaining = ppe_divergences({&P.v}, near_surface, 0.0)[0];
     std::vector<double> increment_source =
         kernel_average_in_fluid(P, nh, K, remaining, surface_flags, average_cut).average;
     for (double& s : increment_source) s /= tau;
@@ -338,6 +348,7 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
     u_half[i] += (0.5 * dt) * acc[i];
     P.x[i] += dt * u_half[i];  // drift
   }
+  disc_->bodies.move_to(P, disc_->bodies.time() + dt);
   log_forces.end();
   nh.update(P);
   nh.halo().update(u_half);

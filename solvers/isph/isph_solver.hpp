@@ -98,11 +98,11 @@ template <int D> class IsphSolver : public Solver<D> {
   std::vector<Vector<D>> pressure_gradient(const std::vector<double>& p) const;  // p has ghost values
   // The PPE's divergence of u (with ghost values): the corrected one, or the plain one with classic
   // operators and, under the consistent ones, at the particles flagged in near_surface.
-  // The walls' velocity in the first field is first_wall_velocity (in the others zero), under
-  // -ppe_wall_velocity zero.
+  // Under -ppe_wall_velocity zero, the fixed walls' velocity in the first field is tau g (in the
+  // others zero), and a moving body's its own velocity, in the first field plus tau (g - a_w): what
+  // its pressure rows hold (project). tau = 0: every wall at its own velocity, fixed ones at rest.
   std::vector<std::vector<double>> ppe_divergences(const std::vector<const std::vector<Vector<D>>*>& fields,
-                                                   const std::vector<char>& near_surface,
-                                                   const Vector<D>& first_wall_velocity) const;
+                                                   const std::vector<char>& near_surface, double tau) const;
   // nu lap u at the current positions (walls: Adami's mirrored velocity); u has ghost values. The
   // consistent Laplacian's factors are gathered in the same pass, and handed to `factors` if given.
   std::vector<Vector<D>> viscous_acceleration(const std::vector<Vector<D>>& u,

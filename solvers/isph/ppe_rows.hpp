@@ -44,12 +44,14 @@ struct PpeRows {
   std::vector<std::pair<PetscInt, PetscScalar>> pinned_equation;
 
   // Rows of the owned particles of P. Fluid rows hold the consistent Laplacian when `consistent`
-  // holds its factors, else Cummins & Rudman's; wall rows hold the Adami extrapolation; rows flagged
+  // holds its factors, else Cummins & Rudman's; wall rows hold the Adami extrapolation (with
+  // wall_acceleration, per owned particle, where bodies move); rows flagged
   // in `dirichlet` and the row `pinned` (-1: none) hold only their diagonal.
   template <int D> void build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                               const Vector<D>& body_force, const std::vector<char>& dirichlet, long pinned,
                               const std::vector<LaplacianCorrection<D>>* consistent = nullptr,
-                              const SurfaceNodes<D>* nodes = nullptr, const WallImpact<D>* impact = nullptr);
+                              const SurfaceNodes<D>* nodes = nullptr, const WallImpact<D>* impact = nullptr,
+                              const std::vector<Vector<D>>* wall_acceleration = nullptr);
   // Gives the rows' storage back (their capacity too).
   void release() { *this = PpeRows(); }
 
@@ -92,7 +94,8 @@ inline void close_gaps(std::vector<PetscInt>& ptr, const std::vector<PetscInt>& 
 template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                                      const Vector<D>& body_force, const std::vector<char>& dirichlet, long pinned,
                                      const std::vector<LaplacianCorrection<D>>* consistent,
-                                     const SurfaceNodes<D>* nodes, const WallImpact<D>* impact) {
+                                     const SurfaceNodes<D>* nodes, const WallImpact<D>* impact,
+                                     const std::vector<Vector<D>>* wall_acceleration) {
   const std::size_t n = P.n_owned;
   auto surface_row = [&](int i) { return nodes && nodes->has(static_cast<std::size_t>(i)); };
   const PetscInt first = P.first_gid, end = first + static_cast<PetscInt>(n);
@@ -134,7 +137,8 @@ template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<
     if (owned_column(j)) dj[di[i] + dlen_[i]] = P.gid[j] - first, da[di[i] + dlen_[i]++] = value;
     else oj[oi[i] + olen_[i]] = P.gid[j], oa[oi[i] + olen_[i]++] = value;
     if (P.kind[i] == kWall) {
-      double head = body_force.dot(g.rij);
+      // A moving body's wall rows take its acceleration: (g - a_w) . r_wf (Adami et al. 2012).
+      double head = wall_acceleration ? (body_force - (*wall_acceleration)[i]).dot(g.rij) : body_force.dot(g.rij);
       // A surface particle predicted to move towards the wall at u_n (beyond the closing kick's tau g,
       // which the hydrostatic head holds) needs the normal pressure gradient rho u_n / tau to stop.
       if (impact && (*impact->surface)[j] != 0.0) {

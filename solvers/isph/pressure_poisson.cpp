@@ -74,7 +74,8 @@ template <int D> void PressurePoisson<D>::assemble(const Particles<D>& P, const 
                                                    const Kernel<D>& K, const Vector<D>& body_force,
                                                    const std::vector<char>* dirichlet,
                                                    const std::vector<LaplacianCorrection<D>>* consistent,
-                                                   const SurfaceNodes<D>* nodes, const WallImpact<D>* impact) {
+                                                   const SurfaceNodes<D>* nodes, const WallImpact<D>* impact,
+                                                   const std::vector<Vector<D>>* wall_acceleration) {
   const std::size_t n = P.n_owned;
   kind_.assign(P.kind.begin(), P.kind.begin() + n);
   if (dirichlet) dirichlet_ = *dirichlet;
@@ -108,7 +109,7 @@ template <int D> void PressurePoisson<D>::assemble(const Particles<D>& P, const 
   // preconditioner's references to it).
   destroy_system();
   SPH_PETSC(KSPDestroy(&ksp_));
-  rows_.build(P, nh.list(), K, body_force, dirichlet_, pinned_, consistent, nodes, impact);
+  rows_.build(P, nh.list(), K, body_force, dirichlet_, pinned_, consistent, nodes, impact, wall_acceleration);
   // A new KSP for each new matrix, made from the options database: every option, viewers included,
   // then acts on every solve. Keeping one KSP saves no set-up time (the preconditioner is rebuilt for
   // each new matrix either way), and some preconditioners cannot be set up again on another matrix

@@ -70,7 +70,7 @@ template <int D> class PressurePoisson {
   void assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
                 const Vector<D>& body_force = Vector<D>::Zero(), const std::vector<char>* dirichlet = nullptr,
                 const std::vector<LaplacianCorrection<D>>* consistent = nullptr, const SurfaceNodes<D>* nodes = nullptr,
-                const WallImpact<D>* impact = nullptr);
+                const WallImpact<D>* impact = nullptr, const std::vector<Vector<D>>* wall_acceleration = nullptr);
 
   // Solves div(grad p / rho) = source (one value per owned particle). With use_guess, p holds the
   // initial guess on entry (the previous step's pressure: a good one); otherwise the KSP starts from

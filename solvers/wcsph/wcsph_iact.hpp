@@ -80,6 +80,7 @@ template <int D> struct RatesInputs {
   double h, inv_R, nu, delta_h_c0;
   bool viscous, consistent, corrected_gradient, continuity, corrected_continuity, diffuse;
   Vector<D> hydrostatic_density_gradient = Vector<D>::Zero();  // Fourtakas et al. (2019): rho0 g / c0^2
+  const std::vector<Vector<D>>* wall_velocity = nullptr;       // moving bodies' (others zero); null: none
 };
 
 // Adds pair (i, j) to i's sums: pressure (corrected sums or the symmetric force) with artificial
@@ -108,8 +109,8 @@ template <int D> [[gnu::always_inline]] inline void add_rates_pair(const RatesIn
       s.acc += morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], in.nu, in.nu, F, Vector<D>(in.uv[i] - in.uv[j]));
   }
   if (in.continuity) {
-    // Walls count as at rest here: every wall is fixed or slides along itself (the cavity lid), so
-    // no mass crosses it, and the sliding velocity must stay out of the density. Where the lid ends
+    // Walls count as at rest here (moving bodies aside): every wall is fixed or slides along itself
+    // (the cavity lid), so no mass crosses it, and the sliding velocity must stay out of the density. Where the lid ends
     // at a fixed corner block its velocity jumps from U to 0 inside the kernel support, and the
     // discrete divergence reads that jump as a source of order U/dx, which this equation integrates in
     // time into a compression of the whole cavity (docs/verification/lid_driven_cavity.md, "Design
@@ -118,7 +119,9 @@ template <int D> [[gnu::always_inline]] inline void add_rates_pair(const RatesIn
     // and drives the vortex harder, a first-order error that on coarse grids at Re 1000 cancels most of
     // the scheme's under-resolution (docs/verification/lid_driven_cavity.md, "Why the best corner depends
     // on Re").
-    const Vector<D> u_j = P.kind[j] == kWall ? Vector<D>::Zero() : Vector<D>(P.v[j]);
+    const Vector<D> u_j = P.kind[j] != kWall ? Vector<D>(P.v[j])
+                          : in.wall_velocity ? Vector<D>((*in.wall_velocity)[j])
+                                             : Vector<D>::Zero();
     if (in.corrected_continuity) s.grad_u += difference_vector_gradient_term(Vj, P.v[i], u_j, g);
     else s.drho += continuity_pair(P.rho[i], Vj, Vector<D>(P.v[i] - u_j), g);
     // Fourtakas et al. (2019): the hydrostatic density difference of the pair, (rho0 g / c0^2) . (x_j - x_i)

@@ -120,7 +120,9 @@ template <int D> void WcsphSolver<D>::update_pressure() {
   if (!walls_) return;
   // Adami et al. (2012): wall pressure extrapolated from the fluid, wall density from the EOS.
   const Neighbourhood<D>& nh = disc_->neighbourhood;
-  AdamiWall<D>::extrapolate_pressure(AdamiWall<D>::stencil(P, nh.list(), disc_->kernel), P, disc_->physics.gravity);
+  const std::vector<Vector<D>> wall_acceleration = disc_->bodies.accelerations(P, disc_->bodies.time());
+  AdamiWall<D>::extrapolate_pressure(AdamiWall<D>::stencil(P, nh.list(), disc_->kernel), P, disc_->physics.gravity,
+                                     &wall_acceleration);
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (P.kind[i] == kWall) P.rho[i] = eos_.density(std::max(P.p[i], -0.9 * eos_.B()));
   nh.halo().update(P.p);
@@ -207,6 +209,12 @@ template <int D> void WcsphSolver<D>::compute_rates() {
                            continuity,
                            corrected_continuity,
                            diffuse};
+  // Moving bodies push the fluid: the continuity equation sees their velocity (sliding walls at rest).
+  std::vector<Vector<D>> wall_velocity;
+  if (disc_->bodies.any()) {
+    wall_velocity = disc_->bodies.wall_velocities(P, Vector<D>::Zero());
+    in.wall_velocity = &wall_velocity;
+  }
   if (diffusion_ == DensityDiffusion::Fourtakas)
     in.hydrostatic_density_gradient = eos_.rho0 * phys.gravity / (eos_.c0 * eos_.c0);
   const bool consistent_viscous = consistent && phys.viscous();
@@ -305,13 +313,16 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
   // Wall particles have zero rates: they keep their prescribed velocity and place.
   std::vector<LeapfrogScalar> scalars;
   if (continuity) scalars.push_back({&P.rho, &drho_});
+  const double t_end = disc_->bodies.time() + dt;
   leapfrog_step<D>(
       dt, n, P.x, P.v, acc_, scalars, [&](std::size_t i) { return P.kind[i] == kFluid; },
       [&] {
+        disc_->bodies.move_to(P, t_end);  // with the fluid's drift
         if (!nh.update(P)) nh.halo().update(P.v);
         nh.halo().update(P.rho);
         compute_rates();
       });
+  disc_->bodies.move_to(P, t_end);  // the closing kick left the walls' velocity of the step's start
   if (shifting_model_.enabled) {
     if (!nh.update(P)) nh.halo().update(P.rho);
     // At a free surface particles shift only along it (Lind et al. 2012), beside it never outwards.

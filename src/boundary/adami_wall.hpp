@@ -4,11 +4,12 @@
 // neighbours f (Shepard-weighted):
 //   pressure   p_w = [sum_f p_f W_wf + (g - a_w) . sum_f rho_f r_wf W_wf] / sum_f W_wf
 //   velocity   u_w = 2 v_w - sum_f u_f W_wf / sum_f W_wf     (no-slip: used in the viscous term only;
-//                                                               the ISPH pressure source sees v_w, the
-//                                                               WCSPH continuity equation walls at rest)
+//                                                               the ISPH pressure source and the WCSPH
+//                                                               continuity equation see sliding walls
+//                                                               at rest, moving bodies at v_w)
 // where v_w is the wall's prescribed velocity (kept in Particles::v; a moving lid has v_w != 0) and
-// a_w its acceleration (zero for the walls here). Wall particles with no fluid neighbour keep p = 0
-// and u_w = v_w; no fluid particle sees them.
+// a_w its acceleration (a moving body's, src/boundary/moving_bodies.hpp; zero for fixed walls). Wall
+// particles with no fluid neighbour keep p = 0 and u_w = v_w; no fluid particle sees them.
 #include <vector>
 
 #include "src/core/physics.hpp"
@@ -80,13 +81,16 @@ template <int D> struct AdamiWall {
   }
 
   // Wall pressure from the fluid (for explicit schemes; ISPH puts the same relation into its matrix).
-  static void extrapolate_pressure(const Stencil& s, Particles<D>& P, const Vector<D>& body_force) {
+  // acceleration: per owned particle, the walls' own a_w (moving bodies); null: every wall at rest.
+  static void extrapolate_pressure(const Stencil& s, Particles<D>& P, const Vector<D>& body_force,
+                                   const std::vector<Vector<D>>* acceleration = nullptr) {
     for (std::size_t w = 0; w < P.n_owned; ++w) {
       if (P.kind[w] != kWall) continue;
+      const Vector<D> g = acceleration && !acceleration->empty() ? Vector<D>(body_force - (*acceleration)[w]) : body_force;
       double p = 0.0;
       for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) {
         const int f = s.fluid[k];
-        p += s.weight[k] * (P.p[f] + P.rho[f] * body_force.dot(s.r_wf[k]));
+        p += s.weight[k] * (P.p[f] + P.rho[f] * g.dot(s.r_wf[k]));
       }
       P.p[w] = p;
     }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "src/boundary/moving_bodies.hpp"
 #include "src/core/domain.hpp"
 #include "src/core/physics.hpp"
 #include "src/particles/particles.hpp"
@@ -41,6 +42,8 @@ template <int D> class Case {
   // ranks), the body's index in body_names(), or -1; empty when no particle is in a body.
   virtual std::vector<std::string> body_names() const { return {}; }
   virtual std::vector<int> body_of_particles() const { return {}; }
+  // Each body's prescribed motion, in the order of body_names() (empty: all fixed).
+  virtual std::vector<PrescribedMotion<D>> body_motions() const { return {}; }
 
   // Thickness of the wall-particle layers (0 without walls): the kernel support must fit in it.
   virtual double wall_thickness() const { return 0.0; }

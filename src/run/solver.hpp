@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "src/boundary/moving_bodies.hpp"
 #include "src/core/error.hpp"
 #include "src/core/physics.hpp"
 #include "src/io/checkpoint.hpp"
@@ -29,6 +30,8 @@ template <int D> struct Discretisation {
   const Kernel<D>& kernel;
   Physics<D> physics;
   double dx;  // initial particle spacing
+  // Bodies with prescribed motion; the solvers move them at their drift (src/boundary/moving_bodies.hpp).
+  MovingBodies<D> bodies = {};
 };
 
 // A case that asks for a model the solver does not have is refused, not silently run without it.

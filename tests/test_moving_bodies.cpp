@@ -1,0 +1,132 @@
+// Bodies with prescribed motion (src/boundary/moving_bodies.hpp): their kinematics, that only their
+// particles move, and the force the fluid puts on an oscillating cylinder against potential flow's
+// added mass. docs/verification/body_forces.md has the convergence tables.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "src/boundary/moving_bodies.hpp"
+#include "tests/run_sph.hpp"
+
+namespace {
+
+using Motion = sph::PrescribedMotion<2>;
+
+Motion sinusoid(double phase) {
+  Motion m;
+  m.type = Motion::Type::Sinusoidal;
+  m.amplitude = sph::Vector<2>(0.02, -0.01);
+  m.period = 0.7, m.phase = phase;
+  return m;
+}
+
+// Velocity and acceleration are the time derivatives of the displacement (central differences), and
+// the displacement starts at zero.
+TEST(MovingBodies, VelocityAndAccelerationAreTheDisplacementsDerivatives) {
+  const double e = 1e-5;
+  for (const Motion& m : {sinusoid(0.0), sinusoid(-M_PI / 2), sinusoid(1.0)}) {
+    EXPECT_EQ(m.displacement(0.0).norm(), 0.0);
+    for (double t : {0.0, 0.13, 0.5, 1.9}) {
+      const sph::Vector<2> v = (m.displacement(t + e) - m.displacement(t - e)) / (2 * e);
+      const sph::Vector<2> a = (m.velocity_at(t + e) - m.velocity_at(t - e)) / (2 * e);
+      EXPECT_LT((v - m.velocity_at(t)).norm(), 1e-8);
+      EXPECT_LT((a - m.acceleration(t)).norm(), 1e-6);
+    }
+    EXPECT_NEAR(m.top_speed(), m.omega() * m.amplitude.norm(), 1e-15);
+  }
+  // A phase of -90 degrees starts at rest.
+  EXPECT_LT(sinusoid(-M_PI / 2).velocity_at(0.0).norm(), 1e-15);
+}
+
+// Only the particles of a moving body move, by the displacement between the two times, whatever the
+// steps; fluid and the particles of a fixed body keep their places.
+TEST(MovingBodies, OnlyTheMovingBodysParticlesMove) {
+  sph::Particles<2> P;
+  const sph::Vector<2> x0(0.5, 0.25);
+  for (int k = 0; k < 4; ++k) {
+    P.add(x0 + sph::Vector<2>(0.1 * k, 0.0), sph::Vector<2>::Zero(), 1.0, 1.0, 0.0, k == 0 ? sph::kFluid : sph::kWall);
+    P.id.back() = k;
+  }
+  Motion fixed;
+  Motion constant;
+  constant.type = Motion::Type::Constant;
+  constant.velocity = sph::Vector<2>(0.3, -0.2);
+  // Particles 1 and 2 belong to the moving body 0, particle 3 to the fixed body 1.
+  sph::MovingBodies<2> bodies({sinusoid(-M_PI / 2), fixed}, {-1, 0, 0, 1}, 0.1);
+  ASSERT_TRUE(bodies.any());
+  double t = 0.1;
+  for (double dt : {0.01, 0.2, 0.037}) bodies.move_to(P, t += dt);
+  const Motion m = sinusoid(-M_PI / 2);
+  const sph::Vector<2> moved = m.displacement(t) - m.displacement(0.1);
+  EXPECT_EQ(P.x[0], x0);
+  EXPECT_LT((P.x[1] - (x0 + sph::Vector<2>(0.1, 0.0) + moved)).norm(), 1e-15);
+  EXPECT_LT((P.x[2] - (x0 + sph::Vector<2>(0.2, 0.0) + moved)).norm(), 1e-15);
+  EXPECT_EQ(P.x[3], x0 + sph::Vector<2>(0.3, 0.0));
+  EXPECT_EQ(P.v[1], m.velocity_at(t));
+  EXPECT_EQ(P.v[3], sph::Vector<2>::Zero());
+  const std::vector<sph::Vector<2>> a = bodies.accelerations(P, t);
+  EXPECT_EQ(a[2], m.acceleration(t));
+  EXPECT_EQ(a[3], sph::Vector<2>::Zero());
+  // No moving body: nothing to do, and no accelerations to pass on.
+  EXPECT_FALSE(sph::MovingBodies<2>({fixed}, {-1, 0, 0, 0}, 0.0).any());
+  EXPECT_TRUE(sph::MovingBodies<2>({fixed}, {-1, 0, 0, 0}, 0.0).accelerations(P, 1.0).empty());
+}
+
+// cases/scenes/oscillating_cylinder.yaml: a cylinder R = 0.2 oscillating along x inside a fixed one
+// Rt = 0.8, inviscid. Potential flow (concentric cylinders) gives F = -C_a rho pi R^2 a with
+// C_a = (Rt^2 + R^2) / (Rt^2 - R^2) = 17/15. C_a is read from the in-phase part of a least-squares fit
+// of force_cylinder_x over t in [1, 3].
+double added_mass_coefficient(const sph::testing::RunResult& r) {
+  const double R = 0.2, A = 0.02, w = 2 * M_PI, phase = -M_PI / 2;
+  const std::vector<double> t = sph::testing::timeseries_column(r, "t"),
+                            F = sph::testing::timeseries_column(r, "force_cylinder_x");
+  // Normal equations of F ~ s sin(w t + phase) + c cos(w t + phase) + m.
+  double S[3][3] = {}, b[3] = {};
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (t[k] < 1.0) continue;
+    const double f[3] = {std::sin(w * t[k] + phase), std::cos(w * t[k] + phase), 1.0};
+    for (int i = 0; i < 3; ++i) {
+      b[i] += f[i] * F[k];
+      for (int j = 0; j < 3; ++j) S[i][j] += f[i] * f[j];
+    }
+  }
+  // Cramer's rule for the in-phase coefficient s.
+  auto det = [](double m[3][3]) {
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  };
+  double Sx[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) Sx[i][j] = j == 0 ? b[i] : S[i][j];
+  const double s = det(Sx) / det(S);
+  return s / (M_PI * R * R * w * w * A);  // F = C_a rho pi R^2 A w^2 sin(w t + phase)
+}
+
+constexpr double kExactAddedMass = (0.64 + 0.04) / (0.64 - 0.04);
+
+const std::string kOscillating = std::string(SPH_SOURCE_DIR) + "/cases/scenes/oscillating_cylinder.yaml";
+
+// C_a of a run of the scene at nx 20.
+double added_mass_at_nx20(const std::string& solver) {
+  const auto r = sph::testing::run_sph("moving_" + solver, "-case scene -scene_file " + kOscillating +
+                                                               " -nx 20 -solver " + solver + " -output_interval 0 -threads 1");
+  EXPECT_EQ(r.exit_code, 0);
+  return r.exit_code == 0 ? added_mass_coefficient(r) : std::nan("");
+}
+
+// Measured at nx 20: ISPH C_a 1.153 (+1.8 %), at nx 40 1.124 (-0.8 %).
+TEST(MovingBodies, IsphOscillatingCylinderFeelsItsAddedMass) {
+  const double Ca = added_mass_at_nx20("isph");
+  EXPECT_NEAR(Ca / kExactAddedMass, 1.0, 0.03) << "C_a = " << Ca;
+}
+
+// WCSPH's fluid is compressible: at c0 = 10 U the sound crosses the gap in a sixtieth of the period,
+// and C_a comes out 9.3 % high at nx 20 (6.5 % at c0 = 20 U: the excess falls as 1/c0^2 towards
+// about 5.6 %, the rest the resolution's). The bound holds that, and a sign or phase error.
+TEST(MovingBodies, WcsphOscillatingCylinderFeelsItsAddedMass) {
+  const double Ca = added_mass_at_nx20("wcsph");
+  EXPECT_NEAR(Ca / kExactAddedMass, 1.0, 0.12) << "C_a = " << Ca;
+}
+
+}  // namespace
