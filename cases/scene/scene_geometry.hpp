@@ -148,7 +148,9 @@ template <int D> WallThickness measure_wall_thickness(const PointGrid<D>& grid, 
       into_mass += d / d.norm();
       if (kind[j] != kFluid) return;
       from_fluid -= d / d.norm();
-      touches_fluid |= d.norm() < 1.5 * dx;
+      // Fluid a lattice step away: the wall's first layer. A deeper particle that sees fluid only
+      // diagonally, where a wall curves, would measure the layers below it alone.
+      touches_fluid |= d.norm() < 1.05 * dx;
     });
     const bool face = count[i] < kFaceShare * full;
     if (!touches_fluid && !face) continue;
