@@ -7,6 +7,6 @@ foreach(name
     Walls.IsphCavityWithSymmetricLidCornersMatchesGhia Convergence.ObservedOrderInH
     Convergence.IsphErrorApproachesALimitAsDtFalls Walls.WcsphCavityRe100MatchesGhiaAndKeepsItsVolume
     Scene.CylinderArrayDragMatchesSanganiAcrivos Walls.IsphCavityRe100MatchesGhia
-    Restart.Isph3DFreeSurfaceMatchesUninterruptedRunExactly)
+    Restart.Isph3DFreeSurfaceMatchesUninterruptedRunExactly MovingBodies.IsphCouetteTorqueMatchesTheory)
   set_tests_properties(${name} PROPERTIES LABELS "case;long")
 endforeach()

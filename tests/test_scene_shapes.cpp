@@ -319,6 +319,15 @@ TEST(SceneShapes, RefusalsNameTheFileTheKeyAndTheFix) {
        "dimension: 2\nregions:\n" + ok_region +
            "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: sinusoidal, amplitude: [1, 0], period: 0}}\n",
        "regions[1].motion.period: is 0; give a positive period"},
+      {"rotation_centre",
+       "dimension: 2\nregions:\n" + ok_region +
+           "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {rotation: {type: constant, rate: 10}}}\n",
+       "regions[1].motion.rotation: has no centre; give the point the axis goes through"},
+      {"rotation_axis_2d",
+       "dimension: 2\nregions:\n" + ok_region +
+           "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {rotation: {type: constant, rate: 10, centre: "
+           "[0, 0], axis: [0, 0]}}}\n",
+       "regions[1].motion.rotation.axis: is given in a 2D scene, where bodies turn about z; remove it"},
       {"motion_twice",
        "dimension: 2\nregions:\n" + ok_region +
            "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: constant, velocity: [1, 0]}}\n"

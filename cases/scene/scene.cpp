@@ -144,6 +144,14 @@ template <int D> void SceneCase<D>::read_file() {
                                          : PrescribedMotion<D>::Type::Fixed;
     for (int a = 0; a < D; ++a) m.velocity[a] = spec.velocity[a], m.amplitude[a] = spec.amplitude[a];
     m.period = spec.period, m.phase = spec.phase_degrees * M_PI / 180.0;
+    m.spin = spec.spin == "constant"     ? PrescribedMotion<D>::Type::Constant
+             : spec.spin == "sinusoidal" ? PrescribedMotion<D>::Type::Sinusoidal
+                                         : PrescribedMotion<D>::Type::Fixed;
+    const double degree = M_PI / 180.0;
+    m.rate = spec.rate_degrees * degree, m.angle = spec.angle_degrees * degree;
+    m.spin_period = spec.spin_period, m.spin_phase = spec.spin_phase_degrees * degree;
+    for (int a = 0; a < D; ++a) m.centre[a] = spec.centre[a];
+    m.axis = Eigen::Vector3d(spec.axis[0], spec.axis[1], spec.axis[2]);
     motions_.push_back(m);
   }
   bodies_ = std::move(scene.bodies);
@@ -244,7 +252,19 @@ template <int D> void SceneCase<D>::resolve_parameters() {
       lo = std::min(lo, x.dot(physics_.gravity) / g), hi = std::max(hi, x.dot(physics_.gravity) / g);
   }
   if (g > 0) U = std::max(U, std::sqrt(2.0 * g * (hi - lo + dx_)));
-  for (const PrescribedMotion<D>& m : motions_) U = std::max(U, m.top_speed());  // moving bodies
+  // Moving bodies: their fastest point, the farthest from the rotation's axis (or centre).
+  std::vector<double> reach(motions_.size(), 0.0);
+  for (std::size_t i = 0; i < body_.size(); ++i)
+    if (body_[i] >= 0) {
+      Vector<D> x;
+      for (int a = 0; a < D; ++a) x[a] = file_.x[i][a];
+      const PrescribedMotion<D>& m = motions_[static_cast<std::size_t>(body_[i])];
+      Eigen::Vector3d r3 = Eigen::Vector3d::Zero();
+      r3.head<D>() = x - m.centre;
+      reach[static_cast<std::size_t>(body_[i])] =
+          std::max(reach[static_cast<std::size_t>(body_[i])], (r3 - r3.dot(m.axis) * m.axis).norm());
+    }
+  for (std::size_t b = 0; b < motions_.size(); ++b) U = std::max(U, motions_[b].top_speed(reach[b]));
   physics_.U = opt_.U_set ? opt_.U : scalar("U", PETSC_FALSE, 0.0, U);
   if (!(physics_.U > 0))
     throw Error(opt_.U_set || file_.field.count("U")

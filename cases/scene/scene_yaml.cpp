@@ -226,9 +226,11 @@ class Reader {
   // {type: fixed}, {type: constant, velocity: [..]} or {type: sinusoidal, amplitude: [..], period: T,
   // phase: degrees (optional)}.
   MotionSpec motion(const YAML::Node& m, const std::string& key) const {
-    only_keys(m, key, {"type", "velocity", "amplitude", "period", "phase"});
+    only_keys(m, key, {"type", "velocity", "amplitude", "period", "phase", "rotation"});
     MotionSpec spec;
+    if (m["rotation"].IsDefined()) rotation(m["rotation"], key + ".rotation", spec);
     const YAML::Node type = m["type"];
+    if (!type.IsDefined() && spec.spin != "fixed") return spec;  // a rotation alone
     if (!type.IsDefined() || !type.IsScalar())
       fail(m, key, "has no type; give type: constant (with velocity) or sinusoidal (with amplitude and period)");
     spec.type = type.Scalar();
@@ -257,6 +259,44 @@ class Reader {
       fail(type, key + ".type", "is '" + spec.type + "'; give fixed, constant or sinusoidal (translations)");
     }
     return spec;
+  }
+
+  // {type: constant, rate: deg/s, centre: [..](, axis: [..] in 3D)} or {type: sinusoidal, amplitude:
+  // degrees, period: T, phase: degrees (optional), centre, axis}.
+  void rotation(const YAML::Node& r, const std::string& key, MotionSpec& spec) const {
+    only_keys(r, key, {"type", "rate", "amplitude", "period", "phase", "centre", "center", "axis"});
+    const YAML::Node type = r["type"];
+    if (!type.IsDefined() || !type.IsScalar())
+      fail(r, key, "has no type; give type: constant (with rate) or sinusoidal (with amplitude and period)");
+    spec.spin = type.Scalar();
+    auto scalar = [&](const char* name, double& out) {
+      if (!r[name].IsDefined()) fail(r, key, "of type " + spec.spin + " needs " + name);
+      out = number(r[name], key + "." + name);
+    };
+    if (spec.spin == "constant") {
+      scalar("rate", spec.rate_degrees);
+    } else if (spec.spin == "sinusoidal") {
+      scalar("amplitude", spec.angle_degrees);
+      scalar("period", spec.spin_period);
+      if (!(spec.spin_period > 0))
+        fail(r["period"], key + ".period", "is " + number_text(spec.spin_period) + "; give a positive period");
+      if (r["phase"].IsDefined()) spec.spin_phase_degrees = number(r["phase"], key + ".phase");
+    } else {
+      fail(type, key + ".type", "is '" + spec.spin + "'; give constant or sinusoidal");
+    }
+    const YAML::Node c = r["centre"].IsDefined() ? r["centre"] : r["center"];
+    if (!c.IsDefined()) fail(r, key, "has no centre; give the point the axis goes through: centre: [...]");
+    const Point3 centre = point(c, key + ".centre");
+    spec.centre = {centre[0], centre[1], centre[2]};
+    if (dim == 3) {
+      if (!r["axis"].IsDefined()) fail(r, key, "has no axis; a 3D rotation needs axis: [x, y, z]");
+      const Point3 axis = point(r["axis"], key + ".axis");
+      if (axis.norm() == 0) fail(r["axis"], key + ".axis", "is zero; give the direction of the axis");
+      const Point3 unit = axis.normalized();
+      spec.axis = {unit[0], unit[1], unit[2]};
+    } else if (r["axis"].IsDefined()) {
+      fail(r["axis"], key + ".axis", "is given in a 2D scene, where bodies turn about z; remove it");
+    }
   }
 
   // g: the scene's gravity, for a hydrostatic start.

@@ -40,12 +40,15 @@
 
 namespace sph {
 
-// A body's prescribed motion (src/boundary/moving_bodies.hpp): `fixed`, `constant` (velocity) or
-// `sinusoidal` (displacement amplitude (sin(2 pi t / period + phase) - sin phase), phase in degrees).
+// A body's prescribed motion (src/boundary/moving_bodies.hpp): a translation, `fixed`, `constant`
+// (velocity) or `sinusoidal` (displacement amplitude (sin(2 pi t / period + phase) - sin phase)), and a
+// rotation about an axis through `centre` (moving with the translation): `constant` (rate) or
+// `sinusoidal` (angle amplitude, period, phase). Angles in degrees.
 struct MotionSpec {
-  std::string type = "fixed";
-  std::array<double, 3> velocity{}, amplitude{};
+  std::string type = "fixed", spin = "fixed";
+  std::array<double, 3> velocity{}, amplitude{}, centre{}, axis{0.0, 0.0, 1.0};
   double period = 1.0, phase_degrees = 0.0;
+  double rate_degrees = 0.0, angle_degrees = 0.0, spin_period = 1.0, spin_phase_degrees = 0.0;
 };
 
 struct YamlScene {

@@ -90,7 +90,7 @@ std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vec
   // No-slip walls: the viscous term sees the mirrored wall velocity (Adami et al. 2012).
   std::vector<Vector<D>> u_wall;
   if (walls_) {
-    u_wall = AdamiWall<D>::viscous_velocity(AdamiWall<D>::stencil(P, nh.list(), K), P, &u);
+    u_wall = AdamiWall<D>::viscous_velocity(AdamiWall<D>::stencil(P, nh.list(), K), P, &u, &disc_->bodies);
     nh.halo().update(u_wall);
   }
   const std::vector<Vector<D>>& uv = walls_ ? u_wall : u;
@@ -134,8 +134,8 @@ template <int D> std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences
       for (std::size_t i = 0; i < at_rest[f].size(); ++i) {
         if (P.kind[i] != kWall) continue;
         const PrescribedMotion<D>* body = disc_->bodies.motion_of(P, i);
-        const Vector<D> head = f == 0 ? Vector<D>(tau * (g - (body ? body->acceleration(t) : Vector<D>::Zero())))
-                                      : Vector<D>::Zero();
+        const Vector<D> a = body ? body->point_acceleration(P.x[i], t) : Vector<D>::Zero();
+        const Vector<D> head = f == 0 ? Vector<D>(tau * (g - a)) : Vector<D>::Zero();
         at_rest[f][i] = (body ? Vector<D>(P.v[i]) : Vector<D>::Zero()) + head;
       }
       us[f] = &at_rest[f];

@@ -169,7 +169,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   // No-slip walls: the viscous term sees the mirrored wall velocity (Adami et al. 2012).
   std::vector<Vector<D>> u_visc;
   if (walls_ && phys.viscous()) {
-    u_visc = AdamiWall<D>::viscous_velocity(AdamiWall<D>::stencil(P, nl, K), P);
+    u_visc = AdamiWall<D>::viscous_velocity(AdamiWall<D>::stencil(P, nl, K), P, nullptr, &disc_->bodies);
     nh.halo().update(u_visc);
   }
   const std::vector<Vector<D>>& uv = u_visc.empty() ? P.v : u_visc;

@@ -12,6 +12,7 @@
 // particles with no fluid neighbour keep p = 0 and u_w = v_w; no fluid particle sees them.
 #include <vector>
 
+#include "src/boundary/moving_bodies.hpp"
 #include "src/core/physics.hpp"
 #include "src/sph/pair_loop.hpp"
 
@@ -97,18 +98,32 @@ template <int D> struct AdamiWall {
   }
 
   // Velocity seen by the viscous term: the fluid's own, and the no-slip mirror on walls, for the
-  // velocity field v (P.v by default; walls keep their prescribed P.v).
+  // velocity field v (P.v by default; walls keep their prescribed P.v). A turning body's mirror takes
+  // its velocity where the wall meets the fluid (mirror_velocity), not at the particle inside it.
   static std::vector<Vector<D>> viscous_velocity(const Stencil& s, const Particles<D>& P,
-                                                 const std::vector<Vector<D>>* field = nullptr) {
+                                                 const std::vector<Vector<D>>* field = nullptr,
+                                                 const MovingBodies<D>* bodies = nullptr) {
     const std::vector<Vector<D>>& v = field ? *field : P.v;
     std::vector<Vector<D>> u(v.begin(), v.begin() + P.n_owned);
     for (std::size_t w = 0; w < P.n_owned; ++w) {
       if (P.kind[w] != kWall || s.offset[w] == s.offset[w + 1]) continue;
-      Vector<D> avg = Vector<D>::Zero();
-      for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) avg += s.weight[k] * v[s.fluid[k]];
-      u[w] = 2.0 * P.v[w] - avg;
+      Vector<D> avg = Vector<D>::Zero(), r = Vector<D>::Zero();
+      for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k)
+        avg += s.weight[k] * v[s.fluid[k]], r += s.weight[k] * s.r_wf[k];
+      u[w] = mirror_velocity(P, w, avg, r, bodies);
     }
     return u;
+  }
+
+  // Adami's mirror 2 v_w - u_f of wall particle w, u_f the Shepard average of the fluid's velocity and
+  // r the same average of x_w - x_f. A rigid rotation's velocity changes across the wall: taken at the
+  // particle, w x r_w, it would put the no-slip point inside the body, and a turning cylinder dragged
+  // half the torque along (docs/verification/body_forces.md); it is taken halfway to the fluid instead.
+  static Vector<D> mirror_velocity(const Particles<D>& P, std::size_t w, const Vector<D>& u_f, const Vector<D>& r,
+                                   const MovingBodies<D>* bodies) {
+    const PrescribedMotion<D>* m = bodies ? bodies->motion_of(P, w) : nullptr;
+    if (!m || m->spin == PrescribedMotion<D>::Type::Fixed) return 2.0 * P.v[w] - u_f;
+    return 2.0 * m->point_velocity(Vector<D>(P.x[w] - 0.5 * r), bodies->time()) - u_f;
   }
 };
 

@@ -1,9 +1,11 @@
 #pragma once
-// Bodies whose motion is prescribed as a function of time (a translation: constant velocity, or
-// sinusoidal, A (sin(w t + phi) - sin phi), which starts at rest for phi = -90 degrees). Their wall particles are moved by the solvers at their drift, and the wall condition
+// Bodies whose motion is prescribed as a function of time: a translation (constant velocity, or
+// sinusoidal, A (sin(w t + phi) - sin phi), which starts at rest for phi = -90 degrees) and a rotation
+// about an axis through a point that moves with it (constant rate, or a sinusoidal angle). Their wall particles are moved by the solvers at their drift, and the wall condition
 // sees the body's velocity and acceleration: Adami et al. (2012)'s pressure extrapolation takes
 // (g - a_w), the continuity equation (WCSPH) and the pressure source (ISPH) the wall's velocity.
 // Membership is by permanent particle id, as for the force groups (src/run/wall_groups.hpp).
+#include <Eigen/Geometry>
 #include <cmath>
 #include <vector>
 
@@ -13,13 +15,22 @@ namespace sph {
 
 template <int D> struct PrescribedMotion {
   enum class Type { Fixed, Constant, Sinusoidal };
+  // The translation of the body's points.
   Type type = Type::Fixed;
   Vector<D> velocity = Vector<D>::Zero();   // Constant
   Vector<D> amplitude = Vector<D>::Zero();  // Sinusoidal: A (sin(2 pi t / T + phase) - sin phase)
   double period = 1.0, phase = 0.0;         // phase in radians
+  // A rotation by the angle theta(t) about the axis through centre + displacement(t): Constant,
+  // theta = rate t; Sinusoidal, theta = angle (sin(2 pi t / spin_period + spin_phase) - sin spin_phase).
+  Type spin = Type::Fixed;
+  double rate = 0.0, angle = 0.0, spin_period = 1.0, spin_phase = 0.0;  // radians
+  Vector<D> centre = Vector<D>::Zero();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // unit; 2D: z
 
-  bool moves() const { return type != Type::Fixed; }
+  bool moves() const { return type != Type::Fixed || spin != Type::Fixed; }
   double omega() const { return 2.0 * M_PI / period; }
+  double spin_omega() const { return 2.0 * M_PI / spin_period; }
+
   Vector<D> displacement(double t) const {
     if (type == Type::Constant) return t * velocity;
     if (type == Type::Sinusoidal) return (std::sin(omega() * t + phase) - std::sin(phase)) * amplitude;
@@ -34,11 +45,58 @@ template <int D> struct PrescribedMotion {
     if (type == Type::Sinusoidal) return -omega() * omega() * std::sin(omega() * t + phase) * amplitude;
     return Vector<D>::Zero();
   }
-  // Largest speed over all time, for the step limits.
-  double top_speed() const {
-    if (type == Type::Constant) return velocity.norm();
-    if (type == Type::Sinusoidal) return omega() * amplitude.norm();
+  double angle_at(double t) const {
+    if (spin == Type::Constant) return rate * t;
+    if (spin == Type::Sinusoidal) return angle * (std::sin(spin_omega() * t + spin_phase) - std::sin(spin_phase));
     return 0.0;
+  }
+  double angular_velocity(double t) const {
+    if (spin == Type::Constant) return rate;
+    if (spin == Type::Sinusoidal) return angle * spin_omega() * std::cos(spin_omega() * t + spin_phase);
+    return 0.0;
+  }
+  double angular_acceleration(double t) const {
+    if (spin == Type::Sinusoidal) return -angle * spin_omega() * spin_omega() * std::sin(spin_omega() * t + spin_phase);
+    return 0.0;
+  }
+
+  // Where the body's point x at time t1 is at time t2.
+  Vector<D> moved(const Vector<D>& x, double t1, double t2) const {
+    if (spin == Type::Fixed) return x + (displacement(t2) - displacement(t1));
+    const Vector<D> c1 = centre + displacement(t1), c2 = centre + displacement(t2);
+    return c2 + rotate(x - c1, angle_at(t2) - angle_at(t1));
+  }
+  // The velocity and acceleration of the body's point at x at time t: the translation's, and the
+  // rotation's w x r and dw/dt x r + w x (w x r), r from the axis.
+  Vector<D> point_velocity(const Vector<D>& x, double t) const {
+    return velocity_at(t) + angular_velocity(t) * axis_cross(x - centre - displacement(t));
+  }
+  Vector<D> point_acceleration(const Vector<D>& x, double t) const {
+    const Vector<D> r = x - centre - displacement(t);
+    const double w = angular_velocity(t);
+    return acceleration(t) + angular_acceleration(t) * axis_cross(r) + w * w * axis_cross(axis_cross(r));
+  }
+  // Largest speed over all time of a point within `radius` of the axis, for the step limits.
+  double top_speed(double radius) const {
+    double s = 0.0;
+    if (type == Type::Constant) s = velocity.norm();
+    if (type == Type::Sinusoidal) s = omega() * amplitude.norm();
+    if (spin == Type::Constant) s += std::abs(rate) * radius;
+    if (spin == Type::Sinusoidal) s += std::abs(angle) * spin_omega() * radius;
+    return s;
+  }
+
+ private:
+  Vector<D> axis_cross(const Vector<D>& r) const {
+    Eigen::Vector3d r3 = Eigen::Vector3d::Zero();
+    r3.head<D>() = r;
+    return axis.cross(r3).template head<D>();
+  }
+  Vector<D> rotate(const Vector<D>& r, double theta) const {
+    if (theta == 0.0) return r;
+    Eigen::Vector3d r3 = Eigen::Vector3d::Zero();
+    r3.head<D>() = r;
+    return (Eigen::AngleAxisd(theta, axis) * r3).template head<D>();
   }
 };
 
@@ -52,12 +110,6 @@ template <int D> class MovingBodies {
   }
 
   bool any() const { return any_; }
-  double top_speed() const {
-    double s = 0.0;
-    for (const auto& m : motions_) s = std::max(s, m.top_speed());
-    return s;
-  }
-
   // The motion of particle i (owned or ghost), or nullptr when it is in no moving body.
   const PrescribedMotion<D>* motion_of(const Particles<D>& P, std::size_t i) const {
     if (!any_ || P.kind[i] != kWall) return nullptr;
@@ -74,8 +126,8 @@ template <int D> class MovingBodies {
     if (!any_) return;
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (const PrescribedMotion<D>* m = motion_of(P, i)) {
-        P.x[i] += m->displacement(t) - m->displacement(t_);
-        P.v[i] = m->velocity_at(t);
+        P.x[i] = m->moved(P.x[i], t_, t);
+        P.v[i] = m->point_velocity(P.x[i], t);
       }
     t_ = t;
   }
@@ -87,7 +139,7 @@ template <int D> class MovingBodies {
     if (!any_) return {};
     std::vector<Vector<D>> a(P.n_owned, Vector<D>::Zero());
     for (std::size_t i = 0; i < P.n_owned; ++i)
-      if (const PrescribedMotion<D>* m = motion_of(P, i)) a[i] = m->acceleration(t);
+      if (const PrescribedMotion<D>* m = motion_of(P, i)) a[i] = m->point_acceleration(P.x[i], t);
     return a;
   }
 

@@ -332,7 +332,7 @@ template <int D> void TimeLoop<D>::advance() {
   if (surface_column_) row.push_back(fluid_share(s_.P, *output_field(solver_.output_fields(), "free_surface")));
   if (walls_column_) row.push_back(static_cast<double>(fluid_in_walls(s_.P, s_.nh.list(), case_.spacing())));
   if (wall_groups_) {
-    const std::vector<double> forces = wall_groups_->row(s_.P, s_.nh, s_.kernel, s_.disc.physics.nu);
+    const std::vector<double> forces = wall_groups_->row(s_.P, s_.nh, s_.kernel, s_.disc.physics, s_.disc.bodies);
     row.insert(row.end(), forces.begin(), forces.end());
   }
   series_->row(row);

@@ -18,14 +18,17 @@ template <int D> class WallGroups {
   // left over. No groups without wall particles.
   WallGroups(const Case<D>& run_case, const Particles<D>& P) : label_(run_case.body_of_particles()) {
     const std::vector<std::string> bodies = run_case.body_names();
-    std::vector<double> count(bodies.size() + 1, 0.0);
+    std::vector<double> count(bodies.size() + 1, 0.0), volume(bodies.size() + 1, 0.0);
     std::vector<Vector<D>> sum(bodies.size() + 1, Vector<D>::Zero());
     for (std::size_t i = 0; i < P.n_owned; ++i) {
       if (P.kind[i] != kWall) continue;
       const std::size_t k = static_cast<std::size_t>(body_of(P.id[i]) + 1);  // 0: walls
-      count[k] += 1.0, sum[k] += P.x[i];
+      count[k] += 1.0, sum[k] += P.x[i], volume[k] += P.m[i] / P.rho[i];
     }
     MPI_Allreduce(MPI_IN_PLACE, count.data(), static_cast<int>(count.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    MPI_Allreduce(MPI_IN_PLACE, volume.data(), static_cast<int>(volume.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    volume_.assign(volume.begin() + 1, volume.end());
+    motions_ = run_case.body_motions();
     for (Vector<D>& s : sum) MPI_Allreduce(MPI_IN_PLACE, s.data(), D, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
     // Body b is group b; the leftover walls come last, and only when there are any.
     for (std::size_t b = 0; b < bodies.size(); ++b) add(bodies[b], count[b + 1], sum[b + 1]);
@@ -52,7 +55,8 @@ template <int D> class WallGroups {
   // The columns' values for the current state. Refreshes the ghosts' positions and velocities as the
   // step left the owned ones (as the solvers do before their own pair loops) and reads the pressure
   // and density through copies, so the run goes on bitwise the same.
-  std::vector<double> row(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, double nu) const {
+  std::vector<double> row(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, const Physics<D>& physics,
+                          const MovingBodies<D>& bodies) const {
     nh.update(P);
     std::vector<double> p = P.p, rho = P.rho;
     nh.halo().update(p);
@@ -60,7 +64,14 @@ template <int D> class WallGroups {
     std::vector<int> group(P.n_owned, -1);
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (P.kind[i] == kWall) group[i] = body_of(P.id[i]) >= 0 ? body_of(P.id[i]) : walls_group_;
-    const std::vector<GroupForce<D>> F = wall_group_forces(P, nh.list(), K, p, rho, group, nu, about_);
+    std::vector<GroupForce<D>> F = wall_group_forces(P, nh.list(), K, p, rho, group, physics.nu, about_, &bodies);
+    // The pair sums carry the traction of the viscous term's Laplacian form, mu du/dn; the stress's
+    // other part, mu (grad u)^T n, integrates over a body turning at w to a torque -2 mu V w (in 2D
+    // and 3D), and to no force (docs/verification/body_forces.md, the Couette torque).
+    for (std::size_t b = 0; b < motions_.size() && b < F.size(); ++b) {
+      const double w = motions_[b].angular_velocity(bodies.time());
+      F[b].moment -= 2.0 * physics.rho0 * physics.nu * volume_[b] * w * motions_[b].axis;
+    }
     std::vector<double> r;
     for (const GroupForce<D>& f : F) {
       for (const Vector<D>& v : {f.total(), f.pressure, f.viscous}) r.insert(r.end(), v.data(), v.data() + D);
@@ -92,6 +103,8 @@ template <int D> class WallGroups {
   }
 
   std::vector<int> label_;  // by id: the body's index, -1 for none
+  std::vector<double> volume_;  // per body, as laid out
+  std::vector<PrescribedMotion<D>> motions_;
   std::vector<std::string> names_;
   std::vector<long> particles_;
   std::vector<Vector<D>> about_;

@@ -20,7 +20,8 @@
 
 namespace sph {
 
-// One group's force and its moment about the group's reference point (the z component in 2D).
+// One group's force and its moment about the group's reference point (the z component in 2D), each
+// pair's force acting at the pair's midpoint.
 template <int D> struct GroupForce {
   Vector<D> pressure = Vector<D>::Zero(), viscous = Vector<D>::Zero();
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();
@@ -41,14 +42,18 @@ template <int D>
 std::vector<GroupForce<D>> wall_group_forces(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                                              const std::vector<double>& p, const std::vector<double>& rho,
                                              const std::vector<int>& group, double nu,
-                                             const std::vector<Vector<D>>& about) {
+                                             const std::vector<Vector<D>>& about,
+                                             const MovingBodies<D>* bodies = nullptr) {
   const std::size_t n_groups = about.size();
-  // Per wall particle, in one pass over its fluid pairs: the two pressure sums (the wall's own p_w
-  // factors out) and the viscous sums, with the Shepard average of the fluid velocity that the
-  // mirror velocity needs (AdamiWall::viscous_velocity's, without gathering a stencil).
+  // Per wall particle, in one pass over its fluid pairs: the pressure force, the viscous sums, with the
+  // Shepard averages that the mirror velocity needs (AdamiWall::viscous_velocity's, without gathering a
+  // stencil), and the moments. Each pair's force acts halfway between its two particles, where the
+  // wall meets the fluid: taken at the wall particle, the lever arm of a turning cylinder's viscous
+  // torque was short by the depth of its layers (docs/verification/body_forces.md).
   struct Sums {
-    Vector<D> fluid_pressure = Vector<D>::Zero(), mass_gradient = Vector<D>::Zero(), viscous_u = Vector<D>::Zero(),
-              shepard_u = Vector<D>::Zero();
+    Vector<D> pressure = Vector<D>::Zero(), viscous_u = Vector<D>::Zero(), shepard_u = Vector<D>::Zero(),
+              shepard_r = Vector<D>::Zero(), viscous_arm = Vector<D>::Zero();
+    Eigen::Vector3d pressure_moment = Eigen::Vector3d::Zero(), viscous_moment_u = Eigen::Vector3d::Zero();
     double viscous_weight = 0.0, shepard_weight = 0.0;
   };
   const double h = K.h();
@@ -56,12 +61,15 @@ std::vector<GroupForce<D>> wall_group_forces(const Particles<D>& P, const Neighb
       P, nl, K, Sums{},
       [&](Sums& s, int w, int f, const PairGeometry<D>& g) {
         if (P.kind[f] != kFluid || group[w] < 0) return;
-        s.fluid_pressure += (P.m[f] * p[f] / (rho[f] * rho[f])) * g.gradW;
-        s.mass_gradient += P.m[f] * g.gradW;
+        const Vector<D> arm = P.x[w] - 0.5 * g.rij - about[static_cast<std::size_t>(group[w])];
+        const Vector<D> pressure =
+            (-P.m[w] * P.m[f] * (p[f] / (rho[f] * rho[f]) + p[w] / (rho[w] * rho[w]))) * g.gradW;
+        s.pressure += pressure, s.pressure_moment += moment_of<D>(arm, pressure);
         if (nu > 0.0) {
           const double k = P.m[f] * (rho[w] * nu + rho[f] * nu) / (rho[w] * rho[f]) * morris_factor(g, h);
           s.viscous_u += k * P.v[f], s.viscous_weight += k;
-          s.shepard_u += g.W * P.v[f], s.shepard_weight += g.W;
+          s.viscous_arm += k * arm, s.viscous_moment_u += k * moment_of<D>(arm, Vector<D>(P.v[f]));
+          s.shepard_u += g.W * P.v[f], s.shepard_r += g.W * g.rij, s.shepard_weight += g.W;
         }
       },
       Rows::Walls);
@@ -70,14 +78,14 @@ std::vector<GroupForce<D>> wall_group_forces(const Particles<D>& P, const Neighb
     if (P.kind[w] != kWall || group[w] < 0) continue;
     const Sums& s = sums[w];
     GroupForce<D>& F = out[static_cast<std::size_t>(group[w])];
-    const Vector<D> pressure = -P.m[w] * (s.fluid_pressure + (p[w] / (rho[w] * rho[w])) * s.mass_gradient);
-    Vector<D> viscous = Vector<D>::Zero();
+    F.pressure += s.pressure, F.moment += s.pressure_moment;
     if (s.shepard_weight > 0.0) {
-      const Vector<D> mirror = 2.0 * P.v[w] - s.shepard_u / s.shepard_weight;
-      viscous = P.m[w] * (s.viscous_weight * mirror - s.viscous_u);
+      const Vector<D> mirror = AdamiWall<D>::mirror_velocity(P, w, s.shepard_u / s.shepard_weight,
+                                                             s.shepard_r / s.shepard_weight, bodies);
+      // sum_f m_w k_f (mirror - u_f), and its moment about the pairs' midpoints.
+      F.viscous += P.m[w] * (s.viscous_weight * mirror - s.viscous_u);
+      F.moment += P.m[w] * (moment_of<D>(s.viscous_arm, mirror) - s.viscous_moment_u);
     }
-    F.pressure += pressure, F.viscous += viscous;
-    F.moment += moment_of<D>(P.x[w] - about[static_cast<std::size_t>(group[w])], pressure + viscous);
   }
   std::vector<double> flat;
   for (const GroupForce<D>& F : out) {
