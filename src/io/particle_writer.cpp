@@ -22,39 +22,16 @@
 #include <system_error>
 
 #include "src/core/error.hpp"
+#include "src/io/vtk_files.hpp"
 
 namespace sph {
 
 namespace {
 
-// "<base>_NNNNN" (the frame's stem, shared by the .vtp, the pieces and the .pvtp).
-std::string frame_stem(const std::string& base, int frame) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "_%05d", frame);
-  return base + buf;
-}
-
 std::string piece_name(const std::string& base, int frame, int rank) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "_r%04d.vtp", rank);
   return frame_stem(base, frame) + buf;
-}
-
-// Escapes a string for use inside a double-quoted XML attribute.
-std::string xml_attr(const std::string& s) {
-  std::string out;
-  out.reserve(s.size());
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 // The VTK XML type name that vtkXMLWriter uses for an array (for the hand-written .pvtp).
@@ -78,66 +55,10 @@ vtkNew<vtkDoubleArray> scalar_array(const std::string& name, const std::vector<d
   return a;
 }
 
-// The one-line failure of a write to `path`, from the system's reason `err` (an errno value).
-Error write_failure(const std::string& path, int err) {
-  const std::string why = err ? std::strerror(err) : "unknown reason";
-  return Error("cannot write " + path + " (" + why + "); " +
-               (err == ENOSPC || err == EDQUOT
-                    ? "free space on the disk of -output_dir, or write fewer frames (-output_interval)"
-                    : "check that -output_dir is writable"));
-}
-
-// Moves a complete temporary file over `path` (atomic on POSIX file systems): readers see the old
-// file or the new one, never a part.
-void replace_with(const std::string& tmp, const std::string& path) {
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    std::remove(tmp.c_str());
-    throw Error("cannot replace " + path + " (rename from " + tmp + ": " + std::strerror(err) + ")");
-  }
-}
-
-// Writes `text` to `path` through a temporary file renamed over it.
-void write_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    errno = 0;
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw write_failure(path, errno);
-    out << text;
-    out.flush();
-    if (!out) {
-      const int err = errno;
-      std::remove(tmp.c_str());
-      throw write_failure(path, err);
-    }
-  }
-  replace_with(tmp, path);
-}
-
-// Writes a frame to `path` through a temporary file, as write_atomically: a failed write (a full
-// disk) leaves no truncated frame behind, and VTK's own multi-line reports are kept off the terminal.
-void write_frame(vtkXMLPolyDataWriter* writer, const std::string& path) {
-  const std::string tmp = path + ".tmp";
-  writer->SetFileName(tmp.c_str());
-  const vtkTypeBool warnings = vtkObject::GetGlobalWarningDisplay();
-  vtkObject::GlobalWarningDisplayOff();
-  errno = 0;
-  const bool written = writer->Write() == 1 && writer->GetErrorCode() == vtkErrorCode::NoError;
-  const int err = errno;
-  const unsigned long code = writer->GetErrorCode();
-  vtkObject::SetGlobalWarningDisplay(warnings);
-  if (!written) {
-    std::remove(tmp.c_str());
-    throw write_failure(path, code == vtkErrorCode::OutOfDiskSpaceError ? ENOSPC : err);
-  }
-  replace_with(tmp, path);
-}
-
 }  // namespace
 
 template <int D> ParticleWriter<D>::ParticleWriter(const std::string& output_dir, const std::string& basename)
-    : dir_(output_dir.empty() ? std::string(".") : output_dir), base_(basename) {
+    : dir_(output_dir.empty() ? std::string(".") : output_dir), base_(basename), series_(dir_, base_) {
   PetscMPIInt r = 0, s = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &r);
   MPI_Comm_size(PETSC_COMM_WORLD, &s);
@@ -241,37 +162,11 @@ std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const s
       write_atomically(dir_ + "/" + listed, m);
     }
   }
-  frames_.emplace_back(time, listed);
-  write_pvd();
+  series_.add(time, listed);
   return dir_ + "/" + listed;
 }
 
-template <int D> void ParticleWriter<D>::resume(double t) {
-  frames_.clear();
-  std::ifstream in(pvd_path());
-  const std::regex entry("<DataSet[^>]*timestep=\"([^\"]+)\"[^>]*file=\"([^\"]+)\"");
-  std::string line;
-  std::smatch m;
-  while (std::getline(in, line))
-    if (std::regex_search(line, m, entry) && std::stod(m[1].str()) <= t * (1 + 1e-12))
-      frames_.emplace_back(std::stod(m[1].str()), m[2].str());
-}
-
-template <int D> void ParticleWriter<D>::write_pvd() const {
-  if (rank_ != 0) return;
-  std::string text =
-      "<?xml version=\"1.0\"?>\n"
-      "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-      "  <Collection>\n";
-  for (const auto& f : frames_) {
-    char ts[40];
-    std::snprintf(ts, sizeof ts, "%.17g", f.first);
-    text += std::string("    <DataSet timestep=\"") + ts + "\" group=\"\" part=\"0\" file=\"" + xml_attr(f.second) +
-            "\"/>\n";
-  }
-  text += "  </Collection>\n</VTKFile>\n";
-  write_atomically(pvd_path(), text);
-}
+template <int D> void ParticleWriter<D>::resume(double t) { series_.resume(t); }
 
 template class ParticleWriter<1>;
 template class ParticleWriter<2>;

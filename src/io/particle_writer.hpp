@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "src/io/vtk_files.hpp"
 #include "src/particles/particles.hpp"
 
 namespace sph {
@@ -49,15 +50,13 @@ template <int D> class ParticleWriter {
   // so numbering and the time series continue.
   void resume(double t);
 
-  int frames_written() const { return static_cast<int>(frames_.size()); }
-  std::string pvd_path() const { return dir_ + "/" + base_ + ".pvd"; }
+  int frames_written() const { return series_.size(); }
+  std::string pvd_path() const { return series_.pvd_path(); }
 
  private:
-  void write_pvd() const;
-
   std::string dir_, base_;
   int rank_ = 0, size_ = 1;
-  std::vector<std::pair<double, std::string>> frames_;  // time, file name relative to dir_
+  FrameSeries series_;
 };
 
 }  // namespace sph
