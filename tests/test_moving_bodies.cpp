@@ -7,6 +7,11 @@
 #include <string>
 
 #include <Eigen/Geometry>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
+
+#include <cstdio>
 
 #include "src/boundary/moving_bodies.hpp"
 #include "tests/run_sph.hpp"
@@ -158,6 +163,38 @@ TEST(MovingBodies, IsphOscillatingCylinderFeelsItsAddedMass) {
 TEST(MovingBodies, WcsphOscillatingCylinderFeelsItsAddedMass) {
   const double Ca = added_mass_at_nx20("wcsph");
   EXPECT_NEAR(Ca / kExactAddedMass, 1.0, 0.12) << "C_a = " << Ca;
+}
+
+// Each body's surface is written beside the frames where the body is: the oscillating cylinder's
+// contour is a circle of radius R (to the sampling step, dx / 4) whose centre moves by the motion's
+// displacement at each frame's time.
+TEST(MovingBodies, BodySurfaceFollowsTheBody) {
+  const auto r = sph::testing::run_sph("moving_surface", "-case scene -scene_file " + kOscillating +
+                                                             " -nx 20 -t_end 0.5 -output_interval 0.25 -threads 1");
+  ASSERT_EQ(r.exit_code, 0);
+  const double R = 0.2, step = 0.25 / 20;
+  sph::PrescribedMotion<2> m;
+  m.type = sph::PrescribedMotion<2>::Type::Sinusoidal;
+  m.amplitude = sph::Vector<2>(0.02, 0.0), m.period = 1.0, m.phase = -M_PI / 2;
+  sph::Vector<2> centre0 = sph::Vector<2>::Zero();
+  for (int frame = 0; frame < 3; ++frame) {
+    char name[64];
+    std::snprintf(name, sizeof name, "/body_cylinder_%05d.vtp", frame);
+    vtkNew<vtkXMLPolyDataReader> reader;
+    reader->SetFileName((r.output_dir + name).c_str());
+    reader->Update();
+    vtkPolyData* surface = reader->GetOutput();
+    ASSERT_GT(surface->GetNumberOfPoints(), 50) << name;
+    EXPECT_EQ(surface->GetNumberOfLines(), surface->GetNumberOfPoints()) << "a closed curve";
+    sph::Vector<2> centre = sph::Vector<2>::Zero();
+    for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
+      centre += sph::Vector<2>(surface->GetPoint(i)[0], surface->GetPoint(i)[1]);
+    centre /= static_cast<double>(surface->GetNumberOfPoints());
+    for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
+      EXPECT_NEAR((sph::Vector<2>(surface->GetPoint(i)[0], surface->GetPoint(i)[1]) - centre).norm(), R, 0.5 * step);
+    if (frame == 0) centre0 = centre;
+    EXPECT_LT((centre - centre0 - m.displacement(0.25 * frame)).norm(), 1e-12) << name;
+  }
 }
 
 // cases/scenes/couette_cylinders.yaml: a cylinder R1 = 0.2 turning at 1 rad/s inside a fixed one

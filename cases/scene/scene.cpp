@@ -137,6 +137,7 @@ template <int D> void SceneCase<D>::read_file() {
   YamlScene scene = read_yaml_scene(opt_.path, opt_.nx_set ? 1.0 / opt_.nx : opt_.dx_set ? opt_.dx : 0.0, layers);
   file_ = std::move(scene.file);
   body_ = std::move(scene.body);
+  surfaces_ = std::move(scene.surfaces);
   for (const MotionSpec& spec : scene.motions) {
     PrescribedMotion<D> m;
     m.type = spec.type == "constant"     ? PrescribedMotion<D>::Type::Constant

@@ -53,6 +53,7 @@ template <int D> class SceneCase : public Case<D> {
   std::vector<std::string> body_names() const override { return bodies_; }
   std::vector<int> body_of_particles() const override { return body_; }
   std::vector<PrescribedMotion<D>> body_motions() const override { return motions_; }
+  std::vector<SurfaceMesh> body_surfaces() const override { return surfaces_; }
 
  private:
   void read_file();           // the .vtp file, or the YAML file sampled at -nx, -scene_dx or its dx
@@ -65,6 +66,7 @@ template <int D> class SceneCase : public Case<D> {
   std::vector<int> body_;            // YAML scenes: per particle, index into bodies_ (-1: none)
   std::vector<std::string> bodies_;  // YAML scenes: the names of the bodies
   std::vector<PrescribedMotion<D>> motions_;  // YAML scenes: per body
+  std::vector<SurfaceMesh> surfaces_;          // YAML scenes: per body, at t = 0
   Domain<D> box_;
   Physics<D> physics_;
   double dx_ = 0.0, t_end_ = 1.0, walls_ = 0.0;

@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "cases/scene/scene_file.hpp"
+#include "src/io/surface_writer.hpp"
 
 namespace sph {
 
@@ -56,6 +57,7 @@ struct YamlScene {
   std::vector<int> body;            // per particle: index into bodies, -1 for fluid and walls
   std::vector<std::string> bodies;  // the body names, in order of first appearance
   std::vector<MotionSpec> motions;  // per body
+  std::vector<SurfaceMesh> surfaces;  // per body, where the body is at t = 0 (within the box)
 };
 
 // By the extension: .yaml or .yml.

@@ -22,7 +22,8 @@ namespace {
 
 bool is_result(const std::string& name) {
   static const std::regex result(
-      "summary\\.json|particles\\.pvd|timeseries\\.csv|checkpoint\\.bin|particles_[0-9]+(_r[0-9]+)?\\.(vtp|pvtp)");
+      "summary\\.json|particles\\.pvd|timeseries\\.csv|checkpoint\\.bin|particles_[0-9]+(_r[0-9]+)?\\.(vtp|pvtp)|"
+      "body_[A-Za-z0-9_]+\\.pvd|body_[A-Za-z0-9_]+_[0-9]+\\.vtp");
   return std::regex_match(name, result);
 }
 

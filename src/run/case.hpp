@@ -10,6 +10,7 @@
 #include "src/boundary/moving_bodies.hpp"
 #include "src/core/domain.hpp"
 #include "src/core/physics.hpp"
+#include "src/io/surface_writer.hpp"
 #include "src/particles/particles.hpp"
 
 namespace sph {
@@ -44,6 +45,8 @@ template <int D> class Case {
   virtual std::vector<int> body_of_particles() const { return {}; }
   // Each body's prescribed motion, in the order of body_names() (empty: all fixed).
   virtual std::vector<PrescribedMotion<D>> body_motions() const { return {}; }
+  // Each body's surface at t = 0, for ParaView (empty: none).
+  virtual std::vector<SurfaceMesh> body_surfaces() const { return {}; }
 
   // Thickness of the wall-particle layers (0 without walls): the kernel support must fit in it.
   virtual double wall_thickness() const { return 0.0; }

@@ -79,6 +79,7 @@ template <int D> class TimeLoop {
   void write_due_outputs();
   void warn_dt(double stable);
   std::vector<ScalarField> frame_fields(bool derived = true);
+  void write_frame(bool derived = true);
   void repartition();
   void write_state(const std::string& why = "checkpointed");
   nlohmann::json this_segment(const std::string& status) const;
@@ -108,6 +109,8 @@ template <int D> class TimeLoop {
   std::optional<ParticleWriter<D>> writer_;
   std::optional<CsvWriter> series_;
   std::optional<WallGroups<D>> wall_groups_;  // timeseries.csv's force columns
+  std::vector<SurfaceMesh> body_surfaces_;      // each body's, at t = 0
+  std::vector<SurfaceWriter> surface_writers_;
   std::vector<std::vector<double>> vorticity_;
   nlohmann::json summary_;
   int ranks_ = 1;
@@ -212,7 +215,7 @@ template <int D> void TimeLoop<D>::run() {
     }
     if (interrupted_) {
       // Everything needed to look at the state reached and to resume it.
-      if (last_frame_t_ < t_) writer_->write(s_.P, t_, frame_fields()), last_frame_t_ = t_;
+      if (last_frame_t_ < t_) write_frame(), last_frame_t_ = t_;
       if (last_checkpoint_step_ != step_) write_state("interrupted (" + signal_name(interrupted_) + ")");
     }
   } catch (const OptionError&) {
@@ -225,7 +228,7 @@ template <int D> void TimeLoop<D>::run() {
   const LogEventScope log_output(LogEvent::Output);
   if (opt_.steady_tol > 0) summary_["steady_state_reached"] = steady_.reached();
   case_.write_outputs(s_.P, t_, run_.output_dir);
-  if (last_frame_t_ < t_) writer_->write(s_.P, t_, frame_fields());  // e.g. stopped at steady state between frames
+  if (last_frame_t_ < t_) write_frame();  // e.g. stopped at steady state between frames
   finish("completed", "");
 }
 
@@ -238,6 +241,14 @@ template <int D> void TimeLoop<D>::open_outputs() {
   writer_.emplace(dir);
   if (restarting) writer_->resume(resumed_.t);
   if (in_place) remove_frames_from(dir, "particles", writer_->frames_written());
+  // Each body's surface beside the frames, moved with it.
+  body_surfaces_ = case_.body_surfaces();
+  const std::vector<std::string> bodies = case_.body_names();
+  for (std::size_t b = 0; b < body_surfaces_.size() && b < bodies.size(); ++b) {
+    surface_writers_.emplace_back(dir, bodies[b]);
+    if (restarting) surface_writers_.back().resume(resumed_.t);
+    if (in_place) remove_frames_from(dir, surface_writers_.back().basename(), surface_writers_.back().frames_written());
+  }
   std::vector<std::string> columns = {"step", "t", "dt", "kinetic_energy"};
   for (int a = 0; a < D; ++a) columns.push_back(std::string("momentum_") + "xyz"[a]);
   columns.insert(columns.end(), {"ksp_iterations", "ksp_reason"});
@@ -293,7 +304,7 @@ template <int D> void TimeLoop<D>::set_start_state() {
   const double frame_interval = opt_.output_interval > 0 ? opt_.output_interval : opt_.t_end;
   frames_.emplace(frame_interval, t_);
   checkpoints_.emplace(opt_.checkpoint_interval < 0 ? frame_interval : opt_.checkpoint_interval, t_);
-  if (!opt_.restarting()) writer_->write(s_.P, t_, frame_fields());
+  if (!opt_.restarting()) write_frame();
   last_frame_t_ = t_;
   const double U = s_.disc.physics.U;
   ke_bound_ = kBlowUpKineticEnergy * 0.5 * fluid_mass(s_.P) * U * U;
@@ -343,7 +354,7 @@ template <int D> void TimeLoop<D>::advance() {
 template <int D> void TimeLoop<D>::write_due_outputs() {
   if (frames_->due(t_) || time_reached(t_, opt_.t_end)) {
     const LogEventScope log_output(LogEvent::Output);
-    writer_->write(s_.P, t_, frame_fields());
+    write_frame();
     last_frame_t_ = t_;
     frames_->advance(t_);
   }
@@ -361,6 +372,23 @@ template <int D> void TimeLoop<D>::warn_dt(double stable) {
   PetscFPrintf(PETSC_COMM_WORLD, stderr, "sph: warning: %s\n", w.c_str());
   summary_["warnings"].push_back(w);
   warned_dt_ = true;
+}
+
+// A particle frame, and each body's surface where the body is now.
+template <int D> void TimeLoop<D>::write_frame(bool derived) {
+  writer_->write(s_.P, t_, frame_fields(derived));
+  const std::vector<PrescribedMotion<D>> motions = case_.body_motions();
+  for (std::size_t b = 0; b < surface_writers_.size(); ++b) {
+    SurfaceMesh surface = body_surfaces_[b];
+    if (b < motions.size() && motions[b].moves())
+      for (auto& x : surface.points) {
+        Vector<D> p;
+        for (int a = 0; a < D; ++a) p[a] = x[a];
+        p = motions[b].moved(p, 0.0, t_);
+        for (int a = 0; a < D; ++a) x[a] = p[a];
+      }
+    surface_writers_[b].write(surface, t_);
+  }
 }
 
 // The solver's own fields and the optional ones, for every frame.
@@ -430,7 +458,7 @@ template <int D> void TimeLoop<D>::fail(const Error& e) {
     finish("failed", msg.str());
     case_.write_outputs(s_.P, t_, run_.output_dir);
     // No derived fields: the state may hold NaN. The .pvd lists it last, for inspection.
-    writer_->write(s_.P, t_, frame_fields(false));
+    write_frame(false);
   } catch (const Error& later) {
     also = later.what() == std::string(e.what())
                ? "; the failed state could not be written either"

@@ -1,0 +1,56 @@
+#include "cases/scene/body_surface.hpp"
+
+#include <vtkCellArray.h>
+#include <vtkContourFilter.h>
+#include <vtkDoubleArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sph {
+
+SurfaceMesh body_surface(const std::vector<const Shape*>& parts, int dim, const Point3& lo, const Point3& hi,
+                         double step) {
+  int n[3] = {1, 1, 1};
+  for (int a = 0; a < dim; ++a) n[a] = std::max(2, static_cast<int>(std::ceil((hi[a] - lo[a]) / step)) + 1);
+  vtkNew<vtkImageData> grid;
+  grid->SetDimensions(n);
+  grid->SetOrigin(lo[0], lo[1], dim == 3 ? lo[2] : 0.0);
+  grid->SetSpacing(step, step, step);
+  vtkNew<vtkDoubleArray> distance;
+  distance->SetName("distance");
+  distance->SetNumberOfTuples(static_cast<vtkIdType>(n[0]) * n[1] * n[2]);
+  vtkIdType k = 0;
+  for (int z = 0; z < n[2]; ++z)
+    for (int y = 0; y < n[1]; ++y)
+      for (int x = 0; x < n[0]; ++x, ++k) {
+        const Point3 p(lo[0] + x * step, lo[1] + y * step, dim == 3 ? lo[2] + z * step : 0.0);
+        double d = std::numeric_limits<double>::infinity();
+        for (const Shape* s : parts) d = std::min(d, s->distance(p));
+        distance->SetValue(k, d);
+      }
+  grid->GetPointData()->SetScalars(distance);
+  vtkNew<vtkContourFilter> contour;
+  contour->SetInputData(grid);
+  contour->SetValue(0, 0.0);
+  contour->Update();
+  vtkPolyData* out = contour->GetOutput();
+  SurfaceMesh mesh;
+  mesh.lines = dim == 2;
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i) {
+    double x[3];
+    out->GetPoint(i, x);
+    mesh.points.push_back({x[0], x[1], x[2]});
+  }
+  vtkCellArray* cells = dim == 2 ? out->GetLines() : out->GetPolys();
+  const vtkIdType* ids = nullptr;
+  vtkIdType count = 0;
+  for (cells->InitTraversal(); cells->GetNextCell(count, ids);) mesh.cells.emplace_back(ids, ids + count);
+  return mesh;
+}
+
+}  // namespace sph

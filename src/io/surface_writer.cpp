@@ -1,0 +1,48 @@
+#include "src/io/surface_writer.hpp"
+
+#include <petscsys.h>
+#include <vtkCellArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataWriter.h>
+
+namespace sph {
+
+SurfaceWriter::SurfaceWriter(const std::string& output_dir, const std::string& body)
+    : dir_(output_dir.empty() ? std::string(".") : output_dir), base_("body_" + body), series_(dir_, base_) {}
+
+void SurfaceWriter::write(const SurfaceMesh& surface, double time) {
+  const std::string file = frame_stem(base_, series_.size()) + ".vtp";
+  PetscMPIInt rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank == 0) {
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    for (const auto& x : surface.points) points->InsertNextPoint(x.data());
+    vtkNew<vtkCellArray> cells;
+    for (const auto& c : surface.cells) {
+      std::vector<vtkIdType> ids(c.begin(), c.end());
+      cells->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+    }
+    vtkNew<vtkPolyData> poly;
+    poly->SetPoints(points);
+    if (surface.lines) poly->SetLines(cells);
+    else poly->SetPolys(cells);
+    vtkNew<vtkDoubleArray> t;
+    t->SetName("TIME");
+    t->SetNumberOfTuples(1);
+    t->SetValue(0, time);
+    poly->GetFieldData()->AddArray(t);
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetInputData(poly);
+    writer->SetDataModeToAppended();
+    writer->EncodeAppendedDataOff();
+    write_frame(writer, dir_ + "/" + file);
+  }
+  series_.add(time, file);
+}
+
+}  // namespace sph
