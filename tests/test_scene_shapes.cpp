@@ -260,6 +260,35 @@ TEST(SceneShapes, InlineShapesAndTopLevelPhysicsMatchTheNestedForm) {
   EXPECT_GT(std::count(a.body.begin(), a.body.end(), 0), 0);
 }
 
+// A motion table's file: its header, its rows and its times are checked, naming the row.
+TEST(SceneShapes, MotionTablesAreCheckedRowByRow) {
+  const std::string scene = "dimension: 2\nregions:\n  - {role: fluid, shape: {box: [0, 1, 0, 1]}}\n"
+                            "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: table, file: m.csv}}\n";
+  const std::vector<std::pair<std::string, std::string>> tables = {
+      {"t,x\n0,0\n1,1\n", "has the header 't,x'; give t,x,y (and ,angle in degrees) in the first line"},
+      {"t,x,y\n0,0,0\n0,1,0\n", "row 3: t = 0 does not increase"},
+      {"t,x,y\n0,0,0\n1,one,0\n", "row 3: 'one' is not a finite number"},
+      {"t,x,y\n0,0,0\n", "holds fewer than two rows"},
+      {"t,x,y,angle\n0,0,0,0\n1,0,0,10\n", "turns the body (an angle column) but has no centre"},
+  };
+  for (const auto& [csv, expected] : tables) {
+    std::ofstream(folder() + "/m.csv") << csv;
+    std::string message;
+    try {
+      sample("table", scene, 0.1);
+    } catch (const sph::Error& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+  }
+  std::ofstream(folder() + "/m.csv") << "t, x, y\n0, 0, 0\n0.5, 0.1, 0\n1, 0.3, -0.1\n";
+  const sph::YamlScene ok = sample("table", scene, 0.1);
+  ASSERT_EQ(ok.motions.size(), 1u);
+  EXPECT_EQ(ok.motions[0].type, "table");
+  EXPECT_EQ(ok.motions[0].table_t, (std::vector<double>{0, 0.5, 1}));
+  EXPECT_EQ(ok.motions[0].table_x[1], (std::vector<double>{0, 0, -0.1}));
+}
+
 TEST(SceneShapes, RefusalsNameTheFileTheKeyAndTheFix) {
   struct Case {
     const char* name;
@@ -314,7 +343,7 @@ TEST(SceneShapes, RefusalsNameTheFileTheKeyAndTheFix) {
        "regions[1].motion: is given for a region that is no body; only role: body moves"},
       {"motion_type",
        "dimension: 2\nregions:\n" + ok_region + "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: spin}}\n",
-       "regions[1].motion.type: is 'spin'; give fixed, constant or sinusoidal"},
+       "regions[1].motion.type: is 'spin'; give fixed, constant, sinusoidal or table"},
       {"motion_period",
        "dimension: 2\nregions:\n" + ok_region +
            "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: sinusoidal, amplitude: [1, 0], period: 0}}\n",
@@ -328,6 +357,10 @@ TEST(SceneShapes, RefusalsNameTheFileTheKeyAndTheFix) {
            "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {rotation: {type: constant, rate: 10, centre: "
            "[0, 0], axis: [0, 0]}}}\n",
        "regions[1].motion.rotation.axis: is given in a 2D scene, where bodies turn about z; remove it"},
+      {"table_missing",
+       "dimension: 2\nregions:\n" + ok_region +
+           "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: table, file: nowhere.csv}}\n",
+       "regions[1].motion.file: cannot be opened"},
       {"motion_twice",
        "dimension: 2\nregions:\n" + ok_region +
            "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: constant, velocity: [1, 0]}}\n"

@@ -140,15 +140,23 @@ template <int D> void SceneCase<D>::read_file() {
   surfaces_ = std::move(scene.surfaces);
   for (const MotionSpec& spec : scene.motions) {
     PrescribedMotion<D> m;
-    m.type = spec.type == "constant"     ? PrescribedMotion<D>::Type::Constant
-             : spec.type == "sinusoidal" ? PrescribedMotion<D>::Type::Sinusoidal
-                                         : PrescribedMotion<D>::Type::Fixed;
+    using Type = typename PrescribedMotion<D>::Type;
+    auto type_of = [](const std::string& name) {
+      return name == "constant" ? Type::Constant : name == "sinusoidal" ? Type::Sinusoidal : name == "table" ? Type::Table
+                                                                                                                : Type::Fixed;
+    };
+    m.type = type_of(spec.type);
+    if (m.type == Type::Table)
+      for (int a = 0; a < D; ++a) m.table_position.emplace_back(spec.table_t, spec.table_x[a]);
     for (int a = 0; a < D; ++a) m.velocity[a] = spec.velocity[a], m.amplitude[a] = spec.amplitude[a];
     m.period = spec.period, m.phase = spec.phase_degrees * M_PI / 180.0;
-    m.spin = spec.spin == "constant"     ? PrescribedMotion<D>::Type::Constant
-             : spec.spin == "sinusoidal" ? PrescribedMotion<D>::Type::Sinusoidal
-                                         : PrescribedMotion<D>::Type::Fixed;
+    m.spin = type_of(spec.spin);
     const double degree = M_PI / 180.0;
+    if (m.spin == Type::Table) {
+      std::vector<double> radians;
+      for (double a : spec.table_angle_degrees) radians.push_back(a * degree);
+      m.table_angle = CubicSpline(spec.table_t, radians);
+    }
     m.rate = spec.rate_degrees * degree, m.angle = spec.angle_degrees * degree;
     m.spin_period = spec.spin_period, m.spin_phase = spec.spin_phase_degrees * degree;
     for (int a = 0; a < D; ++a) m.centre[a] = spec.centre[a];

@@ -226,9 +226,15 @@ class Reader {
 
   // {type: fixed}, {type: constant, velocity: [..]} or {type: sinusoidal, amplitude: [..], period: T,
   // phase: degrees (optional)}.
-  MotionSpec motion(const YAML::Node& m, const std::string& key) const {
-    only_keys(m, key, {"type", "velocity", "amplitude", "period", "phase", "rotation"});
+  MotionSpec motion(const YAML::Node& m, const std::string& key) {
+    only_keys(m, key, {"type", "velocity", "amplitude", "period", "phase", "rotation", "file", "centre", "center", "axis"});
     MotionSpec spec;
+    if (m["type"].IsDefined() && m["type"].IsScalar() && m["type"].Scalar() == "table") {
+      table_motion(m, key, spec);
+      return spec;
+    }
+    for (const char* name : {"file", "centre", "center", "axis"})
+      if (m[name].IsDefined()) fail(m[name], key + "." + name, "belongs to type: table; remove it");
     if (m["rotation"].IsDefined()) rotation(m["rotation"], key + ".rotation", spec);
     const YAML::Node type = m["type"];
     if (!type.IsDefined() && spec.spin != "fixed") return spec;  // a rotation alone
@@ -257,9 +263,86 @@ class Reader {
       if (m["phase"].IsDefined()) spec.phase_degrees = number(m["phase"], key + ".phase");
       refuse_extra({"velocity"});
     } else {
-      fail(type, key + ".type", "is '" + spec.type + "'; give fixed, constant or sinusoidal (translations)");
+      fail(type, key + ".type", "is '" + spec.type + "'; give fixed, constant, sinusoidal or table");
     }
     return spec;
+  }
+
+  // {type: table, file: motion.csv(, centre: [..], axis: [..])}: a CSV with the header t,x,y(,z)(,angle)
+  // (angle in degrees, about the axis through centre), t increasing; the path relative to the scene file.
+  void table_motion(const YAML::Node& m, const std::string& key, MotionSpec& spec) {
+    for (const char* name : {"velocity", "amplitude", "period", "phase", "rotation"})
+      if (m[name].IsDefined()) fail(m[name], key + "." + name, "does not apply to type table; remove it");
+    if (!m["file"].IsDefined() || !m["file"].IsScalar()) fail(m, key, "of type table needs file: motion.csv");
+    std::filesystem::path file(m["file"].Scalar());
+    if (file.is_relative()) file = dir_ / file;
+    std::ifstream in(file, std::ios::binary);
+    if (!in) fail(m["file"], key + ".file", "cannot be opened ('" + file.string() + "'; paths are relative to the scene file)");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    checksum = fnv1a(checksum, text.data(), text.size());
+    std::istringstream lines(text);
+    std::string line, where = key + ".file '" + file.string() + "'";
+    auto cells = [](const std::string& l) {
+      std::vector<std::string> out;
+      std::stringstream row(l);
+      for (std::string cell; std::getline(row, cell, ',');) {
+        const auto a = cell.find_first_not_of(" \t\r"), b = cell.find_last_not_of(" \t\r");
+        out.push_back(a == std::string::npos ? "" : cell.substr(a, b - a + 1));
+      }
+      return out;
+    };
+    std::getline(lines, line);
+    const std::vector<std::string> header = cells(line);
+    std::vector<std::string> want = {"t", "x", "y"};
+    if (dim == 3) want.push_back("z");
+    const bool with_angle = header.size() == want.size() + 1 && header.back() == "angle";
+    if (with_angle) want.push_back("angle");
+    if (header != want)
+      fail(m["file"], where, std::string("has the header '") + line + "'; give t,x,y" + (dim == 3 ? ",z" : "") +
+                                 " (and ,angle in degrees) in the first line");
+    for (int row = 2; std::getline(lines, line); ++row) {
+      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+      const std::vector<std::string> v = cells(line);
+      if (v.size() != want.size())
+        fail(m["file"], where, "row " + std::to_string(row) + " has " + std::to_string(v.size()) + " values; give " +
+                                   std::to_string(want.size()));
+      std::vector<double> x;
+      for (const std::string& cell : v) {
+        char* end = nullptr;
+        const double value = std::strtod(cell.c_str(), &end);
+        if (cell.empty() || *end != '\0' || !std::isfinite(value))
+          fail(m["file"], where, "row " + std::to_string(row) + ": '" + cell + "' is not a finite number");
+        x.push_back(value);
+      }
+      if (!spec.table_t.empty() && !(x[0] > spec.table_t.back()))
+        fail(m["file"], where, "row " + std::to_string(row) + ": t = " + number_text(x[0]) + " does not increase");
+      spec.table_t.push_back(x[0]);
+      for (int a = 0; a < dim; ++a) spec.table_x[a].push_back(x[1 + a]);
+      if (with_angle) spec.table_angle_degrees.push_back(x.back());
+    }
+    if (spec.table_t.size() < 2) fail(m["file"], where, "holds fewer than two rows; give the motion at two times at least");
+    spec.type = "table";
+    if (!with_angle) return;
+    spec.spin = "table";
+    rotation_axis(m, key, spec, "turns the body (an angle column) but has no centre; give centre: [...]");
+  }
+
+  // The centre the rotation's axis goes through and, in 3D, its direction (none in 2D: about z).
+  void rotation_axis(const YAML::Node& r, const std::string& key, MotionSpec& spec,
+                     const std::string& no_centre) const {
+    const YAML::Node c = r["centre"].IsDefined() ? r["centre"] : r["center"];
+    if (!c.IsDefined()) fail(r, key, no_centre);
+    const Point3 centre = point(c, key + ".centre");
+    spec.centre = {centre[0], centre[1], centre[2]};
+    if (dim == 3) {
+      if (!r["axis"].IsDefined()) fail(r, key, "has no axis; a 3D rotation needs axis: [x, y, z]");
+      const Point3 axis = point(r["axis"], key + ".axis");
+      if (axis.norm() == 0) fail(r["axis"], key + ".axis", "is zero; give the direction of the axis");
+      const Point3 unit = axis.normalized();
+      spec.axis = {unit[0], unit[1], unit[2]};
+    } else if (r["axis"].IsDefined()) {
+      fail(r["axis"], key + ".axis", "is given in a 2D scene, where bodies turn about z; remove it");
+    }
   }
 
   // {type: constant, rate: deg/s, centre: [..](, axis: [..] in 3D)} or {type: sinusoidal, amplitude:
@@ -285,19 +368,7 @@ class Reader {
     } else {
       fail(type, key + ".type", "is '" + spec.spin + "'; give constant or sinusoidal");
     }
-    const YAML::Node c = r["centre"].IsDefined() ? r["centre"] : r["center"];
-    if (!c.IsDefined()) fail(r, key, "has no centre; give the point the axis goes through: centre: [...]");
-    const Point3 centre = point(c, key + ".centre");
-    spec.centre = {centre[0], centre[1], centre[2]};
-    if (dim == 3) {
-      if (!r["axis"].IsDefined()) fail(r, key, "has no axis; a 3D rotation needs axis: [x, y, z]");
-      const Point3 axis = point(r["axis"], key + ".axis");
-      if (axis.norm() == 0) fail(r["axis"], key + ".axis", "is zero; give the direction of the axis");
-      const Point3 unit = axis.normalized();
-      spec.axis = {unit[0], unit[1], unit[2]};
-    } else if (r["axis"].IsDefined()) {
-      fail(r["axis"], key + ".axis", "is given in a 2D scene, where bodies turn about z; remove it");
-    }
+    rotation_axis(r, key, spec, "has no centre; give the point the axis goes through: centre: [...]");
   }
 
   // g: the scene's gravity, for a hydrostatic start.

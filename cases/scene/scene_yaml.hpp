@@ -35,6 +35,7 @@
 #include <array>
 #include <string>
 #include <vector>
+#include <vector>
 
 #include "cases/scene/scene_file.hpp"
 #include "src/io/surface_writer.hpp"
@@ -50,6 +51,9 @@ struct MotionSpec {
   std::array<double, 3> velocity{}, amplitude{}, centre{}, axis{0.0, 0.0, 1.0};
   double period = 1.0, phase_degrees = 0.0;
   double rate_degrees = 0.0, angle_degrees = 0.0, spin_period = 1.0, spin_phase_degrees = 0.0;
+  // type table: the rows of t, x, y(, z)(, angle in degrees) of a CSV file (spin "table" with an angle).
+  std::vector<double> table_t, table_angle_degrees;
+  std::array<std::vector<double>, 3> table_x;
 };
 
 struct YamlScene {

@@ -1,7 +1,8 @@
 #pragma once
 // Bodies whose motion is prescribed as a function of time: a translation (constant velocity, or
 // sinusoidal, A (sin(w t + phi) - sin phi), which starts at rest for phi = -90 degrees) and a rotation
-// about an axis through a point that moves with it (constant rate, or a sinusoidal angle). Their wall particles are moved by the solvers at their drift, and the wall condition
+// about an axis through a point that moves with it (constant rate, or a sinusoidal angle), or both
+// from a table (src/boundary/motion_table.hpp). Their wall particles are moved by the solvers at their drift, and the wall condition
 // sees the body's velocity and acceleration: Adami et al. (2012)'s pressure extrapolation takes
 // (g - a_w), the continuity equation (WCSPH) and the pressure source (ISPH) the wall's velocity.
 // Membership is by permanent particle id, as for the force groups (src/run/wall_groups.hpp).
@@ -9,12 +10,13 @@
 #include <cmath>
 #include <vector>
 
+#include "src/boundary/motion_table.hpp"
 #include "src/particles/particles.hpp"
 
 namespace sph {
 
 template <int D> struct PrescribedMotion {
-  enum class Type { Fixed, Constant, Sinusoidal };
+  enum class Type { Fixed, Constant, Sinusoidal, Table };
   // The translation of the body's points.
   Type type = Type::Fixed;
   Vector<D> velocity = Vector<D>::Zero();   // Constant
@@ -26,6 +28,10 @@ template <int D> struct PrescribedMotion {
   double rate = 0.0, angle = 0.0, spin_period = 1.0, spin_phase = 0.0;  // radians
   Vector<D> centre = Vector<D>::Zero();
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // unit; 2D: z
+  // Table (for the translation and the spin): splines of each coordinate and of the angle (radians);
+  // the displacement and angle are taken from the table's first row.
+  std::vector<CubicSpline> table_position;
+  CubicSpline table_angle;
 
   bool moves() const { return type != Type::Fixed || spin != Type::Fixed; }
   double omega() const { return 2.0 * M_PI / period; }
@@ -34,29 +40,35 @@ template <int D> struct PrescribedMotion {
   Vector<D> displacement(double t) const {
     if (type == Type::Constant) return t * velocity;
     if (type == Type::Sinusoidal) return (std::sin(omega() * t + phase) - std::sin(phase)) * amplitude;
+    if (type == Type::Table) return from_table(t, 0) - from_table(table_position[0].first_time(), 0);
     return Vector<D>::Zero();
   }
   Vector<D> velocity_at(double t) const {
     if (type == Type::Constant) return velocity;
     if (type == Type::Sinusoidal) return omega() * std::cos(omega() * t + phase) * amplitude;
+    if (type == Type::Table) return from_table(t, 1);
     return Vector<D>::Zero();
   }
   Vector<D> acceleration(double t) const {
     if (type == Type::Sinusoidal) return -omega() * omega() * std::sin(omega() * t + phase) * amplitude;
+    if (type == Type::Table) return from_table(t, 2);
     return Vector<D>::Zero();
   }
   double angle_at(double t) const {
     if (spin == Type::Constant) return rate * t;
     if (spin == Type::Sinusoidal) return angle * (std::sin(spin_omega() * t + spin_phase) - std::sin(spin_phase));
+    if (spin == Type::Table) return table_angle(t) - table_angle(table_angle.first_time());
     return 0.0;
   }
   double angular_velocity(double t) const {
     if (spin == Type::Constant) return rate;
     if (spin == Type::Sinusoidal) return angle * spin_omega() * std::cos(spin_omega() * t + spin_phase);
+    if (spin == Type::Table) return table_angle(t, 1);
     return 0.0;
   }
   double angular_acceleration(double t) const {
     if (spin == Type::Sinusoidal) return -angle * spin_omega() * spin_omega() * std::sin(spin_omega() * t + spin_phase);
+    if (spin == Type::Table) return table_angle(t, 2);
     return 0.0;
   }
 
@@ -83,10 +95,27 @@ template <int D> struct PrescribedMotion {
     if (type == Type::Sinusoidal) s = omega() * amplitude.norm();
     if (spin == Type::Constant) s += std::abs(rate) * radius;
     if (spin == Type::Sinusoidal) s += std::abs(angle) * spin_omega() * radius;
+    // A table's: at its knots and halfway between them.
+    auto sampled = [](const CubicSpline& c, auto&& speed) {
+      double top = 0.0;
+      const std::vector<double>& t = c.times();
+      for (std::size_t k = 0; k < t.size(); ++k) {
+        top = std::max(top, speed(t[k]));
+        if (k + 1 < t.size()) top = std::max(top, speed(0.5 * (t[k] + t[k + 1])));
+      }
+      return top;
+    };
+    if (type == Type::Table) s = sampled(table_position[0], [&](double t) { return velocity_at(t).norm(); });
+    if (spin == Type::Table) s += radius * sampled(table_angle, [&](double t) { return std::abs(angular_velocity(t)); });
     return s;
   }
 
  private:
+  Vector<D> from_table(double t, int order) const {
+    Vector<D> v;
+    for (int a = 0; a < D; ++a) v[a] = table_position[static_cast<std::size_t>(a)](t, order);
+    return v;
+  }
   Vector<D> axis_cross(const Vector<D>& r) const {
     Eigen::Vector3d r3 = Eigen::Vector3d::Zero();
     r3.head<D>() = r;
