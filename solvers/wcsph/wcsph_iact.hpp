@@ -81,6 +81,9 @@ template <int D> struct RatesInputs {
   bool viscous, consistent, corrected_gradient, continuity, corrected_continuity, diffuse;
   Vector<D> hydrostatic_density_gradient = Vector<D>::Zero();  // Fourtakas et al. (2019): rho0 g / c0^2
   const std::vector<Vector<D>>* wall_velocity = nullptr;       // moving bodies' (others zero); null: none
+  // Free-surface flags (owned and ghosts): no density diffusion between a surface particle and one
+  // that is not. Null: diffusion between every pair.
+  const std::vector<double>* surface = nullptr;
 };
 
 // Adds pair (i, j) to i's sums: pressure (corrected sums or the symmetric force) with artificial
@@ -125,8 +128,10 @@ template <int D> [[gnu::always_inline]] inline void add_rates_pair(const RatesIn
     if (in.corrected_continuity) s.grad_u += difference_vector_gradient_term(Vj, P.v[i], u_j, g);
     else s.drho += continuity_pair(P.rho[i], Vj, Vector<D>(P.v[i] - u_j), g);
     // Fourtakas et al. (2019): the hydrostatic density difference of the pair, (rho0 g / c0^2) . (x_j - x_i)
-    // to first order in g h / c0^2, is not diffused: still water stays still.
-    if (in.diffuse)
+    // to first order in g h / c0^2, is not diffused: still water stays still. Nor is the density across
+    // the surface layer: there the symmetric pressure force holds the layer above the linear hydrostatic
+    // density, which the cut support's diffusion drains (docs/verification/free_surface.md, "The causes").
+    if (in.diffuse && !(in.surface && ((*in.surface)[i] != 0.0) != ((*in.surface)[j] != 0.0)))
       s.drho += density_diffusion_pair(
           in.delta_h_c0, in.diffused[i], in.diffused[j] + in.hydrostatic_density_gradient.dot(g.rij), Vj, F,
           in.grad_rho.empty() ? zero : in.grad_rho[i], in.grad_rho.empty() ? zero : in.grad_rho[j], g);

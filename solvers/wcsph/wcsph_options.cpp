@@ -21,6 +21,7 @@ struct RawOptions {
   PetscBool closed_volume, closed_volume_set;
   PetscBool diffusion_set;
   PetscBool prepared_start;
+  PetscBool diffusion_at_surface;
 };
 
 PetscErrorCode read_options(RawOptions* o) {
@@ -45,6 +46,11 @@ PetscErrorCode read_options(RawOptions* o) {
                               "difference, Fourtakas et al. 2019; the default under gravity, else molteni)",
                               "", diffusion_names, 5, diffusion_names[o->diffusion], &o->diffusion, &o->diffusion_set));
   PetscCall(PetscOptionsReal("-delta", "delta-SPH coefficient", "", o->delta, &o->delta, nullptr));
+  PetscCall(PetscOptionsBool("-density_diffusion_at_surface",
+                             "Diffuse density between free-surface particles and the fluid inside (default off: "
+                             "there the cut support turns the diffusion into a flux that drains the surface "
+                             "layer's hydrostatic density, and still water sinks)",
+                             "", o->diffusion_at_surface, &o->diffusion_at_surface, nullptr));
   PetscCall(PetscOptionsReal(
       "-av_alpha",
       "WCSPH: Monaghan artificial viscosity alpha (default 0: off; the compressible solver's default is 1)", "",
@@ -96,7 +102,8 @@ template <int D> void WcsphSolver<D>::set_from_options() {
                closed_volume_option_ > 0 ? PETSC_TRUE : PETSC_FALSE,
                PETSC_FALSE,
                PETSC_FALSE,
-               prepared_start_ ? PETSC_TRUE : PETSC_FALSE};
+               prepared_start_ ? PETSC_TRUE : PETSC_FALSE,
+               diffusion_at_surface_ ? PETSC_TRUE : PETSC_FALSE};
   SPH_PETSC(read_options(&o));
   require(o.c0 >= 0, "-c0", "non-negative", o.c0);
   require(o.c0_factor > 0, "-c0_factor", "positive", o.c0_factor);
@@ -108,6 +115,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   require(o.epsilon > 0, "-av_epsilon", "positive", o.epsilon);
   if (o.closed_volume_set) closed_volume_option_ = o.closed_volume ? 1 : 0;
   prepared_start_ = o.prepared_start;
+  diffusion_at_surface_ = o.diffusion_at_surface;
   c0_ = o.c0, c0_factor_ = o.c0_factor, eos_.gamma = o.gamma, cfl_ = o.cfl, delta_ = o.delta;
   av_.alpha = o.alpha, av_.beta = o.beta, av_.epsilon = o.epsilon;
   density_ = static_cast<DensityMethod>(o.density);
@@ -128,7 +136,9 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
   if (c0_ == 0) models["equation_of_state"]["c0_set_by"] = speed_scale_name_;
   models["density"] = density_names[static_cast<int>(density_)];
   if (diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity)
-    models["density_diffusion"] = {{"model", diffusion_models[static_cast<int>(diffusion_)]}, {"delta", delta_}};
+    models["density_diffusion"] = {{"model", diffusion_models[static_cast<int>(diffusion_)]},
+                                   {"delta", delta_},
+                                   {"across_free_surface", !phys.free_surface || diffusion_at_surface_}};
   if (av_.active())
     models["artificial_viscosity"] = {
         {"model", "MonaghanAV"}, {"alpha", av_.alpha}, {"beta", av_.beta}, {"epsilon", av_.epsilon}};

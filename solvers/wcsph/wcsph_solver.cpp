@@ -215,6 +215,16 @@ template <int D> void WcsphSolver<D>::compute_rates() {
     wall_velocity = disc_->bodies.wall_velocities(P, Vector<D>::Zero());
     in.wall_velocity = &wall_velocity;
   }
+  if (phys.free_surface) {
+    // Remembered: the flags' hysteresis, and the shift at the end of the step reuses them.
+    surface_ = free_surface_.detect(P, nl, K, true);
+    if (diffuse && !diffusion_at_surface_) {
+      surface_flags_.assign(surface_.begin(), surface_.end());
+      surface_flags_.resize(P.size(), 0.0);
+      nh.halo().update(surface_flags_);
+      in.surface = &surface_flags_;
+    }
+  }
   if (diffusion_ == DensityDiffusion::Fourtakas)
     in.hydrostatic_density_gradient = eos_.rho0 * phys.gravity / (eos_.c0 * eos_.c0);
   const bool consistent_viscous = consistent && phys.viscous();
@@ -325,11 +335,10 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
   disc_->bodies.move_to(P, t_end);  // the closing kick left the walls' velocity of the step's start
   if (shifting_model_.enabled) {
     if (!nh.update(P)) nh.halo().update(P.rho);
-    // At a free surface particles shift only along it (Lind et al. 2012), beside it never outwards.
+    // At a free surface particles shift only along it (Lind et al. 2012), beside it never outwards. The
+    // surface is the rates' one: the particles have not moved since.
     ShiftBoundary<D> boundary;
-    if (disc_->physics.free_surface)
-      boundary =
-          free_surface_.shift_boundary(P, nh, disc_->kernel, free_surface_.detect(P, nh.list(), disc_->kernel, true));
+    if (disc_->physics.free_surface) boundary = free_surface_.shift_boundary(P, nh, disc_->kernel, surface_);
     shift_particles(P, nh, disc_->kernel, shifting_model_, disc_->dx, largest_speed(P), dt, {&P.rho},
                     disc_->physics.free_surface ? &boundary : nullptr);
   }

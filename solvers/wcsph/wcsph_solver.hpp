@@ -83,6 +83,11 @@ template <int D> class WcsphSolver : public Solver<D> {
   std::string speed_scale_name_;
   int closed_volume_option_ = -1;  // -closed_volume: -1 unset (on without a free surface), 0 off, 1 on
   bool prepared_start_ = false;    // -prepared_start: the case's slow-manifold velocity added at set-up
+  bool diffusion_at_surface_ = false;  // -density_diffusion_at_surface
+  // This step's free-surface particles (owned), found once at the rates' positions and used again by
+  // the shift, which comes at the same positions; and as flags on owned and ghost particles.
+  std::vector<char> surface_;
+  std::vector<double> surface_flags_;
   bool closed_volume_ = false;
 };
 
