@@ -16,10 +16,10 @@ using sph::testing::run_sph;
 // Still water at 20 particles a unit: the hydrostatic pressure to 1 % of rho g H, no particle moved by
 // half a spacing, the level to 0.5 % (the verification table's bounds at t = 50). ISPH to t = 20 (40
 // time units sqrt(H/g)), measured 2.1e-4, 0.003 dx, -2.1e-4. WCSPH to t = 50, where its surface layer
-// used to sink (the density diffusion across the surface drained it: level -0.58 %, drift 0.83 dx);
-// measured 3.2e-3, 0.35 dx, -2.0e-3 (its hydrostatic compression, rho g H / (2 rho c0^2) = 2.5e-3, is
-// most of that level). Shifting at the flow's speed and WCSPH's density diffusion, Fourtakas' form kept
-// off the surface layer, are what keep the scene still (docs/verification/free_surface.md).
+// used to sink (the density diffusion drained it: level -0.58 %, drift 0.83 dx); measured 2.6e-3,
+// 0.12 dx, -2.6e-3 (its hydrostatic compression, rho g H / (2 rho c0^2) = 2.5e-3, is most of that
+// level). Shifting at the flow's speed and WCSPH's density diffusion, Fourtakas' form kept from draining
+// the surface layer, are what keep the scene still (docs/verification/free_surface.md).
 void expect_still(const std::string& solver, double t_end) {
   const auto r = run_sph("still_water_" + solver, "-case still_water -solver " + solver +
                                                       " -nx 20 -output_interval 0 -t_end " + std::to_string(t_end));

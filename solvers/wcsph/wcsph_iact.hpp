@@ -81,10 +81,22 @@ template <int D> struct RatesInputs {
   bool viscous, consistent, corrected_gradient, continuity, corrected_continuity, diffuse;
   Vector<D> hydrostatic_density_gradient = Vector<D>::Zero();  // Fourtakas et al. (2019): rho0 g / c0^2
   const std::vector<Vector<D>>* wall_velocity = nullptr;       // moving bodies' (others zero); null: none
-  // Free-surface flags (owned and ghosts): no density diffusion between a surface particle and one
-  // that is not. Null: diffusion between every pair.
+  // Free-surface flags (owned and ghosts): no density diffusion out of the surface layer
+  // (drains_surface_layer). Null: diffusion between every pair.
   const std::vector<double>* surface = nullptr;
 };
+
+// Whether the diffusion between fluid particles i and j would move density out of the free surface's
+// layer: from a surface particle denser than its neighbour inside (`excess`: rho_j minus rho_i, both
+// at i's height). The symmetric pressure force holds the surface layer above the linear hydrostatic
+// density; across the cut support the diffusion drained it, and still water sank without end. Into
+// the layer it still flows: a surface particle under tension is diffused up (docs/verification/
+// free_surface.md, "The causes"). Decided alike from i's side and j's, so the pair stays conservative.
+template <int D> inline bool drains_surface_layer(const RatesInputs<D>& in, int i, int j, double excess) {
+  if (!in.surface || in.P.kind[j] != kFluid) return false;
+  const bool surface_i = (*in.surface)[i] != 0.0, surface_j = (*in.surface)[j] != 0.0;
+  return (surface_i && !surface_j && excess < 0.0) || (surface_j && !surface_i && excess > 0.0);
+}
 
 // Adds pair (i, j) to i's sums: pressure (corrected sums or the symmetric force) with artificial
 // viscosity, viscosity (the consistent Laplacian's moments, finished after the loop, or Morris),
@@ -128,13 +140,14 @@ template <int D> [[gnu::always_inline]] inline void add_rates_pair(const RatesIn
     if (in.corrected_continuity) s.grad_u += difference_vector_gradient_term(Vj, P.v[i], u_j, g);
     else s.drho += continuity_pair(P.rho[i], Vj, Vector<D>(P.v[i] - u_j), g);
     // Fourtakas et al. (2019): the hydrostatic density difference of the pair, (rho0 g / c0^2) . (x_j - x_i)
-    // to first order in g h / c0^2, is not diffused: still water stays still. Nor is the density across
-    // the surface layer: there the symmetric pressure force holds the layer above the linear hydrostatic
-    // density, which the cut support's diffusion drains (docs/verification/free_surface.md, "The causes").
-    if (in.diffuse && !(in.surface && ((*in.surface)[i] != 0.0) != ((*in.surface)[j] != 0.0)))
-      s.drho += density_diffusion_pair(
-          in.delta_h_c0, in.diffused[i], in.diffused[j] + in.hydrostatic_density_gradient.dot(g.rij), Vj, F,
-          in.grad_rho.empty() ? zero : in.grad_rho[i], in.grad_rho.empty() ? zero : in.grad_rho[j], g);
+    // to first order in g h / c0^2, is not diffused: still water stays still.
+    if (in.diffuse) {
+      const double rho_j = in.diffused[j] + in.hydrostatic_density_gradient.dot(g.rij);
+      if (!drains_surface_layer(in, i, j, rho_j - in.diffused[i]))
+        s.drho += density_diffusion_pair(in.delta_h_c0, in.diffused[i], rho_j, Vj, F,
+                                         in.grad_rho.empty() ? zero : in.grad_rho[i],
+                                         in.grad_rho.empty() ? zero : in.grad_rho[j], g);
+    }
   }
 }
 

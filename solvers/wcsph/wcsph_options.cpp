@@ -47,9 +47,9 @@ PetscErrorCode read_options(RawOptions* o) {
                               "", diffusion_names, 5, diffusion_names[o->diffusion], &o->diffusion, &o->diffusion_set));
   PetscCall(PetscOptionsReal("-delta", "delta-SPH coefficient", "", o->delta, &o->delta, nullptr));
   PetscCall(PetscOptionsBool("-density_diffusion_at_surface",
-                             "Diffuse density between free-surface particles and the fluid inside (default off: "
-                             "there the cut support turns the diffusion into a flux that drains the surface "
-                             "layer's hydrostatic density, and still water sinks)",
+                             "Let the density diffusion drain the free surface's layer into the fluid inside "
+                             "(default off: across the cut support it drains the layer's hydrostatic density, and "
+                             "still water sinks; diffusion into the layer, as under tension, stays on)",
                              "", o->diffusion_at_surface, &o->diffusion_at_surface, nullptr));
   PetscCall(PetscOptionsReal(
       "-av_alpha",
@@ -138,7 +138,7 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
   if (diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity)
     models["density_diffusion"] = {{"model", diffusion_models[static_cast<int>(diffusion_)]},
                                    {"delta", delta_},
-                                   {"across_free_surface", !phys.free_surface || diffusion_at_surface_}};
+                                   {"out_of_free_surface_layer", !phys.free_surface || diffusion_at_surface_}};
   if (av_.active())
     models["artificial_viscosity"] = {
         {"model", "MonaghanAV"}, {"alpha", av_.alpha}, {"beta", av_.beta}, {"epsilon", av_.epsilon}};
