@@ -14,6 +14,13 @@ template <int D> struct Domain {
 
   Vector<D> length() const { return hi - lo; }
 
+  // Whether x lies beyond a side that is not periodic (through which nothing comes back).
+  bool outside(const Vector<D>& x) const {
+    for (int a = 0; a < D; ++a)
+      if (!periodic[a] && (x[a] < lo[a] || x[a] > hi[a])) return true;
+    return false;
+  }
+
   // Maps a point back into the box along periodic axes, in one step whatever the distance (a point
   // flung far away must not loop for ever; a non-finite one stays non-finite for the blow-up check).
   Vector<D> wrap(Vector<D> x) const {

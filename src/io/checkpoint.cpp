@@ -33,10 +33,19 @@ template <int D> std::vector<CheckpointField> particle_fields(Particles<D>& P, s
 }
 
 // This rank's share of the id range in the file's vectors (whole particles, so blocks stay whole).
-template <int D> PetscInt id_share(const Particles<D>& P) {
-  PetscInt local = PETSC_DECIDE, total = static_cast<PetscInt>(P.n_global);
+PetscInt id_share(PetscInt ids) {
+  PetscInt local = PETSC_DECIDE, total = ids;
   SPH_PETSC(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &total));
   return local;
+}
+
+// The file's vectors hold a slot per permanent id, 0 to the largest + 1: the run's particles, and
+// those taken out of it (-box_exit remove), whose slots keep kind -1 (kRemovedKind).
+template <int D> PetscInt id_count(const Particles<D>& P) {
+  GlobalIndex largest = -1;
+  for (std::size_t i = 0; i < P.n_owned; ++i) largest = std::max(largest, P.id[i]);
+  MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPIU_INT, MPI_MAX, PETSC_COMM_WORLD);
+  return static_cast<PetscInt>(largest + 1);
 }
 
 // Moves a field between this rank's particles and a global vector ordered by permanent particle id
@@ -247,6 +256,7 @@ template <int D> void write_checkpoint(const std::string& path, Particles<D>& P,
                         {"t", state.t},
                         {"step", state.step},
                         {"n_global", P.n_global},
+                        {"n_ids", id_count(P)},
                         {"dim", D},
                         {"scalars", state.scalars},
                         {"run", state.run},
@@ -254,10 +264,12 @@ template <int D> void write_checkpoint(const std::string& path, Particles<D>& P,
   std::string error;
   try {
     PetscViewer viewer = open_viewer(tmp, FILE_MODE_WRITE);
+    const PetscInt ids = header["n_ids"].get<PetscInt>();
     for (const CheckpointField& f : fields) {
       ::Vec vec;
-      SPH_PETSC(VecCreateMPI(PETSC_COMM_WORLD, id_share(P) * f.components, PETSC_DETERMINE, &vec));
+      SPH_PETSC(VecCreateMPI(PETSC_COMM_WORLD, id_share(ids) * f.components, PETSC_DETERMINE, &vec));
       SPH_PETSC(VecSetBlockSize(vec, f.components));
+      SPH_PETSC(VecSet(vec, f.name == "kind" ? double(kRemovedKind) : 0.0));
       transfer(vec, P, f.data, f.components, true);
       SPH_PETSC(VecView(vec, viewer));
       SPH_PETSC(VecDestroy(&vec));
@@ -287,8 +299,10 @@ nlohmann::json read_checkpoint_header(const std::string& path) {
 template <int D> CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P,
                                                     const std::vector<CheckpointField>& extra) {
   const nlohmann::json header = read_checkpoint_header(path);
-  if (header.value("dim", 0) != D || header.value("n_global", -1L) != static_cast<long>(P.n_global))
-    throw Error("checkpoint " + path + " holds " + std::to_string(header.value("n_global", -1L)) + " particles in " +
+  // The case lays out every particle the run started with; those it took out since are removed after.
+  const long ids = header.value("n_ids", header.value("n_global", -1L));
+  if (header.value("dim", 0) != D || ids != static_cast<long>(P.n_global))
+    throw Error("checkpoint " + path + " holds " + std::to_string(ids) + " particles in " +
                 std::to_string(header.value("dim", 0)) + "D, this run has " + std::to_string(P.n_global) + " in " +
                 std::to_string(D) + "D; restart with the options of the run that wrote it");
   std::vector<double> kind(P.n_owned);
@@ -305,7 +319,7 @@ template <int D> CheckpointState<D> read_checkpoint(const std::string& path, Par
                   header["fields"][k]["name"].get<std::string>() + "', expected '" + f.name + "'");
     ::Vec vec;
     SPH_PETSC(VecCreate(PETSC_COMM_WORLD, &vec));
-    SPH_PETSC(VecSetSizes(vec, id_share(P) * f.components, PETSC_DETERMINE));
+    SPH_PETSC(VecSetSizes(vec, id_share(static_cast<PetscInt>(ids)) * f.components, PETSC_DETERMINE));
     SPH_PETSC(VecSetBlockSize(vec, f.components));
     SPH_PETSC(VecSetType(vec, VECMPI));
     SPH_PETSC(VecLoad(vec, viewer));

@@ -21,6 +21,10 @@ namespace sph {
 // A per-particle array to save.
 using CheckpointField = ParticleField;
 
+// The kind a checkpoint gives the slot of a particle taken out of the run (-box_exit remove): read
+// back, such particles are to be removed again.
+inline constexpr int kRemovedKind = -1;
+
 template <int D> struct CheckpointState {
   double t = 0.0;
   long step = 0;
@@ -40,7 +44,8 @@ template <int D> void write_checkpoint(const std::string& path, Particles<D>& P,
 // reads, every rank gets the header). Throws sph::Error naming the file and what is wrong with it.
 nlohmann::json read_checkpoint_header(const std::string& path);
 
-// Reads a checkpoint into particles already created with the same global count (any split over ranks).
+// Reads a checkpoint into particles already created as the run started (any split over ranks); those
+// taken out of the run since come back with kind kRemovedKind, for the caller to remove.
 // Throws sph::Error when the file is damaged or does not match the run (count, fields).
 template <int D>
 CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P, const std::vector<CheckpointField>& extra);

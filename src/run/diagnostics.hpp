@@ -113,11 +113,7 @@ inline constexpr const char* kBlowUpAdvice =
 // `ke_bound`. The message names the first such particle and where it is.
 template <int D> void check_health(const Particles<D>& P, const Domain<D>& domain, double ke_bound) {
   auto not_finite = [&](std::size_t i) { return !P.x[i].allFinite() || !P.v[i].allFinite() || !std::isfinite(P.p[i]); };
-  auto outside = [&](std::size_t i) {
-    for (int a = 0; a < D; ++a)
-      if (!domain.periodic[a] && (P.x[i][a] < domain.lo[a] || P.x[i][a] > domain.hi[a])) return true;
-    return false;
-  };
+  auto outside = [&](std::size_t i) { return domain.outside(P.x[i]); };
   int bad[2] = {0, 0};  // NaN, outside
   double ke = 0.0;
   for (std::size_t i = 0; i < P.n_owned; ++i) {
@@ -139,7 +135,8 @@ template <int D> void check_health(const Particles<D>& P, const Domain<D>& domai
     msg << p.where() << " left the box [";
     for (int a = 0; a < D; ++a) msg << (a ? ", " : "") << domain.lo[a] << ", " << domain.hi[a];
     msg << "]: it went through a wall or over the box's open top; if the fluid may fly that high, enlarge the "
-           "scene's box, else the walls let it through (see fluid_in_walls in timeseries.csv)";
+           "scene's box or take such fluid out of the run (-box_exit remove), else the walls let it through (see "
+           "fluid_in_walls in timeseries.csv)";
     throw Error(msg.str());
   }
   if (ke > ke_bound) {

@@ -9,6 +9,8 @@
 namespace sph {
 
 namespace {
+const char* const box_exit_names[] = {"stop", "remove"};
+
 PetscErrorCode read_options(RunControl* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Run control and output", "sph");
@@ -64,6 +66,12 @@ PetscErrorCode read_options(RunControl* o) {
                                o->restart, o->restart, sizeof(o->restart), nullptr));
   PetscCall(PetscOptionsBool("-progress", "Print a progress line on stderr about once a second", "", o->progress,
                              &o->progress, nullptr));
+  PetscCall(PetscOptionsEList("-box_exit",
+                              "Fluid beyond a side of the box that is not periodic: stop (the run stops and names the "
+                              "particle: it went through a wall or over an open top) or remove (taken out of the "
+                              "run and counted in timeseries.csv's removed_fluid: splashes thrown out of an open "
+                              "tank)",
+                              "", box_exit_names, 2, box_exit_names[o->box_exit], &o->box_exit, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

@@ -17,6 +17,7 @@
 #include "src/io/output_dir.hpp"
 #include "src/io/particle_writer.hpp"
 #include "src/neighbours/partition.hpp"
+#include "src/run/box_exit.hpp"
 #include "src/run/diagnostics.hpp"
 #include "src/run/interrupt.hpp"
 #include "src/run/memory_budget.hpp"
@@ -126,6 +127,7 @@ template <int D> class TimeLoop {
   int interrupted_ = 0;  // the signal that stopped the run
   bool warned_dt_ = false;
   bool surface_column_ = false, walls_column_ = false;  // timeseries.csv's free_surface_share, fluid_in_walls
+  RemovedFluid removed_;  // -box_exit remove: the fluid taken out so far (timeseries.csv's removed_fluid)
   double last_frame_t_ = 0.0, ke_bound_ = 0.0;
   std::optional<Progress> progress_;
   std::optional<Cadence> frames_, checkpoints_;
@@ -184,6 +186,9 @@ template <int D> nlohmann::json TimeLoop<D>::resumed_run_header() const {
 // canonical state, as the writing run did before writing it.
 template <int D> void TimeLoop<D>::resume() {
   resumed_ = read_checkpoint(opt_.restart, s_.P, solver_.checkpoint_fields());
+  // The fluid the writing run had taken out of the box (-box_exit remove) goes again.
+  remove_particles_if(s_.P, [&](std::size_t i) { return s_.P.kind[i] == kRemovedKind; },
+                      [&] { return solver_.checkpoint_fields(); });
   solver_.restore_scalars(resumed_.scalars);
   repartition();
 }
@@ -259,6 +264,7 @@ template <int D> void TimeLoop<D>::open_outputs() {
   walls_column_ = has_walls(s_.P);
   if (surface_column_) columns.push_back("free_surface_share");
   if (walls_column_) columns.push_back("fluid_in_walls");
+  if (opt_.box_exit == 1) columns.push_back("removed_fluid");
   if (walls_column_ && opt_.wall_forces) {
     wall_groups_.emplace(case_, s_.P);
     const std::vector<std::string> forces = wall_groups_->columns();
@@ -298,6 +304,10 @@ template <int D> void TimeLoop<D>::set_start_state() {
   failing_step_ = step_ + 1;
   stats_.from_json(resumed_run_.value("ksp_statistics", nlohmann::json()));
   steady_.from_json(resumed_run_.value("steady_state_window", nlohmann::json()));
+  if (resumed_run_.contains("removed_fluid")) {
+    removed_.count = resumed_run_["removed_fluid"].value("particles", 0LL);
+    removed_.mass = resumed_run_["removed_fluid"].value("mass", 0.0);
+  }
   history_ = resumed_run_.value("history", nlohmann::json::array());
   if (opt_.restarting()) case_.restore_accumulated_state(resumed_run_.value("case_state", nlohmann::json()));
   progress_.emplace(opt_.progress, opt_.t_end);
@@ -328,6 +338,11 @@ template <int D> void TimeLoop<D>::advance() {
   stats_.add(report);
   if (step_ == resumed_.step + 1 && run_.after_first_step) run_.after_first_step();
   LogEventScope log_diagnostics(LogEvent::Diagnostics);
+  if (opt_.box_exit == 1 && fluid_outside(s_.P, s_.domain)) {
+    const RemovedFluid gone = remove_fluid_outside(s_.P, s_.domain, [&] { return solver_.checkpoint_fields(); });
+    removed_.count += gone.count, removed_.mass += gone.mass;
+    s_.nh.update(s_.P, true);
+  }
   check_health(s_.P, s_.domain, ke_bound_);
   check_neighbours_(s_.P, s_.nh.list(), s_.nh.support_radius());
   if (opt_.partition_interval > 0 && step_ % opt_.partition_interval == 0) repartition();
@@ -342,6 +357,7 @@ template <int D> void TimeLoop<D>::advance() {
   for (const auto& e : case_.errors(s_.P, t_)) row.push_back(e.second);
   if (surface_column_) row.push_back(fluid_share(s_.P, *output_field(solver_.output_fields(), "free_surface")));
   if (walls_column_) row.push_back(static_cast<double>(fluid_in_walls(s_.P, s_.nh.list(), case_.spacing())));
+  if (opt_.box_exit == 1) row.push_back(static_cast<double>(removed_.count));
   if (wall_groups_) {
     const std::vector<double> forces = wall_groups_->row(s_.P, s_.nh, s_.kernel, s_.disc.physics, s_.disc.bodies);
     row.insert(row.end(), forces.begin(), forces.end());
@@ -417,6 +433,7 @@ template <int D> void TimeLoop<D>::write_state(const std::string& why) {
                      {"steady_state_window", steady_.to_json()},
                      {"history", history_},
                      {"case_state", case_.accumulated_state()}};
+  if (opt_.box_exit == 1) run["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
   run["history"].push_back(this_segment(why));
   write_checkpoint(checkpoint_path_, s_.P, solver_.checkpoint_fields(), {t_, step_, solver_.checkpoint_scalars(), run},
                    static_cast<int>(opt_.checkpoints_kept));
@@ -450,6 +467,8 @@ template <int D> void TimeLoop<D>::finish(const std::string& status, const std::
   j["partition"] = {
       {"curve", "morton"}, {"interval", opt_.partition_interval}, {"count", partitions_}, {"imbalance", s_.imbalance}};
   add_final_state(j, solver_, case_, s_.P, t_, stats_, *initial_);
+  if (opt_.box_exit == 1)
+    j["conservation"]["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
   write_json_file(run_.output_dir + "/summary.json", j);
 }
 

@@ -1,0 +1,66 @@
+#pragma once
+// Fluid that leaves the box (-box_exit remove): splashes thrown over an open tank's walls are taken out
+// of the run instead of stopping it, and counted. The owned particles beyond a side that is not
+// periodic go, with the solver's per-particle arrays; the others keep their order.
+#include <mpi.h>
+
+#include <vector>
+
+#include "src/core/domain.hpp"
+#include "src/neighbours/partition.hpp"
+#include "src/particles/global_indices.hpp"
+#include "src/particles/particles.hpp"
+
+namespace sph {
+
+struct RemovedFluid {
+  long long count = 0;  // particles, all ranks
+  double mass = 0.0;
+};
+
+// Removes the owned particles for which gone(i) holds and renumbers the rest; drops the ghosts (the
+// caller rebuilds its neighbourhood). `arrays` is called before (sized to the old owned count) and
+// after (resized to the new one), as for re-partitioning. Collective.
+template <int D, class Gone>
+RemovedFluid remove_particles_if(Particles<D>& P, const Gone& gone, const ParticleArrays& arrays) {
+  std::vector<ParticleField> fields = arrays ? arrays() : std::vector<ParticleField>{};
+  RemovedFluid removed;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    if (gone(i)) {
+      ++removed.count, removed.mass += P.m[i];
+      continue;
+    }
+    if (kept != i) {
+      P.x[kept] = P.x[i], P.v[kept] = P.v[i], P.m[kept] = P.m[i], P.rho[kept] = P.rho[i], P.p[kept] = P.p[i];
+      P.kind[kept] = P.kind[i], P.id[kept] = P.id[i];
+      for (const ParticleField& f : fields)
+        for (int c = 0; c < f.components; ++c) f.data[kept * f.components + c] = f.data[i * f.components + c];
+    }
+    ++kept;
+  }
+  P.n_owned = kept;
+  P.set_ghost_count(0);
+  if (arrays) arrays();  // shrinks the solver's arrays; their first `kept` rows are the ones kept
+  assign_global_indices(P);
+  MPI_Allreduce(MPI_IN_PLACE, &removed.count, 1, MPI_LONG_LONG, MPI_SUM, PETSC_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, &removed.mass, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  return removed;
+}
+
+// Removes the owned fluid particles outside the box (remove_particles_if).
+template <int D>
+RemovedFluid remove_fluid_outside(Particles<D>& P, const Domain<D>& domain, const ParticleArrays& arrays) {
+  return remove_particles_if(
+      P, [&](std::size_t i) { return P.kind[i] == kFluid && domain.outside(P.x[i]); }, arrays);
+}
+
+// Whether any rank owns fluid outside the box. Collective.
+template <int D> bool fluid_outside(const Particles<D>& P, const Domain<D>& domain) {
+  int any = 0;
+  for (std::size_t i = 0; i < P.n_owned && !any; ++i) any = P.kind[i] == kFluid && domain.outside(P.x[i]);
+  MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  return any != 0;
+}
+
+}  // namespace sph
