@@ -311,92 +311,113 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
   return report;
 }
 
+// One step of the projection scheme, phase by phase (each phase is one log event, or the PPE's own).
 template <int D> StepReport IsphSolver<D>::step(double dt) {
+  StepState s;
+  opening_kick_and_drift(dt, s);
+  closing_kick_without_pressure(dt, s);
+  const StepReport report = project_and_update_pressure(dt, s);
+  if (shifting_model_.enabled) {
+    shift(dt);
+    energy_.add_change(EnergyCause::Shifting, s.energy_after_projection,
+                       EnergyBudget::kinetic_energy(disc_->particles, disc_->particles.v));
+  }
+  return report;
+}
+
+// Opening kick with a^n at x^n, then the drift to x^{n+1}. Before the first projection there is no
+// pressure of the scheme's own (a case's initial pressure need not be one), so that step projects the
+// whole dt (project_and_update_pressure).
+template <int D> void IsphSolver<D>::opening_kick_and_drift(double dt, StepState& s) {
   Particles<D>& P = disc_->particles;
   Neighbourhood<D>& nh = disc_->neighbourhood;
   const Physics<D>& phys = disc_->physics;
   const std::size_t n = P.n_owned;
-  auto fluid = [&](std::size_t i) { return P.kind[i] == kFluid; };  // walls keep their prescribed motion
   nh.update(P);
   nh.halo().update(P.p);
   energy_.start(P);
-
-  // Opening kick with a^n at x^n. Before the first projection there is no pressure of the scheme's
-  // own (a case's initial pressure need not be one), so that step projects the whole dt below.
-  LogEventScope log_forces(LogEvent::Forces);
-  const bool have_pressure = solves_ > 0;
+  const LogEventScope log_forces(LogEvent::Forces);
+  s.have_pressure = solves_ > 0;
   // The surface nodes at x^n, for the pressure gradient of the opening kick.
   if (phys.free_surface && surface_condition_ == SurfaceCondition::Node)
     nodes_ = surface_nodes(P, nh, disc_->kernel, free_surface_model_.detect(P, nh.list(), disc_->kernel, false),
                            0.5 * disc_->dx);
-  std::vector<Vector<D>> acc(n, Vector<D>::Zero()), pressure_acc(n, Vector<D>::Zero());
+  s.acc.assign(n, Vector<D>::Zero());
+  std::vector<Vector<D>> pressure_acc(n, Vector<D>::Zero());
   // The factors at x^n serve this one operator: gathered in its pass (one pass over the pairs, not two).
-  if (phys.viscous()) acc = viscous_acceleration(P.v);
-  const std::vector<Vector<D>> viscous_acc = acc, gravity(n, phys.gravity);
-  if (have_pressure) {
+  if (phys.viscous()) s.acc = viscous_acceleration(P.v);
+  const std::vector<Vector<D>> viscous_acc = s.acc;
+  s.gravity.assign(n, phys.gravity);
+  if (s.have_pressure) {
     const std::vector<Vector<D>> grad_p = pressure_gradient(P.p);
-    for (std::size_t i = 0; i < n; ++i) pressure_acc[i] = -grad_p[i] / P.rho[i], acc[i] += pressure_acc[i];
+    for (std::size_t i = 0; i < n; ++i) pressure_acc[i] = -grad_p[i] / P.rho[i], s.acc[i] += pressure_acc[i];
   }
   energy_.add_update(P, P.v,
                      {{EnergyCause::Viscous, 0.5 * dt, &viscous_acc},
                       {EnergyCause::Pressure, 0.5 * dt, &pressure_acc},
-                      {EnergyCause::BodyForce, 0.5 * dt, &gravity}});
-  std::vector<Vector<D>> u_half = P.v;
+                      {EnergyCause::BodyForce, 0.5 * dt, &s.gravity}});
+  s.u_half = P.v;
   for (std::size_t i = 0; i < n; ++i) {
-    if (!fluid(i)) continue;
-    acc[i] += phys.gravity;
-    u_half[i] += (0.5 * dt) * acc[i];
-    P.x[i] += dt * u_half[i];  // drift
+    if (P.kind[i] != kFluid) continue;  // walls keep their prescribed motion
+    s.acc[i] += phys.gravity;
+    s.u_half[i] += (0.5 * dt) * s.acc[i];
+    P.x[i] += dt * s.u_half[i];  // drift
   }
   disc_->bodies.move_to(P, disc_->bodies.time() + dt);
-  log_forces.end();
-  nh.update(P);
-  nh.halo().update(u_half);
-  // The consistent Laplacian's factors at x^{n+1} serve the closing kick's viscous term and the PPE:
-  // gathered in the viscous term's pass where there is one, which saves a pass (docs/performance.md,
-  // "Design measurements"), else in a pass of their own.
-  std::vector<LaplacianCorrection<D>> corrections;
-  const bool consistent = operators_ == OperatorSet::Consistent;
+}
 
-  // Closing kick: the non-pressure forces at x^{n+1}, the viscous one with the predicted end velocity
-  // u~ = u^{n+1/2} + dt/2 a^n (as the explicit schemes do), then the projection.
-  LogEventScope log_closing_forces(LogEvent::Forces);
-  std::vector<Vector<D>> u_star = u_half;
+// Closing kick: the non-pressure forces at x^{n+1}, the viscous one with the predicted end velocity
+// u~ = u^{n+1/2} + dt/2 a^n (as the explicit schemes do), giving u*, which the projection corrects.
+// The consistent Laplacian's factors at x^{n+1} serve the viscous term and the PPE: gathered in the
+// viscous term's pass where there is one, which saves a pass (docs/performance.md, "Design
+// measurements"), else in a pass of their own.
+template <int D> void IsphSolver<D>::closing_kick_without_pressure(double dt, StepState& s) {
+  Particles<D>& P = disc_->particles;
+  Neighbourhood<D>& nh = disc_->neighbourhood;
+  const Physics<D>& phys = disc_->physics;
+  const std::size_t n = P.n_owned;
+  auto fluid = [&](std::size_t i) { return P.kind[i] == kFluid; };
+  nh.update(P);
+  nh.halo().update(s.u_half);
+  const bool consistent = operators_ == OperatorSet::Consistent;
+  const LogEventScope log_forces(LogEvent::Forces);
+  s.u_star = s.u_half;
   if (phys.viscous()) {
-    std::vector<Vector<D>> u_pred = u_half;
+    std::vector<Vector<D>> u_pred = s.u_half;
     for (std::size_t i = 0; i < n; ++i)
-      if (fluid(i)) u_pred[i] += (0.5 * dt) * acc[i];
+      if (fluid(i)) u_pred[i] += (0.5 * dt) * s.acc[i];
     nh.halo().update(u_pred);
-    const std::vector<Vector<D>> visc = viscous_acceleration(u_pred, consistent ? &corrections : nullptr);
-    energy_.add_update(P, u_star,
-                       {{EnergyCause::Viscous, 0.5 * dt, &visc}, {EnergyCause::BodyForce, 0.5 * dt, &gravity}});
+    const std::vector<Vector<D>> visc = viscous_acceleration(u_pred, consistent ? &s.corrections : nullptr);
+    energy_.add_update(P, s.u_star,
+                       {{EnergyCause::Viscous, 0.5 * dt, &visc}, {EnergyCause::BodyForce, 0.5 * dt, &s.gravity}});
     for (std::size_t i = 0; i < n; ++i)
-      if (fluid(i)) u_star[i] += (0.5 * dt) * visc[i];
+      if (fluid(i)) s.u_star[i] += (0.5 * dt) * visc[i];
   } else {
-    energy_.add_update(P, u_star, {{EnergyCause::BodyForce, 0.5 * dt, &gravity}});
+    energy_.add_update(P, s.u_star, {{EnergyCause::BodyForce, 0.5 * dt, &s.gravity}});
   }
   for (std::size_t i = 0; i < n; ++i)
-    if (fluid(i)) u_star[i] += (0.5 * dt) * phys.gravity;
-  if (consistent && !phys.viscous()) corrections = laplacian_corrections_if_used();
-  log_closing_forces.end();
-  nh.halo().update(u_star);
+    if (fluid(i)) s.u_star[i] += (0.5 * dt) * phys.gravity;
+  if (consistent && !phys.viscous()) s.corrections = laplacian_corrections_if_used();
+}
+
+// The projection of u*, then the step's pressure: P.p holds psi after it, turned into the step's mean
+// pressure and its extrapolation to t^{n+1}.
+template <int D> StepReport IsphSolver<D>::project_and_update_pressure(double dt, StepState& s) {
+  Particles<D>& P = disc_->particles;
+  const std::size_t n = P.n_owned;
+  disc_->neighbourhood.halo().update(s.u_star);
   const std::vector<double> p_start(P.p.begin(), P.p.begin() + n);
-  const double energy_before_projection = EnergyBudget::kinetic_energy(P, u_star);
-  const StepReport report = project(u_star, have_pressure ? 0.5 * dt : dt, corrections);
-  const double energy_after_projection = EnergyBudget::kinetic_energy(P, P.v);  // the shift starts from it
-  energy_.add_change(EnergyCause::Pressure, energy_before_projection, energy_after_projection);
-  // P.p holds psi: turn it into the step's mean pressure and its extrapolation to t^{n+1}.
+  const double energy_before_projection = EnergyBudget::kinetic_energy(P, s.u_star);
+  const StepReport report = project(s.u_star, s.have_pressure ? 0.5 * dt : dt, s.corrections);
+  s.energy_after_projection = EnergyBudget::kinetic_energy(P, P.v);  // the shift starts from it
+  energy_.add_change(EnergyCause::Pressure, energy_before_projection, s.energy_after_projection);
   mean_pressure_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const double mean = have_pressure ? 0.5 * (p_start[i] + P.p[i]) : P.p[i];
-    P.p[i] = have_pressure ? mean + 0.5 * (mean - mean_pressure_[i]) : mean;
+    const double mean = s.have_pressure ? 0.5 * (p_start[i] + P.p[i]) : P.p[i];
+    P.p[i] = s.have_pressure ? mean + 0.5 * (mean - mean_pressure_[i]) : mean;
     mean_pressure_[i] = mean;
   }
-  nh.halo().update(P.p);
-  if (shifting_model_.enabled) {
-    shift(dt);
-    energy_.add_change(EnergyCause::Shifting, energy_after_projection, EnergyBudget::kinetic_energy(P, P.v));
-  }
+  disc_->neighbourhood.halo().update(P.p);
   return report;
 }
 

@@ -95,6 +95,17 @@ template <int D> class IsphSolver : public Solver<D> {
   }
 
  private:
+  // What one step's phases hand on to the next (step()).
+  struct StepState {
+    bool have_pressure = false;  // a projection has run before: the opening kick has a pressure
+    std::vector<Vector<D>> acc;  // a^n, the opening kick's acceleration (gravity included)
+    std::vector<Vector<D>> gravity, u_half, u_star;
+    std::vector<LaplacianCorrection<D>> corrections;  // the consistent Laplacian's factors at x^{n+1}
+    double energy_after_projection = 0.0;
+  };
+  void opening_kick_and_drift(double dt, StepState& s);
+  void closing_kick_without_pressure(double dt, StepState& s);
+  StepReport project_and_update_pressure(double dt, StepState& s);
   std::vector<Vector<D>> pressure_gradient(const std::vector<double>& p) const;  // p has ghost values
   // The PPE's divergence of u (with ghost values): the corrected one, or the plain one with classic
   // operators and, under the consistent ones, at the particles flagged in near_surface.
