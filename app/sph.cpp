@@ -21,6 +21,25 @@
 
 namespace {
 
+// -help prints this first (PETSc's own options follow, then every block of this program's, each with
+// its default): the options most runs need. cli.options checks that each one exists.
+const char kEssentialHelp[] =
+    "sph: ISPH and WCSPH smoothed particle hydrodynamics. Essential options (every option is listed\n"
+    "below with its default, and in docs/options.md):\n"
+    "  -case NAME             the scene: taylor_green, lid_driven_cavity, dam_break, still_water, ...,\n"
+    "                         or scene with -scene_file FILE (a YAML scene of shapes or a .vtp)\n"
+    "  -solver NAME           isph (the default), wcsph or compressible\n"
+    "  -nx N                  resolution: particles per unit length (the case says which length)\n"
+    "  -re RE                 Reynolds number, for the cases that have one\n"
+    "  -t_end T               end time\n"
+    "  -cfl C                 time-step factor (ISPH: advective; WCSPH: acoustic)\n"
+    "  -output_dir DIR        frames (.vtp), timeseries.csv, summary.json and checkpoint.bin\n"
+    "  -output_interval T     time between frames\n"
+    "  -restart FILE          continue from a checkpoint.bin\n"
+    "  -threads N             OpenMP threads per MPI rank\n"
+    "  -ksp_type, -pc_type    the pressure solve (ISPH), any PETSc KSP and PC\n"
+    "  -options_file FILE     options from a file (cases/*.opts)\n\n";
+
 PetscErrorCode read_names(sph::RunOptions* o, PetscInt* dim, PetscBool* dim_set) {
   PetscFunctionBeginUser;
   std::vector<const char*> cases, solvers;
@@ -120,7 +139,7 @@ bool options_files_valid(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   if (!options_files_valid(argc, argv)) return 1;
-  if (PetscInitialize(&argc, &argv, nullptr, nullptr)) {
+  if (PetscInitialize(&argc, &argv, nullptr, kEssentialHelp)) {
     std::fprintf(stderr, "sph: error: could not initialise PETSc/MPI (check -options_file paths)\n");
     return 1;
   }

@@ -103,6 +103,16 @@ for opt in -case -solver -nx -re -t_end -cfl -shifting -kernel -output_dir -ksp_
   grep -q -- "$opt" "$tmp/help" || { echo "FAIL: -help does not list $opt"; fail=1; }
 done
 
+# -help opens with the essential options, each of them one that an options block documents below it
+# (-options_file is PETSc's own, read at start-up).
+head -1 "$tmp/help" | grep -q "Essential options" || { echo "FAIL: -help does not open with the essential options"; fail=1; }
+essential=$(sed -n '/Essential options/,/^$/p' "$tmp/help" | grep -oE '^  (-[a-z_]+)(, -[a-z_]+)*' | tr ',' '\n' | tr -d ' ')
+[ "$(echo "$essential" | wc -l)" -ge 10 ] || { echo "FAIL: the essential section lists too few options: $essential"; fail=1; }
+for opt in $essential; do
+  [ "$opt" = -options_file ] && continue
+  grep -qE -- "^  $opt <" "$tmp/help" || { echo "FAIL: essential option $opt is not documented by any options block"; fail=1; }
+done
+
 # A case file loads and the command line overrides it.
 "$sph" -options_file "$src/cases/taylor_green.opts" -nx 8 -t_end 0.01 -progress 0 -output_dir "$tmp/tg" \
   >/dev/null 2>"$tmp/stderr" || { echo "FAIL: case file run"; cat "$tmp/stderr"; fail=1; }
