@@ -19,6 +19,7 @@
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/neighbours/partition.hpp"
 #include "src/particles/global_indices.hpp"
+#include "src/run/box_exit.hpp"
 
 namespace {
 
@@ -79,14 +80,12 @@ TEST(Partition, KeepsEveryParticleOnceBalancedAndContiguousAlongTheCurve) {
   const Domain<2> dom = box<2>({true, false});
   const int n = 1001;
   Particles<2> P = scattered_particles(dom, n, 3u);
-  // A solver array (2 components) whose values identify the particle they belong to.
-  std::vector<Vector<2>> acc(P.n_owned);
-  for (std::size_t i = 0; i < P.n_owned; ++i) acc[i] = Vector<2>(P.id[i], -2.0 * P.id[i]);
-  const ParticleArrays arrays = [&] {
-    acc.resize(P.n_owned);
-    return std::vector<CheckpointField>{{"acc", acc.empty() ? nullptr : acc[0].data(), 2}};
-  };
-  const double imbalance = partition_along_curve(P, dom, arrays);
+  // A scheme's carried field (2 components) whose values identify the particle they belong to, and
+  // one that is not carried.
+  const FieldId<Vector<2>> acc = P.fields.declare_vector("acc", kCarried, P.size());
+  const FieldId<double> scratch = P.fields.declare_scalar("scratch", 0u, P.size());
+  for (std::size_t i = 0; i < P.n_owned; ++i) P.fields[acc][i] = Vector<2>(P.id[i], -2.0 * P.id[i]);
+  const double imbalance = partition_along_curve(P, dom);
 
   std::vector<long long> ids;
   const std::vector<double> x = gather_positions(P, ids);
@@ -97,7 +96,7 @@ TEST(Partition, KeepsEveryParticleOnceBalancedAndContiguousAlongTheCurve) {
   for (std::size_t i = 0; i < P.n_owned; ++i) {
     EXPECT_EQ(P.gid[i], P.first_gid + static_cast<GlobalIndex>(i));
     EXPECT_EQ(P.v[i][0], static_cast<double>(P.id[i])) << "particle data travels with the particle";
-    EXPECT_EQ(acc[i], Vector<2>(P.id[i], -2.0 * P.id[i])) << "solver arrays travel with the particle";
+    EXPECT_EQ(P.fields[acc][i], Vector<2>(P.id[i], -2.0 * P.id[i])) << "carried fields travel with the particle";
   }
   // Along the curve: keys increase within a rank and from one rank to the next.
   Vector<2> lo = Vector<2>::Constant(1e300), hi = -lo;
@@ -108,7 +107,8 @@ TEST(Partition, KeepsEveryParticleOnceBalancedAndContiguousAlongTheCurve) {
   EXPECT_TRUE(std::is_sorted(keys.begin(), keys.end()));
   // Re-partitioning a partitioned set changes nothing.
   const std::vector<GlobalIndex> before(P.id.begin(), P.id.begin() + P.n_owned);
-  partition_along_curve(P, dom, arrays);
+  EXPECT_EQ(P.fields[scratch].size(), P.size()) << "every declared field is sized with the particles";
+  partition_along_curve(P, dom);
   EXPECT_EQ(before, std::vector<GlobalIndex>(P.id.begin(), P.id.begin() + P.n_owned));
 }
 
@@ -179,27 +179,48 @@ TEST(ParallelHalo, PairsMatchBruteForceIn3DAnd1D) {
   check_pairs_against_brute_force<1>({true}, 300, 0.02);
 }
 
+TEST(Partition, RemovalTakesTheDeclaredFieldsRowsAlong) {
+  const Domain<2> dom = box<2>({true, true});
+  Particles<2> P = scattered_particles(dom, 300, 7u);
+  const FieldId<Vector<2>> acc = P.fields.declare_vector("acc", kCarried, P.size());
+  const FieldId<double> flag = P.fields.declare_scalar("flag", kCarried | kWritten, P.size());
+  for (std::size_t i = 0; i < P.n_owned; ++i) P.fields[acc][i] = Vector<2>(P.id[i], 1.0), P.fields[flag][i] = -P.id[i];
+  const RemovedFluid gone = remove_particles_if(P, [&](std::size_t i) { return P.id[i] % 3 == 0; });
+  EXPECT_EQ(gone.count, 100);
+  EXPECT_EQ(P.n_global, 200);
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    EXPECT_NE(P.id[i] % 3, 0);
+    EXPECT_EQ(P.fields[acc][i], Vector<2>(P.id[i], 1.0));
+    EXPECT_EQ(P.fields[flag][i], -static_cast<double>(P.id[i]));
+  }
+  EXPECT_EQ(P.fields.find_scalar("flag", kWritten), &P.fields[flag]);
+  EXPECT_EQ(P.fields.find_scalar("flag", kCarried), &P.fields[flag]);
+  EXPECT_EQ(P.fields.find_scalar("acc", kCarried), nullptr) << "a vector field is not a scalar";
+}
+
 TEST(ParallelCheckpoint, FieldsComeBackByLabelWhateverThePartition) {
   const Domain<2> dom = box<2>({true, true});
   Particles<2> P = scattered_particles(dom, 500, 5u);
-  std::vector<double> extra(P.n_owned);
-  for (std::size_t i = 0; i < P.n_owned; ++i) extra[i] = 0.5 * P.id[i];
+  const FieldId<double> extra = P.fields.declare_scalar("extra", kCarried, P.size());
+  P.fields.declare_scalar("scratch", 0u, P.size());  // not saved
+  for (std::size_t i = 0; i < P.n_owned; ++i) P.fields[extra][i] = 0.5 * P.id[i];
   const std::string dir = std::string(SPH_BINARY_DIR) + "/test-output/parallel_checkpoint_" + std::to_string(ranks());
   if (rank() == 0) std::filesystem::create_directories(dir);
   MPI_Barrier(PETSC_COMM_WORLD);
-  write_checkpoint(dir + "/c.bin", P, {{"extra", extra.data(), 1}}, CheckpointState<2>{});
+  write_checkpoint(dir + "/c.bin", P, CheckpointState<2>{});
 
   // The same particles in another split and order, with scrambled fields, read the file back.
   Particles<2> Q = scattered_particles(dom, 500, 5u);
   partition_along_curve(Q, dom);
   const std::vector<Vector<2>> x_expected(Q.x.begin(), Q.x.begin() + Q.n_owned);
   for (std::size_t i = 0; i < Q.n_owned; ++i) Q.x[i].setZero(), Q.v[i].setZero();
-  std::vector<double> extra_q(Q.n_owned, -1.0);
-  read_checkpoint(dir + "/c.bin", Q, {{"extra", extra_q.data(), 1}});
+  const FieldId<double> extra_q = Q.fields.declare_scalar("extra", kCarried, Q.size());
+  for (std::size_t i = 0; i < Q.n_owned; ++i) Q.fields[extra_q][i] = -1.0;
+  read_checkpoint(dir + "/c.bin", Q);
   for (std::size_t i = 0; i < Q.n_owned; ++i) {
     EXPECT_EQ(Q.x[i], x_expected[i]);
     EXPECT_EQ(Q.v[i][0], static_cast<double>(Q.id[i]));
-    EXPECT_EQ(extra_q[i], 0.5 * Q.id[i]);
+    EXPECT_EQ(Q.fields[extra_q][i], 0.5 * Q.id[i]);
   }
 }
 

@@ -55,26 +55,28 @@ template <int D> void CompressibleSolver<D>::setup(Discretisation<D>& disc) {
   kappa_ = Kernel<D>::support_factor(type);
   if (eta_ == 0.0) eta_ = Kernel<D>::default_eta(type);
 
+  declare_fields(P);
+  const Fields f = fields();
   const std::size_t n = P.n_owned;
-  h_.assign(n, 0.0), thermal_.assign(n, 0.0);
+  f.h.assign(n, 0.0), f.thermal.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     if (P.kind[i] != kFluid)
       throw Error("the compressible solver has no wall boundary treatment; use a periodic or free case");
     if (!(P.rho[i] > 0.0 && P.p[i] >= 0.0))
       throw Error("the compressible solver needs positive initial densities and non-negative pressures");
-    h_[i] = eta_ * std::pow(P.m[i] / P.rho[i], 1.0 / D);
+    f.h[i] = eta_ * std::pow(P.m[i] / P.rho[i], 1.0 / D);
   }
   // The case's pressure and density set the entropy function A = P / rho^gamma (isentropic scenes).
   if (entropy_)
-    for (std::size_t i = 0; i < n; ++i) thermal_[i] = P.p[i] / std::pow(P.rho[i], gamma_);
+    for (std::size_t i = 0; i < n; ++i) f.thermal[i] = P.p[i] / std::pow(P.rho[i], gamma_);
   std::vector<double> p_case(P.p.begin(), P.p.begin() + n);
   const double alpha0 =
       switch_ == ViscositySwitch::MorrisMonaghan ? std::clamp<double>(av_.alpha, alpha_min_, alpha_max_) : av_.alpha;
-  alpha_.assign(n, alpha0);
-  dalpha_.assign(n, 0.0);
+  f.alpha.assign(n, alpha0);
+  f.dalpha.assign(n, 0.0);
 
   double h_max = 0.0;
-  for (std::size_t i = 0; i < n; ++i) h_max = std::max(h_max, h_[i]);
+  for (std::size_t i = 0; i < n; ++i) h_max = std::max(h_max, f.h[i]);
   disc.neighbourhood.set_support_radius(kSearchHeadroom * kappa_ * mpi_max(h_max));
   disc.neighbourhood.update(P, true);
   prune_pairs();
@@ -83,7 +85,7 @@ template <int D> void CompressibleSolver<D>::setup(Discretisation<D>& disc) {
   // pressure exactly (at a discontinuity the summation density is smoothed over h; a thermal energy from
   // the case's density would give a pressure blip there that runs off as a spurious wave).
   if (!entropy_)
-    for (std::size_t i = 0; i < n; ++i) thermal_[i] = p_case[i] / ((gamma_ - 1.0) * P.rho[i]);
+    for (std::size_t i = 0; i < n; ++i) f.thermal[i] = p_case[i] / ((gamma_ - 1.0) * P.rho[i]);
   update_thermodynamics();
   compute_forces();
   energy0_ = total_energy();
@@ -92,6 +94,27 @@ template <int D> void CompressibleSolver<D>::setup(Discretisation<D>& disc) {
   for (std::size_t i = 0; i < n; ++i) scale += P.m[i] * P.v[i].norm();
   MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   momentum_scale0_ = scale;
+}
+
+// What a restart needs to continue exactly moves with the particles: the leapfrog's rates, the thermal
+// state and the viscosity switch, h (the Newton start) and the signal speeds (the step size).
+template <int D> void CompressibleSolver<D>::declare_fields(Particles<D>& P) {
+  FieldRegistry<D>& r = P.fields;
+  const std::size_t rows = P.size();
+  ids_.h = r.declare_scalar("smoothing_length", kCarried | kWritten, rows);
+  ids_.u = r.declare_scalar("internal_energy", kCarried | kWritten, rows);
+  ids_.thermal = r.declare_scalar("thermal_variable", kCarried, rows);
+  ids_.alpha = r.declare_scalar("alpha", kCarried, rows);
+  ids_.acc = r.declare_vector("acceleration", kCarried, rows);
+  ids_.dthermal = r.declare_scalar("thermal_rate", kCarried, rows);
+  ids_.dalpha = r.declare_scalar("alpha_rate", kCarried, rows);
+  ids_.vsig = r.declare_scalar("signal_velocity", kCarried, rows);
+}
+
+template <int D> typename CompressibleSolver<D>::Fields CompressibleSolver<D>::fields() const {
+  FieldRegistry<D>& r = disc_->particles.fields;
+  return {r[ids_.h],   r[ids_.u],        r[ids_.thermal], r[ids_.alpha],
+          r[ids_.acc], r[ids_.dthermal], r[ids_.dalpha],  r[ids_.vsig]};
 }
 
 template <int D> void CompressibleSolver<D>::ensure_search_radius(double h_max, bool allow_shrink) {
@@ -108,25 +131,28 @@ template <int D> void CompressibleSolver<D>::ensure_search_radius(double h_max, 
 constexpr double prune_margin = 1.2;
 
 template <int D> void CompressibleSolver<D>::prune_pairs() {
+  const Fields f = fields();
   const LogEventScope log_pairs(pairs_event());
   Particles<D>& P = disc_->particles;
   const Neighbourhood<D>& nh = disc_->neighbourhood;
-  h_.resize(P.n_owned);
-  nh.halo().update(h_);
-  pairs_.build(P, nh.list(), h_, kappa_, prune_margin);
+  f.h.resize(P.n_owned);
+  nh.halo().update(f.h);
+  pairs_.build(P, nh.list(), f.h, kappa_, prune_margin);
   pairs_built_at_rebuild_ = nh.rebuilds();
 }
 
 template <int D> bool CompressibleSolver<D>::pairs_valid() const {
+  const Fields f = fields();
   if (pairs_built_at_rebuild_ != disc_->neighbourhood.rebuilds() || pairs_.size() != disc_->particles.n_owned)
     return false;
   int ok = 1;
-  for (std::size_t i = 0; i < pairs_.size() && ok; ++i) ok = kappa_ * h_[i] <= pairs_.reach(i);
+  for (std::size_t i = 0; i < pairs_.size() && ok; ++i) ok = kappa_ * f.h[i] <= pairs_.reach(i);
   MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
   return ok;
 }
 
 template <int D> void CompressibleSolver<D>::solve_density() {
+  const Fields f = fields();
   using namespace compressible;
   const LogEventScope log_density_h(density_h_event());
   Particles<D>& P = disc_->particles;
@@ -142,7 +168,7 @@ template <int D> void CompressibleSolver<D>::solve_density() {
   const int max_iterations = kMaxDensityIterations;
   for (int iteration = 1;; ++iteration) {
     double h_max = 0.0;
-    for (std::size_t k : active) h_max = std::max(h_max, h_[k]);
+    for (std::size_t k : active) h_max = std::max(h_max, f.h[k]);
     ensure_search_radius(mpi_max(h_max), false);
     if (pairs_built_at_rebuild_ != disc_->neighbourhood.rebuilds()) prune_pairs();
     const NeighbourList<D>& nl = disc_->neighbourhood.list();
@@ -154,7 +180,7 @@ template <int D> void CompressibleSolver<D>::solve_density() {
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t k = 0; k < n_active; ++k) {
       const std::size_t i = active[k];
-      const double h = h_[i];
+      const double h = f.h[i];
       const Kernel<D> K(type, h);
       DensitySums s;
       const double W0 = K.W(0.0);
@@ -185,7 +211,7 @@ template <int D> void CompressibleSolver<D>::solve_density() {
         if (need_div) divv_[i] = div / (omega_[i] * s.rho), curlv_[i] = curl.norm() / (omega_[i] * s.rho);
         converged[k] = 1;
       } else {
-        h_[i] = h_new;
+        f.h[i] = h_new;
       }
     }
     std::vector<std::size_t> still;
@@ -205,87 +231,91 @@ template <int D> void CompressibleSolver<D>::solve_density() {
     }
   }
   double h_max = 0.0, h_min = std::numeric_limits<double>::max();
-  for (std::size_t i = 0; i < n; ++i) h_max = std::max(h_max, h_[i]), h_min = std::min(h_min, h_[i]);
+  for (std::size_t i = 0; i < n; ++i) h_max = std::max(h_max, f.h[i]), h_min = std::min(h_min, f.h[i]);
   h_max_seen_ = mpi_max(h_max);
   h_min_seen_ = -mpi_max(-h_min);
   ensure_search_radius(h_max_seen_, true);  // narrow the search again where the gas was compressed
 }
 
 template <int D> void CompressibleSolver<D>::update_thermodynamics() {
+  const Fields f = fields();
   const LogEventScope log_density(LogEvent::Density);
   Particles<D>& P = disc_->particles;
   const std::size_t n = P.n_owned;
-  u_.resize(n), cs_.resize(n), balsara_factor_.resize(n), q_.resize(n);
+  f.u.resize(n), cs_.resize(n), balsara_factor_.resize(n), q_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double rho = P.rho[i];
     if (entropy_) {
-      P.p[i] = thermal_[i] * std::pow(rho, gamma_);
-      u_[i] = P.p[i] / ((gamma_ - 1.0) * rho);
+      P.p[i] = f.thermal[i] * std::pow(rho, gamma_);
+      f.u[i] = P.p[i] / ((gamma_ - 1.0) * rho);
     } else {
-      u_[i] = thermal_[i];
-      P.p[i] = (gamma_ - 1.0) * rho * u_[i];
+      f.u[i] = f.thermal[i];
+      P.p[i] = (gamma_ - 1.0) * rho * f.u[i];
     }
     cs_[i] = std::sqrt(gamma_ * P.p[i] / rho);
-    balsara_factor_[i] = balsara_ ? compressible::balsara_factor(divv_[i], curlv_[i], cs_[i], h_[i]) : 1.0;
+    balsara_factor_[i] = balsara_ ? compressible::balsara_factor(divv_[i], curlv_[i], cs_[i], f.h[i]) : 1.0;
     q_[i] = P.p[i] / (omega_[i] * rho * rho);
   }
   const Halo<D>& halo = disc_->neighbourhood.halo();
-  halo.update(P.rho), halo.update(P.p), halo.update(h_), halo.update(u_), halo.update(cs_), halo.update(q_);
-  if (av_.active()) halo.update(alpha_), halo.update(balsara_factor_);
+  halo.update(P.rho), halo.update(P.p), halo.update(f.h), halo.update(f.u), halo.update(cs_), halo.update(q_);
+  if (av_.active()) halo.update(f.alpha), halo.update(balsara_factor_);
   omega_.resize(n), halo.update(omega_);
   const KernelType type = disc_->kernel.type();
   kernels_.clear();
   kernels_.reserve(P.size());
-  for (std::size_t k = 0; k < P.size(); ++k) kernels_.emplace_back(type, h_[k]);
+  for (std::size_t k = 0; k < P.size(); ++k) kernels_.emplace_back(type, f.h[k]);
 }
 
 template <int D> void CompressibleSolver<D>::compute_forces() {
+  const Fields f = fields();
   using namespace compressible;
   const LogEventScope log_forces(LogEvent::Forces);
   Particles<D>& P = disc_->particles;
   const Physics<D>& phys = disc_->physics;
   const std::size_t n = P.n_owned;
-  acc_.assign(n, phys.gravity);
+  f.acc.assign(n, phys.gravity);
   if (phys.has_external_force())
-    for (std::size_t i = 0; i < n; ++i) acc_[i] += phys.external_acceleration(P.x[i]);
+    for (std::size_t i = 0; i < n; ++i) f.acc[i] += phys.external_acceleration(P.x[i]);
   std::vector<double> pdv(n, 0.0), heat(n, 0.0);
-  vsig_.assign(n, 0.0);
+  f.vsig.assign(n, 0.0);
 
   if (!pairs_valid()) prune_pairs();
   for_each_variable_h_pair(P, pairs_, kernels_, [&](int i, int j, const VariableHPair<D>& g) {
     const Vector<D> vij = P.v[i] - P.v[j];
-    acc_[i] += pressure_acceleration(P.m[j], q_[i], q_[j], g);
+    f.acc[i] += pressure_acceleration(P.m[j], q_[i], q_[j], g);
     pdv[i] += pdv_heating(P.m[j], q_[i], vij, g);
-    vsig_[i] = std::max(vsig_[i], signal_velocity(cs_[i], cs_[j], vij.dot(g.rij) / g.r));
+    f.vsig[i] = std::max(f.vsig[i], signal_velocity(cs_[i], cs_[j], vij.dot(g.rij) / g.r));
     if (av_.active()) {
-      const double alpha_ij = 0.25 * (alpha_[i] + alpha_[j]) * (balsara_factor_[i] + balsara_factor_[j]);
-      const double Pi = av_.Pi(alpha_ij, cs_[i], cs_[j], P.rho[i], P.rho[j], h_[i], h_[j], vij, g);
+      const double alpha_ij = 0.25 * (f.alpha[i] + f.alpha[j]) * (balsara_factor_[i] + balsara_factor_[j]);
+      const double Pi = av_.Pi(alpha_ij, cs_[i], cs_[j], P.rho[i], P.rho[j], f.h[i], f.h[j], vij, g);
       if (Pi > 0.0) {
-        acc_[i] += viscous_acceleration(P.m[j], Pi, g);
+        f.acc[i] += viscous_acceleration(P.m[j], Pi, g);
         heat[i] += viscous_heating(P.m[j], Pi, vij, g);
       }
     }
     if (conductivity_)
-      heat[i] += conductivity_heating(P.m[j], alpha_u_, P.p[i], P.p[j], P.rho[i], P.rho[j], u_[i], u_[j], g.dW_mean());
+      heat[i] +=
+          conductivity_heating(P.m[j], alpha_u_, P.p[i], P.p[j], P.rho[i], P.rho[j], f.u[i], f.u[j], g.dW_mean());
   });
 
-  dthermal_.resize(n);
+  f.dthermal.resize(n);
   for (std::size_t i = 0; i < n; ++i)
     // In entropy mode only dissipation changes A: dA/dt = (gamma - 1) rho^(1 - gamma) du/dt|_diss.
-    dthermal_[i] = entropy_ ? (gamma_ - 1.0) * std::pow(P.rho[i], 1.0 - gamma_) * heat[i] : pdv[i] + heat[i];
-  dalpha_.assign(n, 0.0);
+    f.dthermal[i] = entropy_ ? (gamma_ - 1.0) * std::pow(P.rho[i], 1.0 - gamma_) * heat[i] : pdv[i] + heat[i];
+  f.dalpha.assign(n, 0.0);
   if (switch_ == ViscositySwitch::MorrisMonaghan)
     for (std::size_t i = 0; i < n; ++i)
-      dalpha_[i] = morris_monaghan_rate(alpha_[i], alpha_min_, alpha_max_, mm_sigma_, divv_[i], cs_[i], h_[i]);
+      f.dalpha[i] = morris_monaghan_rate(f.alpha[i], alpha_min_, alpha_max_, mm_sigma_, divv_[i], cs_[i], f.h[i]);
 }
 
 template <int D> double CompressibleSolver<D>::stable_dt() const {
+  const Fields f = fields();
   const Particles<D>& P = disc_->particles;
   double dt = std::numeric_limits<double>::max();
   for (std::size_t i = 0; i < P.n_owned; ++i) {
-    if (vsig_[i] > 0.0) dt = std::min(dt, cfl_ * h_[i] / vsig_[i]);
-    const double a = acc_[i].norm();
-    if (a > 0.0) dt = std::min(dt, cfl_force_ * std::sqrt(h_[i] / a));
+    if (f.vsig[i] > 0.0) dt = std::min(dt, cfl_ * f.h[i] / f.vsig[i]);
+    const double a = f.acc[i].norm();
+    if (a > 0.0) dt = std::min(dt, cfl_force_ * std::sqrt(f.h[i] / a));
   }
   dt = -mpi_max(-dt);
   // A gas without pressure or neighbours: the reference speed bounds the step.
@@ -294,10 +324,11 @@ template <int D> double CompressibleSolver<D>::stable_dt() const {
 }
 
 template <int D> void CompressibleSolver<D>::check_thermal_state() const {
+  const Fields f = fields();
   const Particles<D>& P = disc_->particles;
   int bad = -1;
   for (std::size_t i = 0; i < P.n_owned && bad < 0; ++i)
-    if (!(thermal_[i] >= 0.0) || !std::isfinite(thermal_[i])) bad = static_cast<int>(i);
+    if (!(f.thermal[i] >= 0.0) || !std::isfinite(f.thermal[i])) bad = static_cast<int>(i);
   int any = bad >= 0;
   MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
   if (!any) return;
@@ -309,15 +340,16 @@ template <int D> void CompressibleSolver<D>::check_thermal_state() const {
 }
 
 template <int D> StepReport CompressibleSolver<D>::step(double dt) {
+  const Fields f = fields();
   Particles<D>& P = disc_->particles;
   const std::size_t n = P.n_owned;
   const bool mm = switch_ == ViscositySwitch::MorrisMonaghan;
   // Kick-drift-kick; velocity, thermal variable and viscosity switch are predicted to t^{n+1} for the
   // velocity- and energy-dependent terms of the force evaluation.
-  std::vector<LeapfrogScalar> scalars = {{&thermal_, &dthermal_}};
-  if (mm) scalars.push_back({&alpha_, &dalpha_, alpha_min_, alpha_max_});
+  std::vector<LeapfrogScalar> scalars = {{&f.thermal, &f.dthermal}};
+  if (mm) scalars.push_back({&f.alpha, &f.dalpha, alpha_min_, alpha_max_});
   leapfrog_step<D>(
-      dt, n, P.x, P.v, acc_, scalars, [](std::size_t) { return true; },
+      dt, n, P.x, P.v, f.acc, scalars, [](std::size_t) { return true; },
       [&] {
         check_thermal_state();
         disc_->neighbourhood.update(P);
@@ -330,22 +362,23 @@ template <int D> StepReport CompressibleSolver<D>::step(double dt) {
   // Pressure and thermal energy of the final state (what the outputs and the errors see).
   for (std::size_t i = 0; i < n; ++i) {
     if (entropy_) {
-      P.p[i] = thermal_[i] * std::pow(P.rho[i], gamma_);
-      u_[i] = P.p[i] / ((gamma_ - 1.0) * P.rho[i]);
+      P.p[i] = f.thermal[i] * std::pow(P.rho[i], gamma_);
+      f.u[i] = P.p[i] / ((gamma_ - 1.0) * P.rho[i]);
     } else {
-      u_[i] = thermal_[i];
-      P.p[i] = (gamma_ - 1.0) * P.rho[i] * u_[i];
+      f.u[i] = f.thermal[i];
+      P.p[i] = (gamma_ - 1.0) * P.rho[i] * f.u[i];
     }
   }
   return {};
 }
 
 template <int D> double CompressibleSolver<D>::total_energy() const {
+  const Fields f = fields();
   const Particles<D>& P = disc_->particles;
   const Physics<D>& phys = disc_->physics;
   double E = 0.0;
   for (std::size_t i = 0; i < P.n_owned; ++i) {
-    double e = 0.5 * P.v[i].squaredNorm() + u_[i] - phys.gravity.dot(P.x[i]);
+    double e = 0.5 * P.v[i].squaredNorm() + f.u[i] - phys.gravity.dot(P.x[i]);
     if (phys.external_potential) e += phys.external_potential(P.x[i]);
     E += P.m[i] * e;
   }
@@ -359,20 +392,6 @@ template <int D> Vector<D> CompressibleSolver<D>::total_momentum() const {
   for (std::size_t i = 0; i < P.n_owned; ++i) M += P.m[i] * P.v[i];
   MPI_Allreduce(MPI_IN_PLACE, M.data(), D, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   return M;
-}
-
-template <int D> std::vector<CheckpointField> CompressibleSolver<D>::checkpoint_fields() {
-  const std::size_t n = disc_->particles.n_owned;
-  for (auto* f : {&thermal_, &u_, &h_, &alpha_, &dthermal_, &dalpha_, &vsig_}) f->resize(n);
-  acc_.resize(n);
-  return {{"thermal_variable", thermal_.data(), 1},
-          {"thermal_energy", u_.data(), 1},
-          {"smoothing_length", h_.data(), 1},
-          {"alpha", alpha_.data(), 1},
-          {"acceleration", acc_.empty() ? nullptr : acc_[0].data(), D},
-          {"thermal_rate", dthermal_.data(), 1},
-          {"alpha_rate", dalpha_.data(), 1},
-          {"signal_velocity", vsig_.data(), 1}};
 }
 
 template <int D> nlohmann::json CompressibleSolver<D>::checkpoint_scalars() const {

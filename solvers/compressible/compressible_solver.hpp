@@ -33,16 +33,9 @@ template <int D> class CompressibleSolver : public Solver<D> {
   double stable_dt() const override;
   StepReport step(double dt) override;
   nlohmann::json describe() const override;
-  // The leapfrog carries rates and the thermal state between steps; h is the Newton start; the search
-  // radius decides when lists are rebuilt (and positions wrapped): all of it is needed for an exact restart.
-  std::vector<CheckpointField> checkpoint_fields() override;
+  // The search radius decides when lists are rebuilt (and positions wrapped): needed for an exact restart.
   nlohmann::json checkpoint_scalars() const override;
   void restore_scalars(const nlohmann::json& j) override;
-  // Smoothing length and specific internal energy (both move with their particle, as checkpoint fields).
-  std::vector<ScalarField> output_fields() override {
-    for (auto* f : {&u_, &h_}) f->resize(disc_->particles.n_owned);
-    return {{"smoothing_length", &h_}, {"internal_energy", &u_}};
-  }
 
   // Per-particle state (owned entries), public for tests and diagnostics.
   double total_energy() const;
@@ -76,15 +69,32 @@ template <int D> class CompressibleSolver : public Solver<D> {
   bool entropy_ = false;  // thermal variable: A = P/rho^gamma (isentropic scenes) instead of u
   double kappa_ = 2.0;    // kernel support in units of h
 
+  // The particle fields this scheme declares (declare_fields), and references to them for one function.
+  struct FieldIds {
+    FieldId<double> h, u, thermal, alpha, dthermal, dalpha, vsig;
+    FieldId<Vector<D>> acc;
+  };
+  struct Fields {
+    std::vector<double>& h;        // smoothing length (owned + ghost)
+    std::vector<double>& u;        // specific internal energy (owned + ghost)
+    std::vector<double>& thermal;  // u, or A in entropy mode
+    std::vector<double>& alpha;    // viscosity switch (owned + ghost)
+    std::vector<Vector<D>>& acc;
+    std::vector<double>& dthermal;
+    std::vector<double>& dalpha;
+    std::vector<double>& vsig;  // signal velocity
+  };
+  void declare_fields(Particles<D>& P);
+  Fields fields() const;
+  FieldIds ids_;
+
   // Per particle (owned + ghost where the pair loop reads neighbours' values).
-  std::vector<double> h_, omega_, u_, cs_, alpha_, balsara_factor_, q_;
-  std::vector<double> thermal_;  // u, or A in entropy mode
+  std::vector<double> omega_, cs_, balsara_factor_, q_;
   std::vector<Kernel<D>> kernels_;
   compressible::PrunedPairs<D> pairs_;
   long pairs_built_at_rebuild_ = -1;  // the neighbourhood's rebuild count the pruned list belongs to
   // Owned only.
-  std::vector<Vector<D>> acc_;
-  std::vector<double> dthermal_, dalpha_, divv_, curlv_, vsig_;
+  std::vector<double> divv_, curlv_;
 
   // Bookkeeping.
   double energy0_ = 0.0;

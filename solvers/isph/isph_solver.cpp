@@ -33,7 +33,9 @@ template <int D> void IsphSolver<D>::setup(Discretisation<D>& disc) {
   for (std::size_t i = 0; i < P.n_owned; ++i) P.rho[i] = disc.physics.rho0;
   walls_ = has_walls(P);
   ppe_.use_nonsymmetric(walls_ || disc.physics.free_surface || operators_ == OperatorSet::Consistent);
-  free_surface_model_.setup();
+  // The last step's mean pressure pm moves with its particle (migration, checkpoints).
+  mean_pressure_ = P.fields.declare_scalar("mean_step_pressure", kCarried, P.size());
+  free_surface_model_.setup(P, disc.physics.free_surface);
   // In a closed domain fluid meets walls at the speed of its flow along them, not head on, and the
   // impact term only adds the noise of the walls' normals at corners (docs/verification/free_surface.md,
   // "Design measurements").
@@ -110,8 +112,7 @@ std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vec
 }
 
 template <int D> std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences(
-    const std::vector<const std::vector<Vector<D>>*>& fields, const std::vector<char>& near_surface,
-    double tau) const {
+    const std::vector<const std::vector<Vector<D>>*>& fields, const std::vector<char>& near_surface, double tau) const {
   const Particles<D>& P = disc_->particles;
   const NeighbourList<D>& nl = disc_->neighbourhood.list();
   const Kernel<D>& K = disc_->kernel;
@@ -411,11 +412,11 @@ template <int D> StepReport IsphSolver<D>::project_and_update_pressure(double dt
   const StepReport report = project(s.u_star, s.have_pressure ? 0.5 * dt : dt, s.corrections);
   s.energy_after_projection = EnergyBudget::kinetic_energy(P, P.v);  // the shift starts from it
   energy_.add_change(EnergyCause::Pressure, energy_before_projection, s.energy_after_projection);
-  mean_pressure_.resize(n);
+  std::vector<double>& mean_pressure = P.fields[mean_pressure_];
   for (std::size_t i = 0; i < n; ++i) {
     const double mean = s.have_pressure ? 0.5 * (p_start[i] + P.p[i]) : P.p[i];
-    P.p[i] = s.have_pressure ? mean + 0.5 * (mean - mean_pressure_[i]) : mean;
-    mean_pressure_[i] = mean;
+    P.p[i] = s.have_pressure ? mean + 0.5 * (mean - mean_pressure[i]) : mean;
+    mean_pressure[i] = mean;
   }
   disc_->neighbourhood.halo().update(P.p);
   return report;
@@ -430,8 +431,9 @@ template <int D> void IsphSolver<D>::shift(double dt) {
   if (disc_->physics.free_surface)
     boundary = free_surface_model_.shift_boundary(P, nh, K, free_surface_model_.detect(P, nh.list(), K, false));
   // The pressures move with the particles too: the next opening kick and extrapolation use them.
-  nh.halo().update(mean_pressure_);
-  shift_particles(P, nh, K, shifting_model_, disc_->dx, largest_speed(P), dt, {&P.p, &mean_pressure_},
+  std::vector<double>& mean_pressure = P.fields[mean_pressure_];
+  nh.halo().update(mean_pressure);
+  shift_particles(P, nh, K, shifting_model_, disc_->dx, largest_speed(P), dt, {&P.p, &mean_pressure},
                   disc_->physics.free_surface ? &boundary : nullptr);
 }
 

@@ -81,18 +81,7 @@ template <int D> class IsphSolver : public Solver<D> {
   nlohmann::json describe() const override;
   bool reads_late(const std::string& option) const override { return PressurePoisson<D>::reads_late(option); }
   nlohmann::json checkpoint_scalars() const override { return {{"pressure_solves", solves_}}; }
-  // The last step's mean pressure pm and free-surface flag move with their particle (migration, checkpoints).
-  std::vector<CheckpointField> checkpoint_fields() override {
-    mean_pressure_.resize(disc_->particles.n_owned);
-    std::vector<double>& state = free_surface_model_.state(disc_->particles.n_owned);
-    return {{"mean_step_pressure", mean_pressure_.data(), 1}, {"free_surface_state", state.data(), 1}};
-  }
   void restore_scalars(const nlohmann::json& j) override { solves_ = j.value("pressure_solves", 0L); }
-  // The free-surface flag of the last projection (1: on the surface), in free-surface scenes.
-  std::vector<ScalarField> output_fields() override {
-    if (!disc_->physics.free_surface) return {};
-    return {{"free_surface", &free_surface_model_.state(disc_->particles.n_owned)}};
-  }
 
  private:
   // What one step's phases hand on to the next (step()).
@@ -136,7 +125,7 @@ template <int D> class IsphSolver : public Solver<D> {
   PetscInt projection_corrections_ = 1;      // correction passes after the projection
   bool source_walls_at_rest_ = true;         // -ppe_wall_velocity zero: the PPE source sees the walls at rest
   long solves_ = 0;
-  std::vector<double> mean_pressure_;  // pm^{n-1/2} per particle
+  FieldId<double> mean_pressure_;  // pm^{n-1/2}, a particle field
   bool walls_ = false;
   FreeSurface<D> free_surface_model_;
   SurfaceCondition surface_condition_ = SurfaceCondition::Node;

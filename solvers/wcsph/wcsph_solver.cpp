@@ -52,7 +52,9 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
     P.rho[i] = rho;
   }
   walls_ = has_walls(P);
-  free_surface_.setup();
+  acc_ = P.fields.declare_vector("acceleration", kCarried, P.size());
+  drho_ = P.fields.declare_scalar("density_rate", kCarried, P.size());
+  free_surface_.setup(P, disc.physics.free_surface);
   // Under gravity Molteni's term diffuses the hydrostatic stratification: mass flows down, and still
   // water sank into its floor (t = 19 at 40 particles a unit). Fourtakas et al. (2019) diffuse the
   // density's difference from the hydrostatic one instead.
@@ -131,6 +133,8 @@ template <int D> void WcsphSolver<D>::update_pressure() {
 
 template <int D> void WcsphSolver<D>::compute_rates() {
   Particles<D>& P = disc_->particles;
+  std::vector<Vector<D>>& acc = P.fields[acc_];
+  std::vector<double>& drho = P.fields[drho_];
   const Neighbourhood<D>& nh = disc_->neighbourhood;
   const NeighbourList<D>& nl = nh.list();
   const Kernel<D>& K = disc_->kernel;
@@ -189,8 +193,8 @@ template <int D> void WcsphSolver<D>::compute_rates() {
       grad_u(corrected_continuity ? n : 0, Tensor<D>::Zero());
   std::vector<Vector<D>> grad_p(corrected_gradient ? n : 0, Vector<D>::Zero());
 
-  acc_.assign(n, Vector<D>::Zero());
-  drho_.assign(n, 0.0);
+  acc.assign(n, Vector<D>::Zero());
+  drho.assign(n, 0.0);
   const double inv_R = 1.0 / K.support_radius();
   const std::vector<double>& diffused = rho_fine.empty() ? P.rho : rho_fine;
   wcsph::RatesInputs<D> in{P,
@@ -245,7 +249,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
       sums.acc += phys.nu * lap;
       if (smoothing) lap_u[i] = lap;
     }
-    acc_[i] = sums.acc, drho_[i] = sums.drho;
+    acc[i] = sums.acc, drho[i] = sums.drho;
     if (corrected_gradient) M[i] = sums.M, grad_p[i] = sums.grad_p;
     if (corrected_continuity) grad_u[i] = sums.grad_u;
   });
@@ -253,7 +257,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
     std::vector<Vector<D>> corrected = lap_u;
     remove_laplacian_smoothing_error(P, nh, K, lap_factors, corrected);
     for (std::size_t i = 0; i < n; ++i)
-      if (P.kind[i] == kFluid) acc_[i] += phys.nu * (corrected[i] - lap_u[i]);
+      if (P.kind[i] == kFluid) acc[i] += phys.nu * (corrected[i] - lap_u[i]);
   }
   // The corrected forms: d rho_i/dt = -rho_i tr(L_i grad u_i) and a_i = -L_i grad p_i / rho_i, both
   // exact for linear fields on any particle distribution (the plain forms are O(1) wrong in the
@@ -261,14 +265,14 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   for (std::size_t i = 0; i < n && corrected_gradient; ++i) {
     if (P.kind[i] != kFluid) continue;
     const Tensor<D> L = correction_from_moments(M[i]);
-    acc_[i] -= (L * grad_p[i]) / P.rho[i];
-    if (corrected_continuity) drho_[i] -= P.rho[i] * (L * grad_u[i]).trace();
+    acc[i] -= (L * grad_p[i]) / P.rho[i];
+    if (corrected_continuity) drho[i] -= P.rho[i] * (L * grad_u[i]).trace();
   }
   for (std::size_t i = 0; i < n; ++i)
-    if (P.kind[i] == kFluid) acc_[i] += phys.gravity;
+    if (P.kind[i] == kFluid) acc[i] += phys.gravity;
   if (continuity && closed_volume_) remove_net_volume_rate();
   double a2 = 0.0;
-  for (const auto& a : acc_) a2 = std::max(a2, a.squaredNorm());
+  for (const auto& a : acc) a2 = std::max(a2, a.squaredNorm());
   MPI_Allreduce(MPI_IN_PLACE, &a2, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
   max_acc_ = std::sqrt(a2);
 }
@@ -282,20 +286,21 @@ template <int D> void WcsphSolver<D>::compute_rates() {
 // which no flow in the box can have, is taken out as a uniform compression rate, as ISPH spreads a
 // closed domain's net PPE source evenly over its rows.
 template <int D> void WcsphSolver<D>::remove_net_volume_rate() {
-  const Particles<D>& P = disc_->particles;
+  Particles<D>& P = disc_->particles;
+  std::vector<double>& drho = P.fields[drho_];
   // Volume rate of the fluid, sum_i dV_i/dt = -sum_i V_i (d rho_i/dt) / rho_i, and its volume.
   double sums[2] = {0.0, 0.0};
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (P.kind[i] == kFluid) {
       const double V = P.m[i] / P.rho[i];
-      sums[0] += V * drho_[i] / P.rho[i];
+      sums[0] += V * drho[i] / P.rho[i];
       sums[1] += V;
     }
   MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   if (sums[1] <= 0.0) return;
   const double mean_rate = sums[0] / sums[1];
   for (std::size_t i = 0; i < P.n_owned; ++i)
-    if (P.kind[i] == kFluid) drho_[i] -= P.rho[i] * mean_rate;
+    if (P.kind[i] == kFluid) drho[i] -= P.rho[i] * mean_rate;
 }
 
 template <int D> double WcsphSolver<D>::stable_dt() const {
@@ -316,16 +321,18 @@ template <int D> double WcsphSolver<D>::stable_dt() const {
 
 template <int D> StepReport WcsphSolver<D>::step(double dt) {
   Particles<D>& P = disc_->particles;
+  std::vector<Vector<D>>& acc = P.fields[acc_];
+  std::vector<double>& drho = P.fields[drho_];
   Neighbourhood<D>& nh = disc_->neighbourhood;
   const std::size_t n = P.n_owned;
   const bool continuity = density_ == DensityMethod::Continuity;
 
   // Wall particles have zero rates: they keep their prescribed velocity and place.
   std::vector<LeapfrogScalar> scalars;
-  if (continuity) scalars.push_back({&P.rho, &drho_});
+  if (continuity) scalars.push_back({&P.rho, &drho});
   const double t_end = disc_->bodies.time() + dt;
   leapfrog_step<D>(
-      dt, n, P.x, P.v, acc_, scalars, [&](std::size_t i) { return P.kind[i] == kFluid; },
+      dt, n, P.x, P.v, acc, scalars, [&](std::size_t i) { return P.kind[i] == kFluid; },
       [&] {
         disc_->bodies.move_to(P, t_end);  // with the fluid's drift
         if (!nh.update(P)) nh.halo().update(P.v);

@@ -35,20 +35,6 @@ template <int D> class WcsphSolver : public Solver<D> {
   double stable_dt() const override;
   StepReport step(double dt) override;
   nlohmann::json describe() const override;
-  // The leapfrog carries the last accelerations and density rates into the next step.
-  // The free-surface flags of the last step move with their particles (their hysteresis).
-  std::vector<CheckpointField> checkpoint_fields() override {
-    acc_.resize(disc_->particles.n_owned), drho_.resize(disc_->particles.n_owned);
-    std::vector<double>& surface = free_surface_.state(disc_->particles.n_owned);
-    return {{"acceleration", acc_.empty() ? nullptr : acc_[0].data(), D},
-            {"density_rate", drho_.data(), 1},
-            {"free_surface_state", surface.data(), 1}};
-  }
-  // The free-surface flag of the last step (1: on the surface), in free-surface scenes.
-  std::vector<ScalarField> output_fields() override {
-    if (!disc_->physics.free_surface) return {};
-    return {{"free_surface", &free_surface_.state(disc_->particles.n_owned)}};
-  }
 
  private:
   // Accelerations and density rates at the current positions, velocities and densities.
@@ -76,13 +62,14 @@ template <int D> class WcsphSolver : public Solver<D> {
   WcsphGradient gradient_ = WcsphGradient::Auto;
   LindShifting shifting_model_;
   FreeSurface<D> free_surface_;
-  std::vector<Vector<D>> acc_;
-  std::vector<double> drho_;
+  // The leapfrog carries the last accelerations and density rates into the next step: particle fields.
+  FieldId<Vector<D>> acc_;
+  FieldId<double> drho_;
   double max_acc_ = 0.0;
   bool walls_ = false;
   std::string speed_scale_name_;
-  int closed_volume_option_ = -1;  // -closed_volume: -1 unset (on without a free surface), 0 off, 1 on
-  bool prepared_start_ = false;    // -prepared_start: the case's slow-manifold velocity added at set-up
+  int closed_volume_option_ = -1;      // -closed_volume: -1 unset (on without a free surface), 0 off, 1 on
+  bool prepared_start_ = false;        // -prepared_start: the case's slow-manifold velocity added at set-up
   bool diffusion_at_surface_ = false;  // -density_diffusion_at_surface
   // This step's free-surface particles (owned), found once at the rates' positions and used again by
   // the shift, which comes at the same positions; and as flags on owned and ghost particles.

@@ -23,13 +23,15 @@ namespace sph {
 
 namespace {
 
-// The Particles fields themselves, as checkpoint fields (kind stored as doubles).
+// The Particles fields themselves (kind stored as doubles), then the schemes' carried fields.
 template <int D> std::vector<CheckpointField> particle_fields(Particles<D>& P, std::vector<double>& kind) {
   double* x = P.x.empty() ? nullptr : P.x[0].data();
   double* v = P.v.empty() ? nullptr : P.v[0].data();
-  return {{"x", x, D},          {"v", v, D},
-          {"m", P.m.data(), 1}, {"rho", P.rho.data(), 1},
-          {"p", P.p.data(), 1}, {"kind", kind.data(), 1}};
+  std::vector<CheckpointField> fields{{"x", x, D},          {"v", v, D},
+                                      {"m", P.m.data(), 1}, {"rho", P.rho.data(), 1},
+                                      {"p", P.p.data(), 1}, {"kind", kind.data(), 1}};
+  for (const CheckpointField& f : P.fields.with(kCarried, P.n_owned)) fields.push_back(f);
+  return fields;
 }
 
 // This rank's share of the id range in the file's vectors (whole particles, so blocks stay whole).
@@ -242,25 +244,17 @@ std::string unseal(const std::string& path, std::string* header_text) {
 
 }  // namespace
 
-template <int D> void write_checkpoint(const std::string& path, Particles<D>& P,
-                                       const std::vector<CheckpointField>& extra, const CheckpointState<D>& state,
-                                       int kept) {
+template <int D>
+void write_checkpoint(const std::string& path, Particles<D>& P, const CheckpointState<D>& state, int kept) {
   static int writes = 0;
   ++writes;
   std::vector<double> kind(P.kind.begin(), P.kind.begin() + P.n_owned);
   std::vector<CheckpointField> fields = particle_fields(P, kind);
-  fields.insert(fields.end(), extra.begin(), extra.end());
   const std::string tmp = path + ".tmp";
   const bool root = world_rank() == 0;
-  nlohmann::json header{{"format", "sph checkpoint 1"},
-                        {"t", state.t},
-                        {"step", state.step},
-                        {"n_global", P.n_global},
-                        {"n_ids", id_count(P)},
-                        {"dim", D},
-                        {"scalars", state.scalars},
-                        {"run", state.run},
-                        {"fields", nlohmann::json::array()}};
+  nlohmann::json header{{"format", "sph checkpoint 1"}, {"t", state.t},         {"step", state.step},
+                        {"n_global", P.n_global},       {"n_ids", id_count(P)}, {"dim", D},
+                        {"scalars", state.scalars},     {"run", state.run},     {"fields", nlohmann::json::array()}};
   std::string error;
   try {
     PetscViewer viewer = open_viewer(tmp, FILE_MODE_WRITE);
@@ -296,8 +290,7 @@ nlohmann::json read_checkpoint_header(const std::string& path) {
   return nlohmann::json::parse(text);
 }
 
-template <int D> CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P,
-                                                    const std::vector<CheckpointField>& extra) {
+template <int D> CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P) {
   const nlohmann::json header = read_checkpoint_header(path);
   // The case lays out every particle the run started with; those it took out since are removed after.
   const long ids = header.value("n_ids", header.value("n_global", -1L));
@@ -307,7 +300,6 @@ template <int D> CheckpointState<D> read_checkpoint(const std::string& path, Par
                 std::to_string(D) + "D; restart with the options of the run that wrote it");
   std::vector<double> kind(P.n_owned);
   std::vector<CheckpointField> fields = particle_fields(P, kind);
-  fields.insert(fields.end(), extra.begin(), extra.end());
   if (header["fields"].size() != fields.size())
     throw Error("checkpoint " + path +
                 " was written by another solver (field count differs); restart with the same -solver");
@@ -342,14 +334,11 @@ std::size_t checkpoint_data_bytes(const std::string& path) {
   return nlohmann::json::parse(text).value("data_bytes", std::size_t(0));
 }
 
-template void write_checkpoint<1>(const std::string&, Particles<1>&, const std::vector<CheckpointField>&,
-                                  const CheckpointState<1>&, int);
-template void write_checkpoint<2>(const std::string&, Particles<2>&, const std::vector<CheckpointField>&,
-                                  const CheckpointState<2>&, int);
-template void write_checkpoint<3>(const std::string&, Particles<3>&, const std::vector<CheckpointField>&,
-                                  const CheckpointState<3>&, int);
-template CheckpointState<1> read_checkpoint<1>(const std::string&, Particles<1>&, const std::vector<CheckpointField>&);
-template CheckpointState<2> read_checkpoint<2>(const std::string&, Particles<2>&, const std::vector<CheckpointField>&);
-template CheckpointState<3> read_checkpoint<3>(const std::string&, Particles<3>&, const std::vector<CheckpointField>&);
+template void write_checkpoint<1>(const std::string&, Particles<1>&, const CheckpointState<1>&, int);
+template void write_checkpoint<2>(const std::string&, Particles<2>&, const CheckpointState<2>&, int);
+template void write_checkpoint<3>(const std::string&, Particles<3>&, const CheckpointState<3>&, int);
+template CheckpointState<1> read_checkpoint<1>(const std::string&, Particles<1>&);
+template CheckpointState<2> read_checkpoint<2>(const std::string&, Particles<2>&);
+template CheckpointState<3> read_checkpoint<3>(const std::string&, Particles<3>&);
 
 }  // namespace sph

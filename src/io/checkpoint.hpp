@@ -36,9 +36,9 @@ template <int D> struct CheckpointState {
 // removing <path>.tmp; the previous <path> is then untouched. With `kept` > 1 the previous ones move
 // along, <path> to <path>.1, <path>.1 to <path>.2, ..., up to <path>.<kept-1>, just before the new
 // one is renamed into place (the moves are renames and a hard link: <path> never goes missing).
-template <int D> void write_checkpoint(const std::string& path, Particles<D>& P,
-                                       const std::vector<CheckpointField>& extra, const CheckpointState<D>& state,
-                                       int kept = 1);
+// The particles' carried fields (FieldUse kCarried) follow the Particles' own.
+template <int D>
+void write_checkpoint(const std::string& path, Particles<D>& P, const CheckpointState<D>& state, int kept = 1);
 
 // The header of a checkpoint after checking its trailer and the data's checksum (collective: rank 0
 // reads, every rank gets the header). Throws sph::Error naming the file and what is wrong with it.
@@ -47,8 +47,7 @@ nlohmann::json read_checkpoint_header(const std::string& path);
 // Reads a checkpoint into particles already created as the run started (any split over ranks); those
 // taken out of the run since come back with kind kRemovedKind, for the caller to remove.
 // Throws sph::Error when the file is damaged or does not match the run (count, fields).
-template <int D>
-CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P, const std::vector<CheckpointField>& extra);
+template <int D> CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P);
 
 // Bytes of the field data at the start of a checkpoint file (what two runs' checkpoints share when
 // they reached the same state), or 0 when the file has no valid trailer. Not collective.

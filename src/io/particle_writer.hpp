@@ -21,12 +21,6 @@
 
 namespace sph {
 
-// An extra per-particle scalar to write next to the standard arrays.
-struct ScalarField {
-  std::string name;
-  const std::vector<double>* values;  // at least one value per owned particle (ghost entries are ignored)
-};
-
 // The field named `name` among `fields`, or null.
 inline const std::vector<double>* output_field(const std::vector<ScalarField>& fields, const std::string& name) {
   for (const ScalarField& f : fields)

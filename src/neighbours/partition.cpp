@@ -47,7 +47,7 @@ template <int D> std::uint64_t morton_key(const Vector<D>& x, const Vector<D>& l
   return key;
 }
 
-template <int D> double partition_along_curve(Particles<D>& P, const Domain<D>& domain, const ParticleArrays& arrays) {
+template <int D> double partition_along_curve(Particles<D>& P, const Domain<D>& domain) {
   PetscMPIInt size, rank;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -86,7 +86,7 @@ template <int D> double partition_along_curve(Particles<D>& P, const Domain<D>& 
   }
 
   // Pack every particle, in curve order, into one row of doubles per particle.
-  std::vector<ParticleField> fields = arrays ? arrays() : std::vector<ParticleField>{};
+  std::vector<ParticleField> fields = P.fields.with(kCarried, n);
   int stride = 2 * D + 5;
   for (const ParticleField& f : fields) stride += f.components;
   std::vector<double> send(n * stride);
@@ -129,7 +129,7 @@ template <int D> double partition_along_curve(Particles<D>& P, const Domain<D>& 
 
   P.n_owned = m;
   P.set_ghost_count(0);
-  fields = arrays ? arrays() : std::vector<ParticleField>{};  // resized to the new owned count
+  fields = P.fields.with(kCarried, m);  // resized to the new owned count
   for (std::size_t i = 0; i < m; ++i) {
     const double* row = &recv[mine[i].slot * stride];
     for (int a = 0; a < D; ++a) P.x[i][a] = *row++;
@@ -150,8 +150,8 @@ template <int D> double partition_along_curve(Particles<D>& P, const Domain<D>& 
 template std::uint64_t morton_key<1>(const Vector<1>&, const Vector<1>&, const Vector<1>&);
 template std::uint64_t morton_key<2>(const Vector<2>&, const Vector<2>&, const Vector<2>&);
 template std::uint64_t morton_key<3>(const Vector<3>&, const Vector<3>&, const Vector<3>&);
-template double partition_along_curve<1>(Particles<1>&, const Domain<1>&, const ParticleArrays&);
-template double partition_along_curve<2>(Particles<2>&, const Domain<2>&, const ParticleArrays&);
-template double partition_along_curve<3>(Particles<3>&, const Domain<3>&, const ParticleArrays&);
+template double partition_along_curve<1>(Particles<1>&, const Domain<1>&);
+template double partition_along_curve<2>(Particles<2>&, const Domain<2>&);
+template double partition_along_curve<3>(Particles<3>&, const Domain<3>&);
 
 }  // namespace sph

@@ -5,11 +5,9 @@
 // rank's particles form a compact region (few ghosts) and, on any rank count, memory order follows
 // space (cache locality of the pair loops).
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "src/core/domain.hpp"
-#include "src/particles/particle_field.hpp"
 #include "src/particles/particles.hpp"
 
 namespace sph {
@@ -17,18 +15,12 @@ namespace sph {
 // Morton key of x in the box [lo, hi] (bits interleaved, 64/D bits per axis).
 template <int D> std::uint64_t morton_key(const Vector<D>& x, const Vector<D>& lo, const Vector<D>& hi);
 
-// Per-particle arrays beyond the Particles fields that must follow a particle to its new rank and
-// slot: the solver's checkpoint fields (the state it carries from one step to the next). The function
-// is called before the move (to pack, sized to the old owned count) and after it (to unpack, sized to
-// the new owned count).
-using ParticleArrays = std::function<std::vector<ParticleField>()>;
-
 // Wraps owned particles into the periodic box, re-orders (and on several ranks migrates) them along
-// the curve, renumbers global indices, and drops the ghosts (the caller rebuilds its neighbourhood).
+// the curve with their carried fields (FieldUse kCarried), renumbers global indices, and drops the
+// ghosts (the caller rebuilds its neighbourhood).
 // Deterministic: the result depends only on the set of particles (ties broken by permanent id), not on
 // where they were.
 // Returns the load imbalance afterwards: max owned count / mean owned count.
-template <int D>
-double partition_along_curve(Particles<D>& P, const Domain<D>& domain, const ParticleArrays& arrays = {});
+template <int D> double partition_along_curve(Particles<D>& P, const Domain<D>& domain);
 
 }  // namespace sph

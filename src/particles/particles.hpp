@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "src/core/types.hpp"
+#include "src/particles/field_registry.hpp"
 #include "src/particles/particle_budget.hpp"
 
 namespace sph {
@@ -26,6 +27,8 @@ template <int D> struct Particles {
   // id: the particle's permanent label (its first gid), for output and checkpoints.
   // A ghost carries its source's gid and id.
   std::vector<GlobalIndex> gid, id;
+  // The schemes' own per-particle state, declared by name (field_registry.hpp), sized with the above.
+  FieldRegistry<D> fields;
 
   std::size_t size() const { return n_owned + n_ghost; }
 
@@ -41,6 +44,7 @@ template <int D> struct Particles {
     kind.push_back(k);
     gid.push_back(0);
     id.push_back(-1);  // labelled by assign_global_indices
+    fields.push_back();
     ++n_owned;
   }
 
@@ -49,6 +53,7 @@ template <int D> struct Particles {
     n_ghost = ng;
     const std::size_t n = size();
     x.resize(n), v.resize(n), m.resize(n), rho.resize(n), p.resize(n), kind.resize(n), gid.resize(n), id.resize(n);
+    fields.resize(n);
   }
 };
 

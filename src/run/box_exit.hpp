@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "src/core/domain.hpp"
-#include "src/neighbours/partition.hpp"
 #include "src/particles/global_indices.hpp"
 #include "src/particles/particles.hpp"
 
@@ -18,12 +17,9 @@ struct RemovedFluid {
   double mass = 0.0;
 };
 
-// Removes the owned particles for which gone(i) holds and renumbers the rest; drops the ghosts (the
-// caller rebuilds its neighbourhood). `arrays` is called before (sized to the old owned count) and
-// after (resized to the new one), as for re-partitioning. Collective.
-template <int D, class Gone>
-RemovedFluid remove_particles_if(Particles<D>& P, const Gone& gone, const ParticleArrays& arrays) {
-  std::vector<ParticleField> fields = arrays ? arrays() : std::vector<ParticleField>{};
+// Removes the owned particles for which gone(i) holds, with their rows of the declared fields, and
+// renumbers the rest; drops the ghosts (the caller rebuilds its neighbourhood). Collective.
+template <int D, class Gone> RemovedFluid remove_particles_if(Particles<D>& P, const Gone& gone) {
   RemovedFluid removed;
   std::size_t kept = 0;
   for (std::size_t i = 0; i < P.n_owned; ++i) {
@@ -34,14 +30,12 @@ RemovedFluid remove_particles_if(Particles<D>& P, const Gone& gone, const Partic
     if (kept != i) {
       P.x[kept] = P.x[i], P.v[kept] = P.v[i], P.m[kept] = P.m[i], P.rho[kept] = P.rho[i], P.p[kept] = P.p[i];
       P.kind[kept] = P.kind[i], P.id[kept] = P.id[i];
-      for (const ParticleField& f : fields)
-        for (int c = 0; c < f.components; ++c) f.data[kept * f.components + c] = f.data[i * f.components + c];
+      P.fields.copy_row(kept, i);
     }
     ++kept;
   }
   P.n_owned = kept;
   P.set_ghost_count(0);
-  if (arrays) arrays();  // shrinks the solver's arrays; their first `kept` rows are the ones kept
   assign_global_indices(P);
   MPI_Allreduce(MPI_IN_PLACE, &removed.count, 1, MPI_LONG_LONG, MPI_SUM, PETSC_COMM_WORLD);
   MPI_Allreduce(MPI_IN_PLACE, &removed.mass, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
@@ -49,10 +43,8 @@ RemovedFluid remove_particles_if(Particles<D>& P, const Gone& gone, const Partic
 }
 
 // Removes the owned fluid particles outside the box (remove_particles_if).
-template <int D>
-RemovedFluid remove_fluid_outside(Particles<D>& P, const Domain<D>& domain, const ParticleArrays& arrays) {
-  return remove_particles_if(
-      P, [&](std::size_t i) { return P.kind[i] == kFluid && domain.outside(P.x[i]); }, arrays);
+template <int D> RemovedFluid remove_fluid_outside(Particles<D>& P, const Domain<D>& domain) {
+  return remove_particles_if(P, [&](std::size_t i) { return P.kind[i] == kFluid && domain.outside(P.x[i]); });
 }
 
 // Whether any rank owns fluid outside the box. Collective.

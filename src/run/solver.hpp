@@ -67,15 +67,11 @@ template <int D> class Solver {
   // Active models and their parameters, linear solver settings: goes into summary.json.
   virtual nlohmann::json describe() const = 0;
 
-  // State beyond the Particles fields that a restart needs to continue exactly: per-particle arrays
-  // (owned entries, contiguous doubles) and scalars. Restored after setup().
-  virtual std::vector<CheckpointField> checkpoint_fields() { return {}; }
+  // Scalars beyond the particles that a restart needs to continue exactly; restored after setup().
+  // Per-particle state is declared in setup() as the particles' fields (Particles::fields, kCarried to
+  // follow the particle into checkpoints and migration, kWritten for the frames).
   virtual nlohmann::json checkpoint_scalars() const { return nlohmann::json::object(); }
   virtual void restore_scalars(const nlohmann::json&) {}
-
-  // The scheme's own per-particle fields, written into every VTK frame next to the standard arrays
-  // (owned entries, in the particles' current order).
-  virtual std::vector<ScalarField> output_fields() { return {}; }
 };
 
 }  // namespace sph

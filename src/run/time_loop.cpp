@@ -110,7 +110,7 @@ template <int D> class TimeLoop {
   std::optional<ParticleWriter<D>> writer_;
   std::optional<CsvWriter> series_;
   std::optional<WallGroups<D>> wall_groups_;  // timeseries.csv's force columns
-  std::vector<SurfaceMesh> body_surfaces_;      // each body's, at t = 0
+  std::vector<SurfaceMesh> body_surfaces_;    // each body's, at t = 0
   std::vector<SurfaceWriter> surface_writers_;
   std::vector<std::vector<double>> vorticity_;
   nlohmann::json summary_;
@@ -185,10 +185,9 @@ template <int D> nlohmann::json TimeLoop<D>::resumed_run_header() const {
 // A restart overwrites the freshly set-up state with the checkpoint's, then brings it into the
 // canonical state, as the writing run did before writing it.
 template <int D> void TimeLoop<D>::resume() {
-  resumed_ = read_checkpoint(opt_.restart, s_.P, solver_.checkpoint_fields());
+  resumed_ = read_checkpoint(opt_.restart, s_.P);
   // The fluid the writing run had taken out of the box (-box_exit remove) goes again.
-  remove_particles_if(s_.P, [&](std::size_t i) { return s_.P.kind[i] == kRemovedKind; },
-                      [&] { return solver_.checkpoint_fields(); });
+  remove_particles_if(s_.P, [&](std::size_t i) { return s_.P.kind[i] == kRemovedKind; });
   solver_.restore_scalars(resumed_.scalars);
   repartition();
 }
@@ -202,7 +201,7 @@ template <int D> std::string TimeLoop<D>::dt_above_limit(double stable, double t
 // Re-orders and re-balances the particles (with the solver's per-particle state) along the curve and
 // rebuilds the neighbourhood: the canonical state, which depends only on the particles.
 template <int D> void TimeLoop<D>::repartition() {
-  s_.imbalance = partition_along_curve(s_.P, s_.domain, [&] { return solver_.checkpoint_fields(); });
+  s_.imbalance = partition_along_curve(s_.P, s_.domain);
   ++partitions_;
   s_.nh.update(s_.P, true);
 }
@@ -260,7 +259,7 @@ template <int D> void TimeLoop<D>::open_outputs() {
   for (const auto& e : case_.errors(s_.P, 0.0)) columns.push_back(e.first);
   // Free-surface and wall health: the share of fluid particles on the surface (the scheme's flags) and
   // the fluid particles inside a wall (diagnostics.hpp).
-  surface_column_ = s_.disc.physics.free_surface && has_output_field(solver_.output_fields(), "free_surface");
+  surface_column_ = s_.disc.physics.free_surface && s_.P.fields.find_scalar("free_surface", kWritten) != nullptr;
   walls_column_ = has_walls(s_.P);
   if (surface_column_) columns.push_back("free_surface_share");
   if (walls_column_) columns.push_back("fluid_in_walls");
@@ -339,7 +338,7 @@ template <int D> void TimeLoop<D>::advance() {
   if (step_ == resumed_.step + 1 && run_.after_first_step) run_.after_first_step();
   LogEventScope log_diagnostics(LogEvent::Diagnostics);
   if (opt_.box_exit == 1 && fluid_outside(s_.P, s_.domain)) {
-    const RemovedFluid gone = remove_fluid_outside(s_.P, s_.domain, [&] { return solver_.checkpoint_fields(); });
+    const RemovedFluid gone = remove_fluid_outside(s_.P, s_.domain);
     removed_.count += gone.count, removed_.mass += gone.mass;
     s_.nh.update(s_.P, true);
   }
@@ -355,7 +354,7 @@ template <int D> void TimeLoop<D>::advance() {
   row.push_back(report.linear_reason);
   case_.accumulate(s_.P, t_, dt);
   for (const auto& e : case_.errors(s_.P, t_)) row.push_back(e.second);
-  if (surface_column_) row.push_back(fluid_share(s_.P, *output_field(solver_.output_fields(), "free_surface")));
+  if (surface_column_) row.push_back(fluid_share(s_.P, *s_.P.fields.find_scalar("free_surface", kWritten)));
   if (walls_column_) row.push_back(static_cast<double>(fluid_in_walls(s_.P, s_.nh.list(), case_.spacing())));
   if (opt_.box_exit == 1) row.push_back(static_cast<double>(removed_.count));
   if (wall_groups_) {
@@ -409,7 +408,7 @@ template <int D> void TimeLoop<D>::write_frame(bool derived) {
 
 // The solver's own fields and the optional ones, for every frame.
 template <int D> std::vector<ScalarField> TimeLoop<D>::frame_fields(bool derived) {
-  std::vector<ScalarField> fields = solver_.output_fields();
+  std::vector<ScalarField> fields = s_.P.fields.scalars_with(kWritten);
   if (!opt_.vorticity_output || !derived) return fields;
   // The ghosts' velocities and positions as the step left the owned ones, in a neighbourhood of its
   // own: the run's lists, halo and (periodic) positions stay as they were, so the frames' extra fields
@@ -435,7 +434,7 @@ template <int D> void TimeLoop<D>::write_state(const std::string& why) {
                      {"case_state", case_.accumulated_state()}};
   if (opt_.box_exit == 1) run["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
   run["history"].push_back(this_segment(why));
-  write_checkpoint(checkpoint_path_, s_.P, solver_.checkpoint_fields(), {t_, step_, solver_.checkpoint_scalars(), run},
+  write_checkpoint(checkpoint_path_, s_.P, {t_, step_, solver_.checkpoint_scalars(), run},
                    static_cast<int>(opt_.checkpoints_kept));
 }
 
@@ -467,8 +466,7 @@ template <int D> void TimeLoop<D>::finish(const std::string& status, const std::
   j["partition"] = {
       {"curve", "morton"}, {"interval", opt_.partition_interval}, {"count", partitions_}, {"imbalance", s_.imbalance}};
   add_final_state(j, solver_, case_, s_.P, t_, stats_, *initial_);
-  if (opt_.box_exit == 1)
-    j["conservation"]["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
+  if (opt_.box_exit == 1) j["conservation"]["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
   write_json_file(run_.output_dir + "/summary.json", j);
 }
 

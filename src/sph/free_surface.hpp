@@ -90,26 +90,22 @@ template <int D> struct ShiftBoundary {
 };
 
 // The free-surface model of a run: its options (-free_surface_detection, -free_surface_threshold,
-// -free_surface_exit_threshold, read once for every scheme), the flags of the last step that the hysteresis needs (they
-// move with their particles: a checkpoint field) and what the schemes ask of it.
+// -free_surface_exit_threshold, read once for every scheme), the flags of the last step that the
+// hysteresis needs (the particles' field "free_surface": carried, and written to the frames in scenes
+// with a free surface) and what the schemes ask of it.
 template <int D> class FreeSurface {
  public:
   void set_from_options();
-  // Resolves the defaults; call once the scene is known.
-  void setup();
+  // Resolves the defaults and declares the flags' field; call once the scene is known.
+  void setup(Particles<D>& P, bool free_surface);
 
   // The surface particles at the current positions; `remember` makes them the state that the next
   // call's hysteresis starts from (once a step).
-  std::vector<char> detect(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, bool remember);
+  std::vector<char> detect(Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, bool remember);
   // The surface and near-surface particles, and the surface's normal beside it, for shifting.
   ShiftBoundary<D> shift_boundary(const Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K,
                                   const std::vector<char>& surface) const;
 
-  // The last step's flags, one per owned particle (1: on the surface); sized to the owned particles.
-  std::vector<double>& state(std::size_t n_owned) {
-    state_.resize(n_owned, 0.0);
-    return state_;
-  }
   nlohmann::json describe() const {
     if (detection_ == SurfaceDetection::Marrone)
       return {{"detection", "Marrone et al. 2010"},
@@ -122,7 +118,7 @@ template <int D> class FreeSurface {
   SurfaceDetection detection_ = SurfaceDetection::DivR;
   PetscReal threshold_ = 0.0;       // 0: the dimension's default
   PetscReal exit_threshold_ = 0.0;  // 0: default_free_surface_exit_threshold
-  std::vector<double> state_;
+  FieldId<double> state_;           // the last step's flags (1: on the surface)
 };
 
 namespace detail {
@@ -157,20 +153,21 @@ template <int D> void FreeSurface<D>::set_from_options() {
           exit_threshold_);
 }
 
-template <int D> void FreeSurface<D>::setup() {
+template <int D> void FreeSurface<D>::setup(Particles<D>& P, bool free_surface) {
+  state_ = P.fields.declare_scalar("free_surface", kCarried | (free_surface ? kWritten : 0u), P.size());
   if (threshold_ <= 0) threshold_ = default_free_surface_threshold<D>();
   if (exit_threshold_ <= 0) exit_threshold_ = default_free_surface_exit_threshold<D>(threshold_);
   require(exit_threshold_ >= threshold_, "-free_surface_exit_threshold", "at least -free_surface_threshold",
           exit_threshold_);
 }
 
-template <int D> std::vector<char> FreeSurface<D>::detect(const Particles<D>& P, const NeighbourList<D>& nl,
+template <int D> std::vector<char> FreeSurface<D>::detect(Particles<D>& P, const NeighbourList<D>& nl,
                                                           const Kernel<D>& K, bool remember) {
-  state_.resize(P.n_owned, 0.0);
+  std::vector<double>& state = P.fields[state_];
   std::vector<char> surface = detection_ == SurfaceDetection::Marrone
-                                  ? marrone_surface_particles(P, nl, K, &state_)
-                                  : free_surface_particles(P, nl, K, threshold_, exit_threshold_, &state_);
-  if (remember) state_.assign(surface.begin(), surface.end());
+                                  ? marrone_surface_particles(P, nl, K, &state)
+                                  : free_surface_particles(P, nl, K, threshold_, exit_threshold_, &state);
+  if (remember) std::copy(surface.begin(), surface.begin() + P.n_owned, state.begin());
   return surface;
 }
 
