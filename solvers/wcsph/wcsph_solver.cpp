@@ -319,7 +319,18 @@ template <int D> double WcsphSolver<D>::stable_dt() const {
   return dt;
 }
 
+// A step as its phases: kick, drift, the rates at the new positions and kick (leapfrog), the shift,
+// and the pressures of the new densities.
 template <int D> StepReport WcsphSolver<D>::step(double dt) {
+  kick_drift_rates_kick(dt);
+  if (shifting_model_.enabled) shift(dt);
+  const LogEventScope log_density(LogEvent::Density);
+  disc_->neighbourhood.halo().update(disc_->particles.rho);
+  update_pressure();
+  return {};
+}
+
+template <int D> void WcsphSolver<D>::kick_drift_rates_kick(double dt) {
   Particles<D>& P = disc_->particles;
   std::vector<Vector<D>>& acc = P.fields[acc_];
   std::vector<double>& drho = P.fields[drho_];
@@ -340,19 +351,18 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
         compute_rates();
       });
   disc_->bodies.move_to(P, t_end);  // the closing kick left the walls' velocity of the step's start
-  if (shifting_model_.enabled) {
-    if (!nh.update(P)) nh.halo().update(P.rho);
-    // At a free surface particles shift only along it (Lind et al. 2012), beside it never outwards. The
-    // surface is the rates' one: the particles have not moved since.
-    ShiftBoundary<D> boundary;
-    if (disc_->physics.free_surface) boundary = free_surface_.shift_boundary(P, nh, disc_->kernel, surface_);
-    shift_particles(P, nh, disc_->kernel, shifting_model_, disc_->dx, largest_speed(P), dt, {&P.rho},
-                    disc_->physics.free_surface ? &boundary : nullptr);
-  }
-  const LogEventScope log_density(LogEvent::Density);
-  nh.halo().update(P.rho);
-  update_pressure();
-  return {};
+}
+
+template <int D> void WcsphSolver<D>::shift(double dt) {
+  Particles<D>& P = disc_->particles;
+  Neighbourhood<D>& nh = disc_->neighbourhood;
+  if (!nh.update(P)) nh.halo().update(P.rho);
+  // At a free surface particles shift only along it (Lind et al. 2012), beside it never outwards. The
+  // surface is the rates' one: the particles have not moved since.
+  ShiftBoundary<D> boundary;
+  if (disc_->physics.free_surface) boundary = free_surface_.shift_boundary(P, nh, disc_->kernel, surface_);
+  shift_particles(P, nh, disc_->kernel, shifting_model_, disc_->dx, largest_speed(P), dt, {&P.rho},
+                  disc_->physics.free_surface ? &boundary : nullptr);
 }
 
 template class WcsphSolver<1>;

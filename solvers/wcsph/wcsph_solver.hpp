@@ -37,6 +37,9 @@ template <int D> class WcsphSolver : public Solver<D> {
   nlohmann::json describe() const override;
 
  private:
+  // The step's phases (step()).
+  void kick_drift_rates_kick(double dt);
+  void shift(double dt);
   // Accelerations and density rates at the current positions, velocities and densities.
   void compute_rates();
   void update_pressure();
