@@ -224,6 +224,23 @@ bool read_late_by_active(const std::string& name, const std::vector<OptionOwner>
   return false;
 }
 
+// An old name's name now (see OptionOwner::renamed), from any owner, chosen or not; `known` when
+// that owner reads the new name (a typo of an old name has a new name nobody reads).
+struct Rename {
+  RenamedOption to;
+  bool known = false;
+};
+
+Rename renamed(const std::string& name, const std::vector<OptionOwner>& owners) {
+  for (const OptionOwner& o : owners) {
+    if (!o.renamed) continue;
+    const RenamedOption to = o.renamed(name);
+    if (to.now.empty()) continue;
+    return {to, (o.reads_late && o.reads_late(to.now)) || in(documented_options(o.read), to.now)};
+  }
+  return {};
+}
+
 }  // namespace
 
 namespace {
@@ -319,7 +336,11 @@ void check_valueless_options(const std::vector<std::string>& valueless, const st
 
 void check_unused_options(const std::vector<OptionOwner>& owners) {
   for (const std::string& name : unused_options().names) {
-    if (in(petsc_late_options(), name) || read_late_by_active(name, owners)) continue;
+    if (in(petsc_late_options(), name)) continue;
+    // Before the options read late: an old name may have been one (-mat_mumps_icntl_4).
+    const Rename rename = renamed(name, owners);
+    if (rename.known) throw OptionError("option -" + name + " is now -" + rename.to.now + ": " + rename.to.why);
+    if (read_late_by_active(name, owners)) continue;
     std::vector<const OptionOwner*> chosen;
     for (const OptionOwner& o : owners)
       if (o.active) chosen.push_back(&o);
@@ -328,8 +349,9 @@ void check_unused_options(const std::vector<OptionOwner>& owners) {
       throw OptionError("option -" + name + " is read by " + join_labels(readers, ", ") + ", not by this run's " +
                         join_labels(chosen, " and ") + "; remove it or choose " +
                         (readers.size() == 1 ? readers[0]->label : "one of those"));
+    // An old name's typo: the suggestion is spelled the new way.
     throw OptionError("unknown option -" + name + " (not used by the chosen case or solver)" +
-                      suggestion(name, owners));
+                      suggestion(rename.to.now.empty() ? name : rename.to.now, owners));
   }
 }
 
