@@ -133,7 +133,7 @@ TEST(Health, BlowUpEndsWithFailedSummaryAndFinalFrame) {
 
 TEST(Health, DivergedPressureSolveStopsTheRun) {
   const auto r =
-      run_sph("ksp_diverged", "-case taylor_green -nx 16 -t_end 0.1 -ksp_type cg -pc_type none -ksp_max_it 2");
+      run_sph("ksp_diverged", "-case taylor_green -nx 16 -t_end 0.1 -ppe_ksp_type cg -ppe_pc_type none -ppe_ksp_max_it 2");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.summary["status"], "failed");
   EXPECT_NE(r.summary["failure"].get<std::string>().find("did not converge"), std::string::npos);

@@ -80,6 +80,9 @@ template <int D> class IsphSolver : public Solver<D> {
   StepReport step(double dt) override;
   nlohmann::json describe() const override;
   bool reads_late(const std::string& option) const override { return PressurePoisson<D>::reads_late(option); }
+  RenamedOption renamed_option(const std::string& option) const override {
+    return PressurePoisson<D>::renamed_option(option);
+  }
   nlohmann::json checkpoint_scalars() const override { return {{"pressure_solves", solves_}}; }
   // The last step's mean pressure pm and free-surface flag move with their particle (migration, checkpoints).
   std::vector<CheckpointField> checkpoint_fields() override {

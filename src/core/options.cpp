@@ -68,9 +68,10 @@ const std::vector<std::string>& petsc_late_options() {
 // Names to suggest that no options block prints at start-up: PETSc's initialisation options, and those
 // a solve reads.
 const std::vector<std::string>& unprinted_options() {
-  static const std::vector<std::string> names = {"options_file", "options_file_yaml", "options_string_yaml", "help",
-                                                 "version",      "start_in_debugger", "stop_for_debugger",   "mat_type",
-                                                 "mat_view",     "pc_view",           "ksp_converged_reason"};
+  static const std::vector<std::string> names = {
+      "options_file", "options_file_yaml", "options_string_yaml",     "help",
+      "version",      "start_in_debugger", "stop_for_debugger",       "mat_type",
+      "mat_view",     "ppe_pc_view",       "ppe_ksp_converged_reason"};
   return names;
 }
 
@@ -174,7 +175,8 @@ std::vector<std::string> documented_options(const std::function<void()>& read_al
 
 namespace {
 
-// The closest candidate within two edits, also after a sub-solver prefix ("sub_pc_typ" -> "sub_pc_type").
+// The closest candidate within two edits, also after a sub-solver prefix ("sub_pc_typ" -> "sub_pc_type"),
+// which follows the solver's own ("ppe_sub_pc_typ" -> "ppe_sub_pc_type", from "ppe_pc_type").
 std::string closest(const std::string& name, const std::vector<std::string>& candidates) {
   std::string best;
   std::size_t best_d = 3;  // suggest only close matches
@@ -182,8 +184,14 @@ std::string closest(const std::string& name, const std::vector<std::string>& can
     const std::string head = name.substr(0, cut), tail = name.substr(cut);
     if (cut > 0 && tail.size() < 5) break;
     for (const std::string& known : candidates) {
-      const std::size_t d = edit_distance(tail, known);
-      if (d < best_d && head + known != name) best_d = d, best = head + known;
+      // The candidate, and the candidate less a prefix it shares with the head.
+      for (std::size_t own = 0; own <= head.size() && known.compare(0, own, head, 0, own) == 0;
+           own = known.find('_', own) + 1) {
+        const std::string rest = known.substr(own);
+        const std::size_t d = edit_distance(tail, rest);
+        if (d < best_d && head + rest != name) best_d = d, best = head + rest;
+        if (known.find('_', own) == std::string::npos) break;
+      }
     }
     if (!best.empty() || name.find('_', cut) == std::string::npos) break;
   }
