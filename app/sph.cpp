@@ -2,7 +2,7 @@
 // other parameter from PETSc's options database (-help lists them), and runs.
 //
 //   ./build/sph -case taylor_green -solver isph -nx 64 -re 100 -t_end 1
-//   ./build/sph -options_file cases/taylor_green.opts -ksp_type gmres -ksp_monitor
+//   ./build/sph -options_file cases/taylor_green.opts -ppe_ksp_type gmres -ppe_ksp_monitor
 #include <petscsys.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -37,7 +37,9 @@ const char kEssentialHelp[] =
     "  -output_interval T     time between frames\n"
     "  -restart FILE          continue from a checkpoint.bin\n"
     "  -threads N             OpenMP threads per MPI rank\n"
-    "  -ksp_type, -pc_type    the pressure solve (ISPH), any PETSc KSP and PC\n"
+    "  -ppe_ksp_type, -ppe_pc_type\n"
+    "                         the pressure solve (ISPH), any PETSc KSP and PC: its PETSc options\n"
+    "                         carry the prefix ppe_ (-ppe_ksp_rtol, -ppe_ksp_monitor, ...)\n"
     "  -options_file FILE     options from a file (cases/*.opts)\n\n";
 
 PetscErrorCode read_names(sph::RunOptions* o, PetscInt* dim, PetscBool* dim_set) {

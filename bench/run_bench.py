@@ -77,20 +77,20 @@ AMG_CASES = [
     ("beltrami40", 5, BELTRAMI + ["-solver", "isph", "-nx", "40"]),
     ("tgv512", 5, TGV + ["-solver", "isph", "-nx", "512"]),
 ]
-HMIS = ["-pc_hypre_boomeramg_coarsen_type", "HMIS", "-pc_hypre_boomeramg_interp_type", "ext+i"]
-PMIS = ["-pc_hypre_boomeramg_coarsen_type", "PMIS", "-pc_hypre_boomeramg_interp_type", "ext+i"]
-THETA = "-pc_hypre_boomeramg_strong_threshold"
-RELAX = "-pc_hypre_boomeramg_relax_type_all"  # smoother on every level (default: hybrid symmetric Gauss-Seidel)
+HMIS = ["-ppe_pc_hypre_boomeramg_coarsen_type", "HMIS", "-ppe_pc_hypre_boomeramg_interp_type", "ext+i"]
+PMIS = ["-ppe_pc_hypre_boomeramg_coarsen_type", "PMIS", "-ppe_pc_hypre_boomeramg_interp_type", "ext+i"]
+THETA = "-ppe_pc_hypre_boomeramg_strong_threshold"
+RELAX = "-ppe_pc_hypre_boomeramg_relax_type_all"  # smoother on every level (default: hybrid symmetric Gauss-Seidel)
 AMG_SETS = [
     ("default", []),
     ("hmis-ei-0.5", HMIS + [THETA, "0.5"]),
     ("hmis-ei-0.25", HMIS + [THETA, "0.25"]),
     ("pmis-ei-0.5", PMIS + [THETA, "0.5"]),
     ("pmis-ei-0.25", PMIS + [THETA, "0.25"]),
-    ("hmis-ei-0.5-agg1", HMIS + [THETA, "0.5", "-pc_hypre_boomeramg_agg_nl", "1"]),
-    ("hmis-ei-0.5-pmax4", HMIS + [THETA, "0.5", "-pc_hypre_boomeramg_P_max", "4"]),
+    ("hmis-ei-0.5-agg1", HMIS + [THETA, "0.5", "-ppe_pc_hypre_boomeramg_agg_nl", "1"]),
+    ("hmis-ei-0.5-pmax4", HMIS + [THETA, "0.5", "-ppe_pc_hypre_boomeramg_P_max", "4"]),
     ("falgout-0.5", [THETA, "0.5"]),
-    ("falgout-agg1", ["-pc_hypre_boomeramg_agg_nl", "1"]),
+    ("falgout-agg1", ["-ppe_pc_hypre_boomeramg_agg_nl", "1"]),
     ("chebyshev", [RELAX, "Chebyshev"]),
     ("l1-jacobi", [RELAX, "l1scaled-Jacobi"]),
     ("l1-sor", [RELAX, "l1scaled-SOR/Jacobi"]),
@@ -333,12 +333,38 @@ def compare(out_root, a, b):
 KSP_CASES = [c for c in AMG_CASES if c[0] in ("tgv128", "tgv256", "cavity50")]
 KSP_SETS = [
     ("default", []),  # GMRES (right-preconditioned) + BoomerAMG
-    ("gamg", ["-pc_type", "gamg"]),
-    ("ilu-gmres", ["-ksp_type", "gmres", "-pc_type", "ilu"]),
-    ("bjacobi-ilu", ["-pc_type", "bjacobi", "-sub_pc_type", "ilu"]),
-    ("jacobi-cg", ["-ksp_type", "cg", "-pc_type", "jacobi"]),
-    ("jacobi-gmres", ["-ksp_type", "gmres", "-pc_type", "jacobi"]),
+    ("gamg", ["-ppe_pc_type", "gamg"]),
+    ("ilu-gmres", ["-ppe_ksp_type", "gmres", "-ppe_pc_type", "ilu"]),
+    ("bjacobi-ilu", ["-ppe_pc_type", "bjacobi", "-ppe_sub_pc_type", "ilu"]),
+    ("jacobi-cg", ["-ppe_ksp_type", "cg", "-ppe_pc_type", "jacobi"]),
+    ("jacobi-gmres", ["-ppe_ksp_type", "gmres", "-ppe_pc_type", "jacobi"]),
 ]
+
+
+# The pressure solve's PETSc options carry the prefix ppe_ (-ppe_ksp_type, -ppe_pc_type); a program
+# built before they took it reads them unprefixed (-ksp_type) and refuses the new names, as a newer
+# one refuses the old. The option sets above are spelled the new way. So that a build of an older
+# commit can be timed beside a newer one (--sph OLD --label before, then --compare), each program is
+# asked once which spelling it takes: one whose -help does not list -ppe_ksp_type gets the sets with
+# the prefix taken off again. -ppe_pc_drop_tol had its name before the prefix came and keeps it.
+PPE_PREFIXED = ("-ppe_ksp_", "-ppe_pc_", "-ppe_sub_", "-ppe_mg_")
+PPE_NAMED_BEFORE = ("-ppe_pc_drop_tol",)
+_takes_ppe_prefix = {}
+
+
+def takes_ppe_prefix(sph, env):
+    if sph not in _takes_ppe_prefix:
+        help_text = subprocess.run([sph, "-help"], cwd=ROOT, capture_output=True, text=True, env=env).stdout
+        _takes_ppe_prefix[sph] = "-ppe_ksp_type" in help_text
+    return _takes_ppe_prefix[sph]
+
+
+def spelled_for(sph, env, opts):
+    """The options as the program at sph spells them (see PPE_PREFIXED)."""
+    if takes_ppe_prefix(sph, env):
+        return list(opts)
+    return ["-" + o[len("-ppe_"):] if o.startswith(PPE_PREFIXED) and o not in PPE_NAMED_BEFORE else o
+            for o in opts]
 
 
 def failure_line(err):
@@ -362,7 +388,7 @@ def run_sets(args, folder, env, cases, sets, name, title):
             for k in range(args.repeat):
                 sub = os.path.join(folder, f"{case}-{set_name}-{k}")
                 try:
-                    r = run_workload(args.sph, cargs, steps, sub, env, opts)
+                    r = run_workload(args.sph, cargs, steps, sub, env, spelled_for(args.sph, env, opts))
                 except RuntimeError as e:  # e.g. a solve that does not converge: recorded, the suite goes on
                     print(f"  {case} {set_name}: failed: {failure_line(e)}", flush=True)
                     rows.append({"case": case, "options": set_name, "failure": failure_line(e)})

@@ -115,8 +115,8 @@ TEST(Ppe, SolutionConvergesAtSecondOrder) {
 }
 
 TEST(Ppe, KspChoiceComesFromOptions) {
-  PetscOptionsSetValue(nullptr, "-ksp_type", "gmres");
-  PetscOptionsSetValue(nullptr, "-pc_type", "jacobi");
+  PetscOptionsSetValue(nullptr, "-ppe_ksp_type", "gmres");
+  PetscOptionsSetValue(nullptr, "-ppe_pc_type", "jacobi");
   PeriodicLattice L(16);
   PressurePoisson<2> ppe;
   ppe.set_from_options();
@@ -129,13 +129,13 @@ TEST(Ppe, KspChoiceComesFromOptions) {
     EXPECT_EQ(d["pc_type"], "jacobi");
     EXPECT_GT(ppe.solve(source, L.P.m, p).linear_reason, 0);
   }
-  PetscOptionsClearValue(nullptr, "-ksp_type");
-  PetscOptionsClearValue(nullptr, "-pc_type");
+  PetscOptionsClearValue(nullptr, "-ppe_ksp_type");
+  PetscOptionsClearValue(nullptr, "-ppe_pc_type");
 }
 
 // PETSc's AIJ: SeqAIJ on one rank, so that the factorisations (ILU, ICC, LU) apply.
 TEST(Ppe, MatrixIsSeqAijOnOneRankAndIluSolvesIt) {
-  PetscOptionsSetValue(nullptr, "-pc_type", "ilu");
+  PetscOptionsSetValue(nullptr, "-ppe_pc_type", "ilu");
   PeriodicLattice L(16);
   PressurePoisson<2> ppe;
   ppe.set_from_options();
@@ -146,7 +146,7 @@ TEST(Ppe, MatrixIsSeqAijOnOneRankAndIluSolvesIt) {
   std::vector<double> source(L.P.n_owned), p(L.P.n_owned, 0.0);
   for (std::size_t i = 0; i < L.P.n_owned; ++i) source[i] = -8 * M_PI * M_PI * p_exact(L.P.x[i]);
   EXPECT_GT(ppe.solve(source, L.P.m, p).linear_reason, 0);
-  PetscOptionsClearValue(nullptr, "-pc_type");
+  PetscOptionsClearValue(nullptr, "-ppe_pc_type");
 }
 
 TEST(Ppe, DefaultIsCgWithBoomerAmg) {

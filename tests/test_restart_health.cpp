@@ -8,6 +8,7 @@
 #include "run_sph.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/run/diagnostics.hpp"
+#include "src/run/run_identity.hpp"
 
 namespace {
 
@@ -67,6 +68,22 @@ TEST(Restart, MismatchedCheckpointIsRefused) {
   const auto c =
       run_sph("restart_bad", "-case taylor_green -nx 20 -t_end 0.04 -restart " + b.output_dir + "/checkpoint.bin");
   EXPECT_NE(c.exit_code, 0);
+}
+
+// A checkpoint written before the pressure solve's options took the prefix ppe_ records -ksp_rtol:
+// a restart reads it as -ppe_ksp_rtol, the same option, changed or not.
+TEST(Restart, CheckpointOfTheOldOptionNamesReadsThemUnderTheNewOnes) {
+  const nlohmann::json saved = {{"case", "taylor_green"},
+                                {"solver", "isph"},
+                                {"dim", 2},
+                                {"parameters", nlohmann::json::object()},
+                                {"options", {{"ksp_rtol", "1e-6"}, {"nx", "16"}}}};
+  nlohmann::json now = saved;
+  now["options"] = {{"ppe_ksp_rtol", "1e-06"}, {"nx", "16"}};
+  EXPECT_EQ(sph::check_same_run(saved, now, "checkpoint.bin"), nlohmann::json::object());
+  now["options"] = {{"nx", "16"}};
+  const nlohmann::json changed = {{"ppe_ksp_rtol", {{"was", "1e-6"}, {"now", "default"}}}};
+  EXPECT_EQ(sph::check_same_run(saved, now, "checkpoint.bin"), changed);
 }
 
 // Each health check on a constructed bad state.
@@ -132,8 +149,8 @@ TEST(Health, BlowUpEndsWithFailedSummaryAndFinalFrame) {
 }
 
 TEST(Health, DivergedPressureSolveStopsTheRun) {
-  const auto r =
-      run_sph("ksp_diverged", "-case taylor_green -nx 16 -t_end 0.1 -ksp_type cg -pc_type none -ksp_max_it 2");
+  const auto r = run_sph("ksp_diverged",
+                         "-case taylor_green -nx 16 -t_end 0.1 -ppe_ksp_type cg -ppe_pc_type none -ppe_ksp_max_it 2");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.summary["status"], "failed");
   EXPECT_NE(r.summary["failure"].get<std::string>().find("did not converge"), std::string::npos);

@@ -20,7 +20,7 @@ report.md and the plots (PNG, and PDF beside each) are written there. Study file
       wcsph: {c0_factor: 10}
     solver_sweeps:                    # optional: sweeps of one solver only (e.g. KSP/PC for ISPH)
       isph:
-        ksp: [{ksp_type: cg, pc_type: hypre}, {ksp_type: gmres, pc_type: jacobi}]
+        ksp: [{ppe_ksp_type: cg, ppe_pc_type: hypre}, {ppe_ksp_type: gmres, ppe_pc_type: jacobi}]
     resolution_options:               # optional: options refined with h, one value per resolution
       c0_factor: [10, 20, 40]         #   (in the order of 'resolutions'), for every solver
     solver_resolution_options:        # optional: the same, for one solver only

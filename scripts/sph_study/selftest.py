@@ -53,10 +53,10 @@ def self_test():
           failure_message("[0]PETSC ERROR: Caught signal number 11 SEGV: Segmentation Violation\nx\n", 59)
           .startswith("Caught signal number 11"))
     check("failure message: last line otherwise", failure_message("a\nboom\n", 3) == "exit code 3: boom")
-    check("sweep with a mapping value", sweep_choice("ksp", {"ksp_type": "gmres", "pc_type": "jacobi"}) ==
-          ("gmres+jacobi", {"ksp_type": "gmres", "pc_type": "jacobi"}))
+    check("sweep with a mapping value", sweep_choice("ksp", {"ppe_ksp_type": "gmres", "ppe_pc_type": "jacobi"}) ==
+          ("gmres+jacobi", {"ppe_ksp_type": "gmres", "ppe_pc_type": "jacobi"}))
     check("options: booleans as 1/0, flags without value",
-          option_args({"shifting": False, "-ksp_monitor": None, "re": 100}) == ["-shifting", "0", "-ksp_monitor", "-re", "100"])
+          option_args({"shifting": False, "-ppe_ksp_monitor": None, "re": 100}) == ["-shifting", "0", "-ppe_ksp_monitor", "-re", "100"])
     check("matrix: failure reason without the step prefix",
           short_reason("step 12 (t = 0.034): non-finite velocity at particle 7") == "non-finite velocity at particle 7")
     check("matrix: long reasons are cut", len(short_reason("x" * 100)) == 61)

@@ -80,6 +80,9 @@ template <int D> class IsphSolver : public Solver<D> {
   StepReport step(double dt) override;
   nlohmann::json describe() const override;
   bool reads_late(const std::string& option) const override { return PressurePoisson<D>::reads_late(option); }
+  RenamedOption renamed_option(const std::string& option) const override {
+    return PressurePoisson<D>::renamed_option(option);
+  }
   nlohmann::json checkpoint_scalars() const override { return {{"pressure_solves", solves_}}; }
   void restore_scalars(const nlohmann::json& j) override { solves_ = j.value("pressure_solves", 0L); }
 

@@ -1,7 +1,7 @@
 // The pressure solve's Krylov solver: made anew for every matrix from the defaults (GMRES or CG by
 // the matrix's symmetry, BoomerAMG, right preconditioning, the 3D coarsening) and then the user's
-// -ksp_* / -pc_* options, with the checks of what those make of it. The matrix and the solve:
-// pressure_poisson.cpp.
+// -ppe_ksp_* / -ppe_pc_* options (the KSP's options prefix is ppe_), with the checks of what those
+// make of it. The matrix and the solve: pressure_poisson.cpp.
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,15 +20,18 @@ bool is_boomeramg(PC pc) {
   return htype && std::string(htype) == "boomeramg";
 }
 
-// The defaults, then every -ksp_* / -pc_* option from the database (viewers included: KSPReset
-// dropped those, which is why the KSP is made anew instead of reset).
+// The defaults, then every -ppe_ksp_* / -ppe_pc_* option from the database (viewers included:
+// KSPReset dropped those, which is why the KSP is made anew instead of reset).
 template <int D> void PressurePoisson<D>::create_ksp() {
   if (ksp_) SPH_PETSC(KSPDestroy(&ksp_));
   SPH_PETSC(KSPCreate(PETSC_COMM_WORLD, &ksp_));
+  // Its PC, and the solvers a PC makes (-ppe_sub_*, -ppe_mg_levels_*), take the prefix too.
+  SPH_PETSC(KSPSetOptionsPrefix(ksp_, options_prefix));
   SPH_PETSC(KSPSetType(ksp_, nonsymmetric_ ? KSPGMRES : KSPCG));
   PC pc;
   SPH_PETSC(KSPGetPC(ksp_, &pc));
-  SPH_PETSC(PCSetType(pc, PCHYPRE));  // BoomerAMG unless -pc_hypre_type says otherwise (PCHYPRESetType would fix it)
+  // BoomerAMG unless -ppe_pc_hypre_type says otherwise (PCHYPRESetType would fix it).
+  SPH_PETSC(PCSetType(pc, PCHYPRE));
   SPH_PETSC(KSPSetTolerances(ksp_, 1e-8, 1e-50, PETSC_DEFAULT, 1000));
   // The previous step's pressure is a good first guess.
   SPH_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
@@ -46,7 +49,7 @@ template <int D> void PressurePoisson<D>::create_ksp() {
 template <int D> void PressurePoisson<D>::check_ksp_choice() {
   PetscBool preonly = PETSC_FALSE, symmetric_only = PETSC_FALSE, user_guess = PETSC_FALSE;
   SPH_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ksp_), KSPPREONLY, &preonly));
-  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-ksp_initial_guess_nonzero", &user_guess));
+  SPH_PETSC(PetscOptionsHasName(nullptr, options_prefix, "-ksp_initial_guess_nonzero", &user_guess));
   if (preonly && !user_guess) SPH_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_FALSE));
   SPH_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(ksp_), &symmetric_only, KSPCG, KSPPIPECG,
                                       KSPGROPPCG, KSPPIPECGRR, KSPCR, KSPPIPECR, KSPMINRES, KSPSYMMLQ, ""));
@@ -55,23 +58,27 @@ template <int D> void PressurePoisson<D>::check_ksp_choice() {
     KSPType type = nullptr;
     SPH_PETSC(KSPGetType(ksp_, &type));
     SPH_PETSC(PetscFPrintf(PETSC_COMM_WORLD, stderr,
-                           "sph: warning: -ksp_type %s assumes a symmetric matrix, and this run's pressure matrix is "
-                           "not (the consistent operators, walls or a free surface make it so): it may not converge; "
-                           "the default (gmres) or bcgs suit it, or -operators classic in a periodic scene\n",
+                           "sph: warning: -ppe_ksp_type %s assumes a symmetric matrix, and this run's pressure matrix "
+                           "is not (the consistent operators, walls or a free surface make it so): it may not "
+                           "converge; the default (gmres) or bcgs suit it, or -operators classic in a periodic scene\n",
                            type));
     warned = true;
   }
 }
 
 // BoomerAMG under a temporary option: PCHYPRE reads its BoomerAMG settings from the options database
-// only, so each (name, value) is put there for one PCSetFromOptions and taken out again. Settings a
-// PCSetFromOptions does not find keep their values, so later calls do not undo these.
+// only, so each (name, value) is put there, under the PC's prefix, for one PCSetFromOptions and taken
+// out again. Settings a PCSetFromOptions does not find keep their values, so later calls do not undo
+// these. Names as PETSc knows them without a prefix ("-pc_hypre_boomeramg_agg_nl").
 namespace {
 PetscErrorCode set_boomeramg_options(PC pc, const std::vector<std::pair<const char*, const char*>>& options) {
   PetscFunctionBeginUser;
-  for (const auto& [name, value] : options) PetscCall(PetscOptionsSetValue(nullptr, name, value));
+  const char* prefix = nullptr;
+  PetscCall(PCGetOptionsPrefix(pc, &prefix));
+  auto prefixed = [prefix](const char* name) { return "-" + std::string(prefix ? prefix : "") + (name + 1); };
+  for (const auto& [name, value] : options) PetscCall(PetscOptionsSetValue(nullptr, prefixed(name).c_str(), value));
   PetscCall(PCSetFromOptions(pc));
-  for (const auto& [name, value] : options) PetscCall(PetscOptionsClearValue(nullptr, name));
+  for (const auto& [name, value] : options) PetscCall(PetscOptionsClearValue(nullptr, prefixed(name).c_str()));
   PetscFunctionReturn(0);
 }
 
@@ -94,7 +101,7 @@ template <int D> void PressurePoisson<D>::aggressive_coarsening_in_3d() {
                                                                     {"-pc_hypre_boomeramg_agg_nl", "1"}};
   for (const auto& [name, value] : options) {
     PetscBool user = PETSC_FALSE;
-    SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, name, &user));
+    SPH_PETSC(PetscOptionsHasName(nullptr, options_prefix, name, &user));
     if (user) return;
   }
   SPH_PETSC(set_boomeramg_options(pc, options));
@@ -105,10 +112,10 @@ template <int D> void PressurePoisson<D>::aggressive_coarsening_in_3d() {
 // a regularised periodic system (see assemble) inflates by 1/eps, which left the solution far less
 // accurate than the tolerance and dependent on the rank count (docs/pressure-solve.md, "Design
 // measurements").
-// Only for the KSP types that offer both sides, and unless -ksp_pc_side says otherwise.
+// Only for the KSP types that offer both sides, and unless -ppe_ksp_pc_side says otherwise.
 template <int D> void PressurePoisson<D>::right_preconditioning() {
   PetscBool user_side = PETSC_FALSE, both_sides = PETSC_FALSE;
-  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-ksp_pc_side", &user_side));
+  SPH_PETSC(PetscOptionsHasName(nullptr, options_prefix, "-ksp_pc_side", &user_side));
   SPH_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(ksp_), &both_sides, KSPGMRES, KSPLGMRES, KSPDGMRES,
                                       KSPPGMRES, KSPBCGS, KSPIBCGS, KSPFBCGS, KSPFBCGSR, KSPBCGSL, KSPPIPEBCGS, ""));
   if (user_side) return;
@@ -127,23 +134,24 @@ template <int D> void PressurePoisson<D>::symmetric_coarse_solve() {
                                       KSPPIPECGRR, KSPCR, KSPPIPECR, KSPMINRES, KSPSYMMLQ, ""));
   PC pc;
   SPH_PETSC(KSPGetPC(ksp_, &pc));
-  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, coarse_relax_option, &user));
-  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, "-pc_hypre_boomeramg_relax_type_all", &user_all));
+  SPH_PETSC(PetscOptionsHasName(nullptr, options_prefix, coarse_relax_option, &user));
+  SPH_PETSC(PetscOptionsHasName(nullptr, options_prefix, "-pc_hypre_boomeramg_relax_type_all", &user_all));
   if (!cg || !is_boomeramg(pc) || user || user_all) return;
   SPH_PETSC(set_boomeramg_options(pc, {{coarse_relax_option, "symmetric-SOR/Jacobi"}}));
 }
 
 namespace {
 // PETSc reads a tolerance of -1 or -2 as PETSC_DECIDE / PETSC_DEFAULT, so a negative one is not refused
-// there: it failed at the first solve, blamed on the solve. Checked at start-up instead.
-void check_ksp_tolerances() {
-  auto get = [](const char* name, bool positive_integer, auto ok, const char* what) {
+// there: it failed at the first solve, blamed on the solve. Checked at start-up instead. Names without
+// the prefix, which the message puts in front.
+void check_ksp_tolerances(const char* prefix) {
+  auto get = [prefix](const char* name, bool positive_integer, auto ok, const char* what) {
     PetscReal v = 0.0;
     PetscInt k = 0;
     PetscBool set = PETSC_FALSE;
-    if (positive_integer) SPH_PETSC(PetscOptionsGetInt(nullptr, nullptr, name, &k, &set)), v = static_cast<double>(k);
-    else SPH_PETSC(PetscOptionsGetReal(nullptr, nullptr, name, &v, &set));
-    if (set) require(ok(v), name, what, v);
+    if (positive_integer) SPH_PETSC(PetscOptionsGetInt(nullptr, prefix, name, &k, &set)), v = static_cast<double>(k);
+    else SPH_PETSC(PetscOptionsGetReal(nullptr, prefix, name, &v, &set));
+    if (set) require(ok(v), "-" + std::string(prefix) + (name + 1), what, v);
   };
   get(
       "-ksp_rtol", false, [](double v) { return v > 0 && v < 1; }, "in (0, 1)");
@@ -163,8 +171,8 @@ PetscErrorCode read_ppe_options(PetscReal* pc_drop_tol) {
   PetscCall(PetscOptionsReal("-ppe_pc_drop_tol",
                              "The preconditioner (BoomerAMG) is built from the pressure matrix with each off-diagonal "
                              "entry below this fraction of its row's diagonal added to the diagonal instead; the "
-                             "Krylov method still solves the whole matrix to -ksp_rtol (0: the whole matrix; BoomerAMG "
-                             "on non-symmetric matrices only, the default solver and operators)",
+                             "Krylov method still solves the whole matrix to -ppe_ksp_rtol (0: the whole matrix; "
+                             "BoomerAMG on non-symmetric matrices only, the default solver and operators)",
                              "", *pc_drop_tol, pc_drop_tol, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
@@ -173,7 +181,7 @@ PetscErrorCode read_ppe_options(PetscReal* pc_drop_tol) {
 
 template <int D> void PressurePoisson<D>::set_from_options() {
   if (ksp_) return;
-  check_ksp_tolerances();
+  check_ksp_tolerances(options_prefix);
   PetscReal pc_drop_tol = pc_drop_tol_;
   SPH_PETSC(read_ppe_options(&pc_drop_tol));
   require(pc_drop_tol >= 0 && pc_drop_tol < 1, "-ppe_pc_drop_tol", "in [0, 1)", pc_drop_tol);
@@ -189,7 +197,7 @@ template <int D> void PressurePoisson<D>::set_from_options() {
   for (const char* viewer : {"-ksp_monitor", "-ksp_monitor_short", "-ksp_monitor_true_residual",
                              "-ksp_converged_reason", "-ksp_view", "-ksp_view_final_residual"}) {
     PetscBool given = PETSC_FALSE;
-    SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, viewer, &given));
+    SPH_PETSC(PetscOptionsHasName(nullptr, options_prefix, viewer, &given));  // -ppe_ksp_monitor, ...
     announce_solves_ = announce_solves_ || given;
   }
   create_ksp();
@@ -202,16 +210,31 @@ template <int D> void PressurePoisson<D>::use_nonsymmetric(bool nonsymmetric) {
 }
 
 template <int D> bool PressurePoisson<D>::reads_late(const std::string& option) {
-  // Read during a solve or an assembly: the solve's viewers, the matrix's -mat_* options (-mat_type,
-  // a factorisation package's), and the options of the solvers a preconditioner makes in its set-up
+  // Read during a solve or an assembly: the solve's viewers, the matrix's -mat_* options (-mat_type),
+  // and, with the KSP's prefix before their own, a factorisation package's (-ppe_mat_mumps_icntl_4: the
+  // factor takes the PC's prefix) and the options of the solvers a preconditioner makes in its set-up
   // (bjacobi/asm blocks, multigrid levels).
-  static const char* const exact[] = {"ksp_converged_reason", "pc_view"};
-  static const char* const prefixes[] = {"mat_", "sub_", "mg_levels_", "mg_coarse_", "redundant_"};
+  static const char* const exact[] = {"ppe_ksp_converged_reason", "ppe_pc_view"};
+  static const char* const prefixes[] = {"mat_",           "ppe_mat_",       "ppe_sub_",
+                                         "ppe_mg_levels_", "ppe_mg_coarse_", "ppe_redundant_"};
   for (const char* e : exact)
     if (option == e) return true;
   for (const char* p : prefixes)
     if (option.rfind(p, 0) == 0) return true;
   return false;
+}
+
+template <int D> RenamedOption PressurePoisson<D>::renamed_option(const std::string& option) {
+  // The KSP's own options and its PC's, those of the solvers a PC makes and a factorisation package's
+  // (see reads_late); the matrix's own (-mat_type, -mat_view) have no prefix.
+  static const char* const unprefixed[] = {"ksp_",           "pc_",         "sub_",       "mg_levels_",
+                                           "mg_coarse_",     "redundant_",  "mat_mumps_", "mat_superlu_",
+                                           "mat_strumpack_", "mat_pastix_", "mat_mkl_",   "mat_cholmod_",
+                                           "mat_umfpack_",   "mat_klu_"};
+  for (const char* p : unprefixed)
+    if (option.rfind(p, 0) == 0)
+      return {options_prefix + option, std::string("the pressure solve's options carry the prefix ") + options_prefix};
+  return {};
 }
 
 // pressure_poisson.cpp's explicit instantiations of the class see only that file's members.
@@ -223,6 +246,7 @@ template void PressurePoisson<1>::symmetric_coarse_solve();
 template void PressurePoisson<1>::set_from_options();
 template void PressurePoisson<1>::use_nonsymmetric(bool);
 template bool PressurePoisson<1>::reads_late(const std::string&);
+template RenamedOption PressurePoisson<1>::renamed_option(const std::string&);
 template void PressurePoisson<2>::create_ksp();
 template void PressurePoisson<2>::check_ksp_choice();
 template void PressurePoisson<2>::aggressive_coarsening_in_3d();
@@ -231,6 +255,7 @@ template void PressurePoisson<2>::symmetric_coarse_solve();
 template void PressurePoisson<2>::set_from_options();
 template void PressurePoisson<2>::use_nonsymmetric(bool);
 template bool PressurePoisson<2>::reads_late(const std::string&);
+template RenamedOption PressurePoisson<2>::renamed_option(const std::string&);
 template void PressurePoisson<3>::create_ksp();
 template void PressurePoisson<3>::check_ksp_choice();
 template void PressurePoisson<3>::aggressive_coarsening_in_3d();
@@ -239,5 +264,6 @@ template void PressurePoisson<3>::symmetric_coarse_solve();
 template void PressurePoisson<3>::set_from_options();
 template void PressurePoisson<3>::use_nonsymmetric(bool);
 template bool PressurePoisson<3>::reads_late(const std::string&);
+template RenamedOption PressurePoisson<3>::renamed_option(const std::string&);
 
 }  // namespace sph

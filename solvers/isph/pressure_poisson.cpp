@@ -188,13 +188,14 @@ template <int D> void PressurePoisson<D>::prepare_spread() {
   SPH_PETSC(KSPGetIterationNumber(ksp_, &spread_iterations_));
   if (reason < 0)
     throw Error(std::string("pressure Poisson solve for the closed domain's even source did not converge (") +
-                KSPConvergedReasons[reason] + "); try -ksp_max_it, another -ksp_type/-pc_type, or a smaller -cfl");
+                KSPConvergedReasons[reason] +
+                "); try -ppe_ksp_max_it, another -ppe_ksp_type/-ppe_pc_type, or a smaller -cfl");
   SPH_PETSC(VecDot(pinned_equation_, spread_, &spread_denominator_));
   spread_denominator_ -= 1.0;
 }
 
-// PETSc prints -ksp_view and the like itself; -pc_view is left to whoever drives the PC, and the
-// matrix is shown by -mat_view once per solve (see set_from_options).
+// PETSc prints -ppe_ksp_view and the like itself; -ppe_pc_view (the PC's prefix is the KSP's) is left
+// to whoever drives the PC, and the matrix is shown by -mat_view once per solve (see set_from_options).
 template <int D> void PressurePoisson<D>::view_solve() const {
   PC pc;
   SPH_PETSC(KSPGetPC(ksp_, &pc));
@@ -307,7 +308,7 @@ template <int D> StepReport PressurePoisson<D>::solve(const std::vector<double>&
     std::ostringstream msg;
     msg << "pressure Poisson solve did not converge (" << KSPConvergedReasons[reason] << " after " << its
         << " iterations, residual " << report.linear_residual
-        << "); try -ksp_max_it, another -ksp_type/-pc_type, or a smaller -cfl";
+        << "); try -ppe_ksp_max_it, another -ppe_ksp_type/-ppe_pc_type, or a smaller -cfl";
     throw Error(msg.str());
   }
   const PetscScalar* xs;

@@ -1,7 +1,7 @@
 #pragma once
 // The pressure Poisson equation of the ISPH projection, assembled into a PETSc matrix and solved with
-// a PETSc KSP (default: CG + hypre BoomerAMG; every KSP/PC choice can be changed with the ordinary
-// -ksp_* / -pc_* options).
+// a PETSc KSP (default: CG + hypre BoomerAMG; every KSP/PC choice can be changed with PETSc's
+// -ksp_* / -pc_* options under the prefix ppe_: -ppe_ksp_type, -ppe_pc_type, ...).
 //
 // Discretisation (fluid rows, each multiplied by -m_i):
 //  - by default the consistent Laplacian (src/sph/consistent_laplacian.hpp), div(grad p / rho)_i =
@@ -49,13 +49,20 @@ template <int D> class PressurePoisson {
   PressurePoisson(const PressurePoisson&) = delete;
   PressurePoisson& operator=(const PressurePoisson&) = delete;
 
-  // Creates the KSP with the defaults above, then applies the user's -ksp_*/-pc_* options. Each
-  // assemble makes the KSP anew the same way, so every option, viewers included, acts on every solve.
+  // Creates the KSP with the defaults above, then applies the user's -ppe_ksp_*/-ppe_pc_* options.
+  // Each assemble makes the KSP anew the same way, so every option, viewers included, acts on every
+  // solve.
   void set_from_options();
+
+  // The options prefix of the KSP (and so of its PC and the solvers that makes): PETSc's -ksp_rtol is
+  // -ppe_ksp_rtol here. Both solves of a step (the projection and the correction) use that one KSP.
+  static constexpr const char* options_prefix = "ppe_";
 
   // Options PETSc reads only during a solve or an assembly (not at set-up): the driver checks them
   // after the first step instead of at start-up. Names without the leading dash.
   static bool reads_late(const std::string& option);
+  // The options' names before they took the prefix (-ksp_rtol, -sub_pc_type): the name now, and why.
+  static RenamedOption renamed_option(const std::string& option);
 
   // Tells the solver whether the matrix will be non-symmetric (walls, free surface, the consistent
   // Laplacian): the default KSP becomes GMRES unless the user chose one, and a singular system pins
@@ -107,6 +114,7 @@ template <int D> class PressurePoisson {
   void check_ksp_choice();
   void symmetric_coarse_solve();
   void aggressive_coarsening_in_3d();
+  // Without the prefix, as PETSc's functions that take one want it.
   static constexpr const char* coarse_relax_option = "-pc_hypre_boomeramg_relax_type_coarse";
 
   KSP ksp_ = nullptr;

@@ -68,9 +68,10 @@ const std::vector<std::string>& petsc_late_options() {
 // Names to suggest that no options block prints at start-up: PETSc's initialisation options, and those
 // a solve reads.
 const std::vector<std::string>& unprinted_options() {
-  static const std::vector<std::string> names = {"options_file", "options_file_yaml", "options_string_yaml", "help",
-                                                 "version",      "start_in_debugger", "stop_for_debugger",   "mat_type",
-                                                 "mat_view",     "pc_view",           "ksp_converged_reason"};
+  static const std::vector<std::string> names = {
+      "options_file", "options_file_yaml", "options_string_yaml",     "help",
+      "version",      "start_in_debugger", "stop_for_debugger",       "mat_type",
+      "mat_view",     "ppe_pc_view",       "ppe_ksp_converged_reason"};
   return names;
 }
 
@@ -174,7 +175,8 @@ std::vector<std::string> documented_options(const std::function<void()>& read_al
 
 namespace {
 
-// The closest candidate within two edits, also after a sub-solver prefix ("sub_pc_typ" -> "sub_pc_type").
+// The closest candidate within two edits, also after a sub-solver prefix ("sub_pc_typ" -> "sub_pc_type"),
+// which follows the solver's own ("ppe_sub_pc_typ" -> "ppe_sub_pc_type", from "ppe_pc_type").
 std::string closest(const std::string& name, const std::vector<std::string>& candidates) {
   std::string best;
   std::size_t best_d = 3;  // suggest only close matches
@@ -182,8 +184,14 @@ std::string closest(const std::string& name, const std::vector<std::string>& can
     const std::string head = name.substr(0, cut), tail = name.substr(cut);
     if (cut > 0 && tail.size() < 5) break;
     for (const std::string& known : candidates) {
-      const std::size_t d = edit_distance(tail, known);
-      if (d < best_d && head + known != name) best_d = d, best = head + known;
+      // The candidate, and the candidate less a prefix it shares with the head.
+      for (std::size_t own = 0; own <= head.size() && known.compare(0, own, head, 0, own) == 0;
+           own = known.find('_', own) + 1) {
+        const std::string rest = known.substr(own);
+        const std::size_t d = edit_distance(tail, rest);
+        if (d < best_d && head + rest != name) best_d = d, best = head + rest;
+        if (known.find('_', own) == std::string::npos) break;
+      }
     }
     if (!best.empty() || name.find('_', cut) == std::string::npos) break;
   }
@@ -222,6 +230,23 @@ bool read_late_by_active(const std::string& name, const std::vector<OptionOwner>
   for (const OptionOwner& o : owners)
     if (o.active && o.reads_late && o.reads_late(name)) return true;
   return false;
+}
+
+// An old name's name now (see OptionOwner::renamed), from any owner, chosen or not; `known` when
+// that owner reads the new name (a typo of an old name has a new name nobody reads).
+struct Rename {
+  RenamedOption to;
+  bool known = false;
+};
+
+Rename renamed(const std::string& name, const std::vector<OptionOwner>& owners) {
+  for (const OptionOwner& o : owners) {
+    if (!o.renamed) continue;
+    const RenamedOption to = o.renamed(name);
+    if (to.now.empty()) continue;
+    return {to, (o.reads_late && o.reads_late(to.now)) || in(documented_options(o.read), to.now)};
+  }
+  return {};
 }
 
 }  // namespace
@@ -319,7 +344,11 @@ void check_valueless_options(const std::vector<std::string>& valueless, const st
 
 void check_unused_options(const std::vector<OptionOwner>& owners) {
   for (const std::string& name : unused_options().names) {
-    if (in(petsc_late_options(), name) || read_late_by_active(name, owners)) continue;
+    if (in(petsc_late_options(), name)) continue;
+    // Before the options read late: an old name may have been one (-mat_mumps_icntl_4).
+    const Rename rename = renamed(name, owners);
+    if (rename.known) throw OptionError("option -" + name + " is now -" + rename.to.now + ": " + rename.to.why);
+    if (read_late_by_active(name, owners)) continue;
     std::vector<const OptionOwner*> chosen;
     for (const OptionOwner& o : owners)
       if (o.active) chosen.push_back(&o);
@@ -328,8 +357,9 @@ void check_unused_options(const std::vector<OptionOwner>& owners) {
       throw OptionError("option -" + name + " is read by " + join_labels(readers, ", ") + ", not by this run's " +
                         join_labels(chosen, " and ") + "; remove it or choose " +
                         (readers.size() == 1 ? readers[0]->label : "one of those"));
+    // An old name's typo: the suggestion is spelled the new way.
     throw OptionError("unknown option -" + name + " (not used by the chosen case or solver)" +
-                      suggestion(name, owners));
+                      suggestion(rename.to.now.empty() ? name : rename.to.now, owners));
   }
 }
 

@@ -21,12 +21,20 @@ class OptionError : public Error {
   using Error::Error;
 };
 
+// An option's name now, where it once had another, and why it changed (now empty: never renamed).
+struct RenamedOption {
+  std::string now;
+  std::string why;
+};
+
 // A component a run may read options for: a case or a solver as the user picks it ("-solver isph").
 struct OptionOwner {
   std::string label;
   std::function<void()> read;  // reads its options blocks (with -help set they print: the documentation)
   std::function<bool(const std::string&)> reads_late;  // options PETSc reads for it only during steps (may be empty)
   bool active = false;                                 // chosen for this run
+  // The name now of an option it read under an old name, named without the dash (may be empty).
+  std::function<RenamedOption(const std::string&)> renamed = {};
 };
 
 // Before the options blocks are read: a real option of an active owner given inf or nan (PETSc parses
@@ -39,7 +47,8 @@ void check_valueless_options(const std::vector<std::string>& valueless, const st
 
 // At start-up, every option in the database must have been read by now, except the ones an active
 // owner or PETSc itself reads later (a solve's viewers, -log_view). Throws OptionError naming the
-// first other one: with the owner that reads it when it belongs to a case or solver not chosen, else
+// first other one: with its name now when it is the old name of one an owner reads (-ksp_rtol is
+// -ppe_ksp_rtol), with the owner that reads it when it belongs to a case or solver not chosen, else
 // with the closest option there is.
 void check_unused_options(const std::vector<OptionOwner>& owners);
 // After the first step: the options the active owners read late must have been read by then.

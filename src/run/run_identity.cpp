@@ -41,13 +41,13 @@ bool steers_only(const std::string& name) {
                                    "info",
                                    "malloc",
                                    "options_",
-                                   "ksp_monitor",
-                                   "ksp_view",
-                                   "ksp_converged_reason",
-                                   "ksp_converged_rate",
+                                   "ppe_ksp_monitor",
+                                   "ppe_ksp_view",
+                                   "ppe_ksp_converged_reason",
+                                   "ppe_ksp_converged_rate",
                                    "mat_view",
                                    "vec_view",
-                                   "pc_view",
+                                   "ppe_pc_view",
                                    "memory_view",
                                    "objects_dump",
                                    "on_error",
@@ -74,11 +74,24 @@ bool identified_by_content(const std::string& name) { return name == "scene_file
 // them to rescue a failing run (a smaller step, another linear solver); the change is recorded.
 bool changes_numerics_only(const std::string& name) {
   static const std::set<std::string> exact = {"cfl", "cfl_force", "dt", "ppe_pc_drop_tol", "mat_type"};
-  static const char* prefixes[] = {"ksp_", "pc_", "sub_ksp_", "sub_pc_"};
+  static const char* prefixes[] = {"ppe_ksp_", "ppe_pc_", "ppe_sub_ksp_", "ppe_sub_pc_"};
   if (exact.count(name)) return true;
   for (const char* p : prefixes)
     if (name.rfind(p, 0) == 0) return true;
   return false;
+}
+
+// A checkpoint written before the pressure solve's options took the prefix ppe_ records -ksp_rtol
+// where this run has -ppe_ksp_rtol: its names are read as they are spelled now.
+nlohmann::json with_current_names(const nlohmann::json& options) {
+  static const char* old_prefixes[] = {"ksp_", "pc_", "sub_ksp_", "sub_pc_"};
+  nlohmann::json renamed = nlohmann::json::object();
+  for (const auto& [name, value] : options.items()) {
+    bool old = false;
+    for (const char* p : old_prefixes) old = old || name.rfind(p, 0) == 0;
+    renamed[old ? "ppe_" + name : name] = value;
+  }
+  return renamed;
 }
 
 bool is_option_name(const std::string& token) {
@@ -157,7 +170,8 @@ nlohmann::json check_same_run(const nlohmann::json& saved, const nlohmann::json&
           path,
           std::string("-") + key + " " + (saved[key].is_string() ? saved[key].get<std::string>() : saved[key].dump()),
           std::string("-") + key + " " + (now[key].is_string() ? now[key].get<std::string>() : now[key].dump()), key);
-  const nlohmann::json &a = saved["options"], &b = now["options"];
+  const nlohmann::json a = with_current_names(saved["options"]);
+  const nlohmann::json& b = now["options"];
   const nlohmann::json &pa = saved["parameters"], &pb = now["parameters"];
   std::set<std::string> names;
   for (const auto& [name, value] : a.items()) names.insert(name);

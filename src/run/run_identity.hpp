@@ -17,7 +17,7 @@ nlohmann::json run_identity(const std::string& case_name, const std::string& sol
 
 // Throws sph::Error naming the first option that changes the problem and whose value differs between
 // the checkpoint's identity (`saved`, read from `path`) and this run's (`now`). Options that change only
-// the numerics of the steps to come (-cfl, -dt, -ksp_*, -pc_*) may differ: returns those changed, as
+// the numerics of the steps to come (-cfl, -dt, -ppe_ksp_*, -ppe_pc_*) may differ: returns those changed, as
 // {name: {"was": value, "now": value}} (a flag's value is null; "default" where not given).
 nlohmann::json check_same_run(const nlohmann::json& saved, const nlohmann::json& now, const std::string& path);
 

@@ -6,6 +6,7 @@
 
 #include "src/boundary/moving_bodies.hpp"
 #include "src/core/error.hpp"
+#include "src/core/options.hpp"
 #include "src/core/physics.hpp"
 #include "src/io/checkpoint.hpp"
 #include "src/io/particle_writer.hpp"
@@ -54,6 +55,9 @@ template <int D> class Solver {
   // Options PETSc reads for this solver only during its steps (a linear solve's viewers, sub-solver
   // options), named without the dash: checked after the first step rather than at start-up.
   virtual bool reads_late(const std::string&) const { return false; }
+  // The name now of an option this solver once read under another (without the dash): a run given the
+  // old one is told the new one (see check_unused_options).
+  virtual RenamedOption renamed_option(const std::string&) const { return {}; }
   virtual void setup(Discretisation<D>& disc) = 0;
   // Largest time step the scheme's stability limits allow for the current state.
   virtual double stable_dt() const = 0;

@@ -98,7 +98,7 @@ template <int D> class TimeLoop {
   // checkpoint is damaged or was written with other options.
   const nlohmann::json identity_;
   const nlohmann::json resumed_run_;
-  const nlohmann::json numerics_changed_;  // by this restart: -cfl, -dt, -ksp_*, ...
+  const nlohmann::json numerics_changed_;  // by this restart: -cfl, -dt, -ppe_ksp_*, ...
   const MemoryBudgetScope memory_;         // checked as the scene is created, before the solver allocates
   RunState<D> s_;
   long partitions_ = 1;

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Checkpoints cannot lie: a restart with other options is refused naming the option, a changed byte
 # (data or header) is refused, and a restart with the same options (a default spelled out included)
-# or other numerics of the steps to come (-cfl, -dt, -ksp_*) is accepted; older checkpoints are kept.   usage: checkpoint.sh <sph executable> <source dir>
+# or other numerics of the steps to come (-cfl, -dt, -ppe_ksp_*) is accepted; older checkpoints are kept.   usage: checkpoint.sh <sph executable> <source dir>
 set -u
 sph="$1"; src="$2"; tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail=0
@@ -24,8 +24,8 @@ expect_ok $run -t_end 0.06 -restart "$tmp/own/checkpoint.bin"
 expect_json "$tmp/own/summary.json" 's["status"] == "completed" and len(s["history"]) == 2 and abs(s["history"][-1]["t"][1] - 0.06) < 1e-9' "a restart without -output_dir continues in the checkpoint's folder"
 # A failing run is rescued with a smaller step or another linear solver: the numerics of the steps to
 # come may change on restart, and the change is recorded in the history.
-expect_ok $run -t_end 0.06 -cfl 0.1 -dt 0.004 -ksp_type bcgs -restart "$ck" -output_dir "$tmp/e"
-expect_json "$tmp/e/summary.json" 's["status"] == "completed" and s["history"][-1]["numerics_changed"] == {"cfl": {"was": "default", "now": "0.1"}, "dt": {"was": "default", "now": "0.004"}, "ksp_type": {"was": "default", "now": "bcgs"}} and "numerics_changed" not in s["history"][0]' "a restart with other numerics records them"
+expect_ok $run -t_end 0.06 -cfl 0.1 -dt 0.004 -ppe_ksp_type bcgs -restart "$ck" -output_dir "$tmp/e"
+expect_json "$tmp/e/summary.json" 's["status"] == "completed" and s["history"][-1]["numerics_changed"] == {"cfl": {"was": "default", "now": "0.1"}, "dt": {"was": "default", "now": "0.004"}, "ppe_ksp_type": {"was": "default", "now": "bcgs"}} and "numerics_changed" not in s["history"][0]' "a restart with other numerics records them"
 expect_error "same -shift_coefficient" $run -shift_coefficient 1.5 -restart "$ck" -output_dir "$tmp/b"  # the scheme, not its numerics
 
 # -checkpoints_kept K keeps the K newest, newest first; a run restarted from an older one (to go back

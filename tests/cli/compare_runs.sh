@@ -41,7 +41,7 @@ sys.exit(0 if eval(sys.argv[1], {}, v) else 1)' "$expr" "$@"; then
 }
 
 tgv="-case taylor_green -nx 24 -t_end 0.1"
-run isph 1 $tgv -solver isph -ksp_rtol 1e-10 && run wcsph 1 $tgv -solver wcsph || exit 1
+run isph 1 $tgv -solver isph -ppe_ksp_rtol 1e-10 && run wcsph 1 $tgv -solver wcsph || exit 1
 
 # A run against itself: particle by particle, exactly zero.
 "$cr" "$tmp/isph" "$tmp/isph" --json "$tmp/self.json" >"$tmp/self.out" 2>&1 ||
@@ -68,7 +68,7 @@ check "ISPH vs WCSPH velocity L1 within the runs' errors against the analytic fi
 head -c 8 "$tmp/iw.png" | grep -q PNG && say "ok: -o wrote a PNG" || bad "-o did not write a PNG"
 
 # 1 rank against 2 ranks (.pvtp + pieces): the same particles, the same values to the solver tolerance.
-if run isph2 2 $tgv -solver isph -ksp_rtol 1e-10; then
+if run isph2 2 $tgv -solver isph -ppe_ksp_rtol 1e-10; then
   "$cr" "$tmp/isph" "$tmp/isph2" --periodic x,y --json "$tmp/mpi.json" >"$tmp/mpi.out" 2>&1 ||
     { bad "1 vs 2 ranks exited non-zero"; cat "$tmp/mpi.out"; }
   grep -q "frame particles_00001.pvtp" "$tmp/mpi.out" && grep -q "particle by particle" "$tmp/mpi.out" ||

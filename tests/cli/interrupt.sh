@@ -8,7 +8,7 @@ set -u
 sph="$1"; src="$2"; tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail=0
 source "$(dirname "$0")/lib/expect.sh"
-run="-case poiseuille -solver isph -nx 20 -t_end 1 -progress 0 -output_interval 0 -checkpoint_interval 0 -ksp_rtol 1e-12"
+run="-case poiseuille -solver isph -nx 20 -t_end 1 -progress 0 -output_interval 0 -checkpoint_interval 0 -ppe_ksp_rtol 1e-12"
 # interrupt <signal> <dir>: starts a long run, signals it after a few steps, checks what it left.
 interrupt() {
   local sig="$1" d="$2" want="$3"

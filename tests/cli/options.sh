@@ -9,20 +9,33 @@ source "$(dirname "$0")/lib/expect.sh"
 small="-case taylor_green -nx 8 -t_end 0.01 -progress 0 -output_dir $tmp/out -overwrite"
 expect_error "unknown option -foo" $small -foo 1
 expect_error "did you mean -shifting" $small -shiftng 0
-expect_error "unknown option -ksp_typo" $small -ksp_typo cg
-expect_error "did you mean -ksp_type" $small -ksp_tpye cg
+expect_error "unknown option -ppe_ksp_typo" $small -ppe_ksp_typo cg
+expect_error "did you mean -ppe_ksp_type" $small -ppe_ksp_tpye cg
 expect_error "did you mean -c0" -case taylor_green -solver wcsph -nx 8 -c00 3
 # Every option is checked, PETSc's own included (those read at start-up, during a solve, at the end).
 expect_error "unknown option -options_fiel .*did you mean -options_file\?" $small -options_fiel x.opts
 expect_error "unknown option -log_veiw .*did you mean -log_view\?" $small -log_veiw
-expect_error "unknown option -ksp_converged_reson .*did you mean -ksp_converged_reason\?" $small -ksp_converged_reson
+expect_error "unknown option -ppe_ksp_converged_reson .*did you mean -ppe_ksp_converged_reason\?" $small -ppe_ksp_converged_reson
 # Options read only by the first solve are checked after it.
-expect_error "option -sub_pc_typ was not used by the first step.*did you mean -sub_pc_type\?" $small -pc_type bjacobi -sub_pc_typ ilu
+expect_error "option -ppe_sub_pc_typ was not used by the first step.*did you mean -ppe_sub_pc_type\?" $small -ppe_pc_type bjacobi -ppe_sub_pc_typ ilu
 expect_error "option -mat_tpye was not used by the first step.*did you mean -mat_type\?" $small -mat_tpye aij
-expect_error "option -sub_pc_type was not used by the first step" $small -sub_pc_type ilu
+expect_error "option -ppe_sub_pc_type was not used by the first step" $small -ppe_sub_pc_type ilu
 # A valid option given to the wrong solver or case names the one that reads it.
-expect_error "option -ksp_type is read by -solver isph, not by this run's -case taylor_green and -solver wcsph" $small -solver wcsph -ksp_type gmres
-expect_error "option -ksp_converged_reason is read by -solver isph" $small -solver wcsph -ksp_converged_reason
+expect_error "option -ppe_ksp_type is read by -solver isph, not by this run's -case taylor_green and -solver wcsph" $small -solver wcsph -ppe_ksp_type gmres
+expect_error "option -ppe_ksp_converged_reason is read by -solver isph" $small -solver wcsph -ppe_ksp_converged_reason
+# The pressure solve's PETSc options carry the prefix ppe_: the old spellings are refused naming the
+# new one (with any solver, at start-up, those read only during a solve too), and a typo of an old
+# one is suggested the new spelling.
+expect_error "^sph: error: option -ksp_rtol is now -ppe_ksp_rtol: the pressure solve's options carry the prefix ppe_$" $small -ksp_rtol 1e-6 -output_dir "$tmp/old"
+[ -e "$tmp/old" ] && { echo "FAIL: a run given an old spelling started"; fail=1; }
+expect_error "option -pc_type is now -ppe_pc_type: the pressure solve's options carry the prefix ppe_" $small -pc_type gamg
+expect_error "option -pc_hypre_boomeramg_strong_threshold is now -ppe_pc_hypre_boomeramg_strong_threshold" $small -pc_hypre_boomeramg_strong_threshold 0.5
+expect_error "option -ksp_converged_reason is now -ppe_ksp_converged_reason" $small -ksp_converged_reason
+expect_error "option -pc_view is now -ppe_pc_view" $small -pc_view
+expect_error "option -ksp_monitor is now -ppe_ksp_monitor" $small -solver wcsph -ksp_monitor
+expect_error "option -sub_pc_type is now -ppe_sub_pc_type" $small -ppe_pc_type bjacobi -sub_pc_type ilu
+expect_error "option -mat_mumps_icntl_4 is now -ppe_mat_mumps_icntl_4" $small -ppe_pc_type lu -mat_mumps_icntl_4 2
+expect_error "unknown option -ksp_tpye .*did you mean -ppe_ksp_type\?" $small -ksp_tpye cg
 expect_error "option -c0 is read by -solver wcsph, not by this run's -case taylor_green and -solver isph" $small -c0 10
 expect_error "option -wall_layers is read by -case lid_driven_cavity.*-case poiseuille" $small -wall_layers 4
 expect_error "-lid_corners symmetric is 2D only" -case lid_driven_cavity -dim 3 -nx 8 -lid_corners symmetric -progress 0 -output_dir $tmp/out -overwrite
@@ -44,7 +57,7 @@ expect_error "option -re was given without a value" $bare -nx 8 -re
 expect_error "option -restart was given without a value" $bare -nx 8 -restart
 expect_error "option -output_dir was given without a value" -case taylor_green -nx 8 -t_end 0.01 -progress 0 -output_dir
 expect_error "option -case was given without a value" -case -nx 8
-expect_error "option -ksp_rtol was given without a value" $bare -nx 8 -ksp_rtol
+expect_error "option -ppe_ksp_rtol was given without a value" $bare -nx 8 -ppe_ksp_rtol
 printf -- '-nx\n-t_end 0.01\n' > "$tmp/bare.opts"
 expect_error "option -nx was given without a value" -options_file "$tmp/bare.opts" -progress 0 -output_dir "$tmp/out" -overwrite
 expect_ok $bare -nx 8 -shifting
@@ -64,42 +77,45 @@ printf -- '# a scene\n-nx 8  # particles per side\nnx 16\n' > "$tmp/garbage.opts
 expect_error "options file '.*garbage.opts' line 3: 'nx' is not an option" -options_file "$tmp/garbage.opts"
 expect_error "option -nx has the value 'abc', which is not an integer" -case taylor_green -nx abc
 expect_error "option -re has the value 'x1', which is not a number" -case taylor_green -re x1
-expect_error "-ksp_rtol must be in \(0, 1\) \(got -1\)" $small -ksp_rtol -1
-expect_error "-ksp_max_it must be at least 1" $small -ksp_max_it 0
+expect_error "-ppe_ksp_rtol must be in \(0, 1\) \(got -1\)" $small -ppe_ksp_rtol -1
+expect_error "-ppe_ksp_max_it must be at least 1" $small -ppe_ksp_max_it 0
 expect_error "use -solver compressible" -case sod -solver wcsph -nx 48 -progress 0
 expect_error "use -solver compressible" -case toy_star -solver isph -nx 50 -progress 0
 
 # -help shows the pressure solve's defaults as a run gets them (GMRES, right preconditioning, with the
 # consistent operators); a symmetric-only method on the non-symmetric matrix is warned against (with
 # BoomerAMG it diverges at step 1), and a direct solve needs no first-guess option.
-"$sph" -help 2>&1 | grep -q -- "-ksp_type <now gmres" && "$sph" -help 2>&1 | grep -q -- "-ksp_pc_side <now RIGHT" \
+"$sph" -help 2>&1 | grep -q -- "-ppe_ksp_type <now gmres" && "$sph" -help 2>&1 | grep -q -- "-ppe_ksp_pc_side <now RIGHT" \
   && echo "ok: -help shows gmres and RIGHT" || { echo "FAIL: -help does not show the default KSP (gmres, RIGHT)"; fail=1; }
-"$sph" -help -operators classic 2>&1 | grep -q -- "-ksp_type <now cg" && echo "ok: -help -operators classic shows cg" \
+"$sph" -help -operators classic 2>&1 | grep -q -- "-ppe_ksp_type <now cg" && echo "ok: -help -operators classic shows cg" \
   || { echo "FAIL: -help -operators classic does not show cg"; fail=1; }
-"$sph" $small -ksp_type cg -max_steps 1 >/dev/null 2>"$tmp/stderr"
-[ "$(grep -c "warning: -ksp_type cg assumes a symmetric matrix, and this run's pressure matrix is not" "$tmp/stderr")" -eq 1 ] \
-  && echo "ok: -ksp_type cg on the non-symmetric matrix is warned against, once" || { echo "FAIL: no single cg warning:"; cat "$tmp/stderr"; fail=1; }
-"$sph" -case lid_driven_cavity -operators classic -nx 8 -max_steps 1 -progress 0 -output_dir $tmp/out -overwrite -ksp_type minres >/dev/null 2>"$tmp/stderr"
-grep -q "warning: -ksp_type minres assumes a symmetric matrix" "$tmp/stderr" && echo "ok: minres in the walled cavity warned against" \
+"$sph" $small -ppe_ksp_type cg -max_steps 1 >/dev/null 2>"$tmp/stderr"
+[ "$(grep -c "warning: -ppe_ksp_type cg assumes a symmetric matrix, and this run's pressure matrix is not" "$tmp/stderr")" -eq 1 ] \
+  && echo "ok: -ppe_ksp_type cg on the non-symmetric matrix is warned against, once" || { echo "FAIL: no single cg warning:"; cat "$tmp/stderr"; fail=1; }
+"$sph" -case lid_driven_cavity -operators classic -nx 8 -max_steps 1 -progress 0 -output_dir $tmp/out -overwrite -ppe_ksp_type minres >/dev/null 2>"$tmp/stderr"
+grep -q "warning: -ppe_ksp_type minres assumes a symmetric matrix" "$tmp/stderr" && echo "ok: minres in the walled cavity warned against" \
   || { echo "FAIL: no minres warning with walls:"; cat "$tmp/stderr"; fail=1; }
-expect_ok $small -ksp_type preonly -pc_type lu
-expect_ok $small -operators classic -ksp_type cg
+expect_ok $small -ppe_ksp_type preonly -ppe_pc_type lu
+expect_ok $small -operators classic -ppe_ksp_type cg
 
 # PETSc options read late (a solve's viewers, -log_view at the end) are accepted, and act.
-"$sph" $small -t_end 1 -max_steps 2 -output_dir "$tmp/late" -ksp_converged_reason -pc_view -log_view :"$tmp/log.txt" \
+"$sph" $small -t_end 1 -max_steps 2 -output_dir "$tmp/late" -ppe_ksp_converged_reason -ppe_pc_view -log_view :"$tmp/log.txt" \
   >"$tmp/stdout" 2>"$tmp/stderr" || { echo "FAIL: late-read PETSc options refused:"; cat "$tmp/stderr"; fail=1; }
 # Two steps, two solves each (the projection and its correction pass).
-[ "$(grep -c "Linear solve converged" "$tmp/stdout")" -eq 4 ] || { echo "FAIL: -ksp_converged_reason not once per solve"; fail=1; }
-# Each solve is named before PETSc's lines about it: projection, then correction, every step.
-[ "$(grep -E "^PPE (projection|correction) solve$|Linear solve converged" "$tmp/stdout" | sed 's/ due to.*//' | tr '\n' '|')" = \
-  "$(printf 'PPE projection solve|Linear solve converged|PPE correction solve|Linear solve converged|%.0s' 1 2)" ] \
-  || { echo "FAIL: the solves are not named before their -ksp_converged_reason lines:"; cat "$tmp/stdout"; fail=1; }
+[ "$(grep -c "Linear ppe_ solve converged" "$tmp/stdout")" -eq 4 ] || { echo "FAIL: -ppe_ksp_converged_reason not once per solve"; fail=1; }
+# -ppe_pc_view: once per solve.
+[ "$(grep -c "^PC Object: (ppe_)" "$tmp/stdout")" -eq 4 ] || { echo "FAIL: -ppe_pc_view not once per solve"; fail=1; }
+# Each solve is named before PETSc's lines about it: projection, then correction, every step (the
+# names are PETSc's own, with the prefix: "Linear ppe_ solve converged").
+[ "$(grep -E "^PPE (projection|correction) solve$|Linear ppe_ solve converged" "$tmp/stdout" | sed 's/ due to.*//' | tr '\n' '|')" = \
+  "$(printf 'PPE projection solve|Linear ppe_ solve converged|PPE correction solve|Linear ppe_ solve converged|%.0s' 1 2)" ] \
+  || { echo "FAIL: the solves are not named before their -ppe_ksp_converged_reason lines:"; cat "$tmp/stdout"; fail=1; }
 grep -q "SPH time loop" "$tmp/log.txt" || { echo "FAIL: -log_view wrote no log"; fail=1; }
 [ -s "$tmp/stderr" ] && { echo "FAIL: warnings from a run with late-read options:"; cat "$tmp/stderr"; fail=1; }
 
 # -help: exit 0, documents case, solver, driver and PETSc KSP options with defaults.
 "$sph" -help >"$tmp/help" 2>&1 || { echo "FAIL: -help exited non-zero"; fail=1; }
-for opt in -case -solver -nx -re -t_end -cfl -shifting -kernel -output_dir -ksp_type -pc_type; do
+for opt in -case -solver -nx -re -t_end -cfl -shifting -kernel -output_dir -ppe_ksp_type -ppe_pc_type; do
   grep -q -- "$opt" "$tmp/help" || { echo "FAIL: -help does not list $opt"; fail=1; }
 done
 

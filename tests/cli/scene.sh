@@ -69,7 +69,7 @@ expect_json "$tmp/cavity3/summary.json" "s['dim'] == 3 and s['parameters']['movi
 
 # Two ranks give the one-rank result (ISPH to the solver tolerance).
 for n in 1 2; do
-  "$mpiexec" -n $n "$sph" -case scene -scene_file "$tmp/dam_break.vtp" -t_end 0.2 -ksp_rtol 1e-10 -progress 0 \
+  "$mpiexec" -n $n "$sph" -case scene -scene_file "$tmp/dam_break.vtp" -t_end 0.2 -ppe_ksp_rtol 1e-10 -progress 0 \
     -output_interval 0 -output_dir "$tmp/mpi$n" >"$tmp/mpi$n.log" 2>&1 || { echo "FAIL: $n ranks:"; tail -3 "$tmp/mpi$n.log"; fail=1; }
 done
 /usr/bin/python3 - "$tmp/mpi1" "$tmp/mpi2" <<'PY' || fail=1

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Every KSP x PC choice runs the ISPH pressure solve on every step (the KSP is made anew per step from
 # the options database), on 1 and 2 MPI ranks, on Taylor-Green (periodic) and the cavity (walls, a
-# pinned pressure). Each run must complete; its viewers (-ksp_view, -ksp_converged_reason,
-# -ksp_view_final_residual, -ksp_monitor_true_residual, -pc_view, -mat_view) must print once per
-# solve; and its error norms must equal the default solver's to the solver tolerance.
+# pinned pressure). Each run must complete; its viewers (-ppe_ksp_view, -ppe_ksp_converged_reason,
+# -ppe_ksp_view_final_residual, -ppe_ksp_monitor_true_residual, -ppe_pc_view, -mat_view) must print
+# once per solve; and its error norms must equal the default solver's to the solver tolerance.
 #   usage: solver_matrix.sh <sph executable> <source dir>; $MPIEXEC names mpiexec.
 set -u
 sph="$1"; src="$2"; tmp=${KEEP_TMP:-$(mktemp -d)}; [ -n "${KEEP_TMP:-}" ] || trap 'rm -rf "$tmp"' EXIT
@@ -11,7 +11,7 @@ mpiexec="${MPIEXEC:-mpiexec}"
 fail=0
 source "$(dirname "$0")/lib/compare_runs.sh"
 steps=2
-views="-ksp_view -ksp_converged_reason -ksp_view_final_residual -ksp_monitor_true_residual -pc_view -mat_view ::ascii_info"
+views="-ppe_ksp_view -ppe_ksp_converged_reason -ppe_ksp_view_final_residual -ppe_ksp_monitor_true_residual -ppe_pc_view -mat_view ::ascii_info"
 
 # viewed <label> <solves per step>: each viewer printed once per solve (top-level objects start a line;
 # sub-solvers' are indented). Two solves a step: the projection and its correction pass
@@ -20,7 +20,7 @@ views="-ksp_view -ksp_converged_reason -ksp_view_final_residual -ksp_monitor_tru
 viewed() {
   local log="$tmp/$1.log" n k
   n=$(python3 -c "import csv,sys; print($2 * sum(1 for _ in csv.DictReader(open(sys.argv[1]))))" "$tmp/$1/timeseries.csv" 2>/dev/null || echo 0)
-  local -a want=("^KSP Object:" "$n" "^PC Object:" $((2 * n)) "^Mat Object:" "$n" "^Linear solve converged" "$n"
+  local -a want=("^KSP Object:" "$n" "^PC Object:" $((2 * n)) "^Mat Object:" "$n" "^Linear ppe_ solve converged" "$n"
                  "^KSP final norm of residual" "$n" "^ *0 KSP .*true resid norm" "$n")
   for ((k = 0; k < ${#want[@]}; k += 2)); do
     local got; got=$(grep -cE -- "${want[k]}" "$log")
@@ -45,21 +45,23 @@ matrix() {
   done
 }
 
-tgv="-case taylor_green -nx 12 -max_steps $steps -ksp_rtol 1e-10"
+tgv="-case taylor_green -nx 12 -max_steps $steps -ppe_ksp_rtol 1e-10"
 classic="$tgv -operators classic"  # symmetric matrix: CG, ICC
-cavity="-case lid_driven_cavity -nx 10 -max_steps $steps -ksp_rtol 1e-10"
-parallel=("" "-pc_type gamg" "-pc_type bjacobi -sub_pc_type ilu" "-pc_type asm -sub_pc_type ilu"
-          "-pc_type jacobi" "-pc_type sor" "-pc_type none" "-pc_hypre_type euclid"
-          "-pc_hypre_type pilut -pc_hypre_pilut_factorrowsize 40" "-ksp_type bcgs" "-ksp_type fgmres -pc_type gamg"
-          "-mat_type baij")
+cavity="-case lid_driven_cavity -nx 10 -max_steps $steps -ppe_ksp_rtol 1e-10"
+parallel=("" "-ppe_pc_type gamg" "-ppe_pc_type bjacobi -ppe_sub_pc_type ilu" "-ppe_pc_type asm -ppe_sub_pc_type ilu"
+          "-ppe_pc_type jacobi" "-ppe_pc_type sor" "-ppe_pc_type none" "-ppe_pc_hypre_type euclid"
+          "-ppe_pc_hypre_type pilut -ppe_pc_hypre_pilut_factorrowsize 40" "-ppe_ksp_type bcgs"
+          "-ppe_ksp_type fgmres -ppe_pc_type gamg" "-mat_type baij")
 # On 2 ranks: the preconditioners that run in parallel (not the sequential factorisations).
-parallel2=("" "-pc_type gamg" "-pc_type bjacobi -sub_pc_type ilu" "-pc_type asm -sub_pc_type ilu" "-pc_type jacobi"
-           "-pc_type sor" "-pc_type none" "-pc_hypre_type euclid" "-pc_hypre_type pilut -pc_hypre_pilut_factorrowsize 40")
-serial=("-pc_type ilu" "-pc_type lu" "-ksp_type bcgs -pc_type ilu")
-symmetric=("" "-pc_type icc" "-pc_type gamg" "-pc_type jacobi" "-ksp_type minres" "-pc_type bjacobi -sub_pc_type icc")
+parallel2=("" "-ppe_pc_type gamg" "-ppe_pc_type bjacobi -ppe_sub_pc_type ilu" "-ppe_pc_type asm -ppe_sub_pc_type ilu"
+           "-ppe_pc_type jacobi" "-ppe_pc_type sor" "-ppe_pc_type none" "-ppe_pc_hypre_type euclid"
+           "-ppe_pc_hypre_type pilut -ppe_pc_hypre_pilut_factorrowsize 40")
+serial=("-ppe_pc_type ilu" "-ppe_pc_type lu" "-ppe_ksp_type bcgs -ppe_pc_type ilu")
+symmetric=("" "-ppe_pc_type icc" "-ppe_pc_type gamg" "-ppe_pc_type jacobi" "-ppe_ksp_type minres"
+           "-ppe_pc_type bjacobi -ppe_sub_pc_type icc")
 matrix tgv 1 "$tgv" -- "${parallel[@]}" "${serial[@]}"
 matrix cavity 1 "$cavity" -- "${parallel[@]}" "${serial[@]}"
-matrix classic 1 "$classic -ksp_type cg" -- "${symmetric[@]}"
+matrix classic 1 "$classic -ppe_ksp_type cg" -- "${symmetric[@]}"
 # Re-partitioning every step changes each rank's rows between solves.
 matrix tgv 2 "$tgv -partition_interval 1" -- "${parallel2[@]}"
 matrix cavity 2 "$cavity -partition_interval 1" -- "${parallel2[@]}"

@@ -34,20 +34,20 @@ class Options(unittest.TestCase):
         self.assertIsNone(option_value(None))
 
     def test_booleans_as_1_0_flags_without_value(self):
-        self.assertEqual(option_args({"shifting": False, "-ksp_monitor": None, "re": 100}),
-                         ["-shifting", "0", "-ksp_monitor", "-re", "100"])
+        self.assertEqual(option_args({"shifting": False, "-ppe_ksp_monitor": None, "re": 100}),
+                         ["-shifting", "0", "-ppe_ksp_monitor", "-re", "100"])
         self.assertEqual(option_args({"label": ""}), ["-label"])
 
     def test_sweep_with_a_mapping_value(self):
-        self.assertEqual(sweep_choice("ksp", {"ksp_type": "gmres", "pc_type": "jacobi"}),
-                         ("gmres+jacobi", {"ksp_type": "gmres", "pc_type": "jacobi"}))
-        self.assertEqual(sweep_choice("ksp", {"label": "cg/hypre", "ksp_type": "cg", "pc_type": "hypre"}),
-                         ("cg/hypre", {"ksp_type": "cg", "pc_type": "hypre"}))
+        self.assertEqual(sweep_choice("ksp", {"ppe_ksp_type": "gmres", "ppe_pc_type": "jacobi"}),
+                         ("gmres+jacobi", {"ppe_ksp_type": "gmres", "ppe_pc_type": "jacobi"}))
+        self.assertEqual(sweep_choice("ksp", {"label": "cg/hypre", "ppe_ksp_type": "cg", "ppe_pc_type": "hypre"}),
+                         ("cg/hypre", {"ppe_ksp_type": "cg", "ppe_pc_type": "hypre"}))
 
     def test_sweep_with_a_scalar_value(self):
         self.assertEqual(sweep_choice("shifting", False), ("0", {"shifting": False}))
         self.assertEqual(sweep_choice("cfl", 0.25), ("0.25", {"cfl": 0.25}))
-        self.assertEqual(sweep_choice("ksp_monitor", None), ("", {"ksp_monitor": None}))
+        self.assertEqual(sweep_choice("ppe_ksp_monitor", None), ("", {"ppe_ksp_monitor": None}))
 
     def test_safe_name(self):
         self.assertEqual(safe_name("isph-ksp=cg+hypre-nx32"), "isph-ksp=cg+hypre-nx32")
@@ -205,7 +205,7 @@ sweeps: {shifting: [1, 0]}
 solver_options: {wcsph: {c0_factor: 10}}
 solver_sweeps:
   isph:
-    ksp: [{ksp_type: cg, pc_type: hypre}, {label: gm, ksp_type: gmres, pc_type: jacobi}, {ksp_type: bcgs}]
+    ksp: [{ppe_ksp_type: cg, ppe_pc_type: hypre}, {label: gm, ppe_ksp_type: gmres, ppe_pc_type: jacobi}, {ppe_ksp_type: bcgs}]
   wcsph:
     shifting: [0]
 """)
@@ -221,7 +221,7 @@ solver_sweeps:
                                                          "isph-shifting=1-ksp=cg+hypre-nx16"])
         self.assertEqual(isph[0]["label"], "isph, shifting=1, ksp=cg+hypre")
         gm = options_of([r for r in isph if r["sweep"]["ksp"] == "gm"][0])
-        self.assertEqual((gm["ksp_type"], gm["pc_type"]), ("gmres", "jacobi"))
+        self.assertEqual((gm["ppe_ksp_type"], gm["ppe_pc_type"]), ("gmres", "jacobi"))
         self.assertNotIn("label", gm)
         self.assertEqual(gm["output_interval"], "5")  # the study's own, not the default 0
         w = options_of(wcsph[0])
