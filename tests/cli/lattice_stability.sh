@@ -2,7 +2,8 @@
 # scripts/lattice-stability (docs/verification/free_surface.md, "What moves WCSPH's lattice"):
 # its linearised dynamical matrix D(k) against the pair forces of a displaced square lattice summed
 # directly (central differences in the displacement; only the first derivative of the kernel), and the signs the page relies on: a growing
-# mode at a support of 3 dx in 2D and 3D, none at 2.77 dx in 2D and 2.84 dx in 3D.
+# mode at a support of 3 dx in 2D and 3D, none at 2.77 dx in 2D and 2.84 dx in 3D; on the hexagonal
+# lattice none with Wendland C4 at 3 dx, one with Wendland C2.
 #   usage: lattice_stability.sh <sph executable (unused)> <source dir>
 set -u
 src="$2"
@@ -42,5 +43,23 @@ for dim, stable, unstable in [(2, 2.77, 3.0), (3, 2.84, 3.0)]:
     ok = lo >= 0.0 and hi < -1e-3
     fail |= not ok
     print(("ok" if ok else "FAIL") + f": {dim}D smallest eigenvalue {lo:+.4f} at {stable} dx, {hi:+.4f} at {unstable} dx")
+# The other kernels' derivatives by finite differences: checked on Wendland C2 against its analytic ones.
+q = np.linspace(0.05, 1.95, 39)
+W = ls.KERNELS["wendland_c2"][0]
+e = 1e-4
+d1 = (W(q - 2 * e) - 8 * W(q - e) + 8 * W(q + e) - W(q + 2 * e)) / (12 * e)
+d2 = (-W(q - 2 * e) + 16 * W(q - e) - 30 * W(q) + 16 * W(q + e) - W(q + 2 * e)) / (12 * e * e)
+a1, a2 = ls.wendland_c2_derivatives(q)
+err = max(np.max(np.abs(d1 - a1)), np.max(np.abs(d2 - a2))) / np.max(np.abs(a2))
+ok = err < 1e-6
+fail |= not ok
+print(("ok" if ok else "FAIL") + f": finite-difference kernel derivatives against Wendland C2's: {err:.1e}")
+
+# The hexagonal lattice (2D, one particle per dx^2): Wendland C4 holds at 3 dx, Wendland C2 does not.
+for kernel, want_stable in [("wendland_c4", True), ("wendland_c2", False)]:
+    lam = ls.smallest_eigenvalue(ls.neighbours(3.0, 2, kernel, "hexagonal"), 2, 48, "hexagonal")
+    ok = (lam >= 0.0) if want_stable else (lam < -1e-3)
+    fail |= not ok
+    print(("ok" if ok else "FAIL") + f": hexagonal lattice, {kernel}, 3 dx: smallest eigenvalue {lam:+.4f}")
 sys.exit(1 if fail else 0)
 PY
