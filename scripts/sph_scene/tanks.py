@@ -129,9 +129,38 @@ def dam_break_block(nx=40, wall_layers=4, re=500.0):
                 roof=True)
 
 
-def still_water(nx=40, wall_layers=4, re=500.0):
-    """Tank 1 wide with water 0.5 deep at rest under hydrostatic pressure; the walls 0.7 high."""
+def still_water(nx=40, wall_layers=4, re=500.0, side_walls=True, lattice="square"):
+    """Tank 1 wide with water 0.5 deep at rest under hydrostatic pressure; the walls 0.7 high. Without
+    side walls: a strip about 1 wide, periodic in x, on the same floor. The fluid on a square lattice,
+    or a hexagonal one (strip only: its rows do not fit square side walls) with the same area per particle."""
     g, depth = 1.0, 0.5
-    return tank(nx, wall_layers, 1.0, 0.7, lambda x: False, lambda x: x[1] < depth,
-                lambda x: g * (depth - x[1]), {"gravity": [0.0, -g], "nu": 1.0 / re, "rho0": 1.0,
-                                              "U": math.sqrt(2.0 * g * depth), "t_end": 20.0})
+    params = {"gravity": [0.0, -g], "nu": 1.0 / re, "rho0": 1.0, "U": math.sqrt(2.0 * g * depth), "t_end": 20.0}
+    if side_walls and lattice == "square":
+        return tank(nx, wall_layers, 1.0, 0.7, lambda x: False, lambda x: x[1] < depth,
+                    lambda x: g * (depth - x[1]), params)
+    if side_walls:
+        raise ValueError("a hexagonal lattice needs the strip without side walls (--no-side-walls)")
+    check_lattice(nx, wall_layers)
+    dx = 1.0 / nx
+    if lattice == "hexagonal":
+        a = dx * math.sqrt(2.0 / math.sqrt(3.0))  # spacing along a row: dx^2 per particle
+        b = a * math.sqrt(3.0) / 2.0              # between rows
+        cols, rows = int(round(1.0 / a)), int(round((depth - 0.5 * dx) / b)) + 1
+        width, level = cols * a, 0.5 * dx + (rows - 0.5) * b
+        fluid = [((i + 0.25 + 0.5 * (j % 2)) * a, 0.5 * dx + j * b) for j in range(rows) for i in range(cols)]
+    elif lattice == "square":
+        cols, rows = nx, int(round(depth * nx))
+        width, level = 1.0, rows * dx
+        fluid = [((i + 0.5) * dx, (j + 0.5) * dx) for j in range(rows) for i in range(cols)]
+    else:
+        raise ValueError(f"lattice must be 'square' or 'hexagonal', not {lattice!r}")
+    s = Scene(2)
+    floor = int(round(width / dx))  # the floor's spacing along x fits the periodic width
+    for j in range(-wall_layers, 0):
+        for i in range(floor):
+            s.add(((i + 0.5) * width / floor, (j + 0.5) * dx), WALL)
+    for x in fluid:
+        s.add(x, FLUID, p=g * (level - x[1]))
+    s.params = {"dx": dx, "box": [0.0, width, -wall_layers * dx, 20.0 * depth], "periodic": [1, 0], "free_surface": 1}
+    s.params.update(params)
+    return s

@@ -33,6 +33,24 @@ class Hydrostatic(unittest.TestCase):
                 self.assertAlmostEqual(p, s.params["rho0"] * g * (depth - x[1]), places=12)
                 self.assertLess(x[1], depth)
 
+    def test_still_water_strip_fits_its_period_with_dx2_per_particle(self):
+        for lattice in ("square", "hexagonal"):
+            with self.subTest(lattice=lattice):
+                nx = 20
+                s = still_water(nx=nx, side_walls=False, lattice=lattice)
+                self.assertEqual(s.params["periodic"], [1, 0])
+                width = s.params["box"][1] - s.params["box"][0]
+                fluid = [(x, p) for x, p, k in zip(s.x, s.p, s.kind) if k == FLUID]
+                top = max(x[1] for x, _ in fluid)
+                # Rows fill the period: no two particles of a row closer across it than along it.
+                xs = sorted({round(x[0], 12) for x, _ in fluid if abs(x[1] - fluid[0][0][1]) < 1e-12})
+                self.assertAlmostEqual(xs[0] + width - xs[-1], xs[1] - xs[0], places=12)
+                # One particle per dx^2 below the level, which is half a row above the top row.
+                level = max(p + x[1] for x, p in fluid)
+                self.assertAlmostEqual(len(fluid) / (width * level), nx * nx, delta=0.01 * nx * nx)
+                self.assertGreater(level, top)
+                self.assertAlmostEqual(min(p + x[1] for x, p in fluid), level, places=12)
+
     def test_every_scene_builds_with_fluid_and_walls(self):
         for name, build in SCENES.items():
             with self.subTest(scene=name):
