@@ -1,6 +1,7 @@
 #pragma once
-// A view of one per-particle array that a solver carries from step to step (n_owned * components
-// contiguous doubles): what checkpoints save and what re-partitioning moves with the particles.
+// Views of per-particle arrays. ParticleField: n_owned * components contiguous doubles, what
+// checkpoints save and re-partitioning moves with the particles (the declared fields' views,
+// field_registry.hpp). ScalarField: a frame's extra array.
 #include <string>
 #include <vector>
 
