@@ -21,16 +21,6 @@
 
 namespace sph {
 
-// The field named `name` among `fields`, or null.
-inline const std::vector<double>* output_field(const std::vector<ScalarField>& fields, const std::string& name) {
-  for (const ScalarField& f : fields)
-    if (f.name == name) return f.values;
-  return nullptr;
-}
-inline bool has_output_field(const std::vector<ScalarField>& fields, const std::string& name) {
-  return output_field(fields, name) != nullptr;
-}
-
 template <int D> class ParticleWriter {
  public:
   // Creates output_dir (and its parents); throws sph::Error naming it if that fails.

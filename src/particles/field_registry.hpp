@@ -82,7 +82,6 @@ template <int D> class FieldRegistry {
       if (c.name == name && (c.uses & use)) return &c.values;
     return nullptr;
   }
-  bool empty() const { return order_.empty(); }
 
  private:
   template <class T> struct Column {

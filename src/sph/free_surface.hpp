@@ -167,7 +167,7 @@ template <int D> std::vector<char> FreeSurface<D>::detect(Particles<D>& P, const
   std::vector<char> surface = detection_ == SurfaceDetection::Marrone
                                   ? marrone_surface_particles(P, nl, K, &state)
                                   : free_surface_particles(P, nl, K, threshold_, exit_threshold_, &state);
-  if (remember) std::copy(surface.begin(), surface.begin() + P.n_owned, state.begin());
+  if (remember) std::copy(surface.begin(), surface.end(), state.begin());  // owned rows
   return surface;
 }
 
