@@ -32,7 +32,7 @@ const char kEssentialHelp[] =
     "  -nx N                  resolution: particles per unit length (the case says which length)\n"
     "  -re RE                 Reynolds number, for the cases that have one\n"
     "  -t_end T               end time\n"
-    "  -cfl C                 time-step factor (ISPH: advective; WCSPH: acoustic)\n"
+    "  -cfl C                 ISPH's Courant number (advective); -acoustic_cfl for WCSPH\n"
     "  -output_dir DIR        frames (.vtp), timeseries.csv, summary.json and checkpoint.bin\n"
     "  -output_interval T     time between frames\n"
     "  -restart FILE          continue from a checkpoint.bin\n"

@@ -84,6 +84,17 @@ TEST(Restart, CheckpointOfTheOldOptionNamesReadsThemUnderTheNewOnes) {
   now["options"] = {{"nx", "16"}};
   const nlohmann::json changed = {{"ppe_ksp_rtol", {{"was", "1e-6"}, {"now", "default"}}}};
   EXPECT_EQ(sph::check_same_run(saved, now, "checkpoint.bin"), changed);
+
+  // An explicit scheme's -cfl is now -acoustic_cfl; ISPH's keeps its name.
+  nlohmann::json wcsph = saved;
+  wcsph["solver"] = "wcsph";
+  wcsph["options"] = {{"cfl", "0.1"}, {"nx", "16"}};
+  nlohmann::json wcsph_now = wcsph;
+  wcsph_now["options"] = {{"acoustic_cfl", "0.1"}, {"nx", "16"}};
+  EXPECT_EQ(sph::check_same_run(wcsph, wcsph_now, "checkpoint.bin"), nlohmann::json::object());
+  nlohmann::json isph = wcsph, isph_now = wcsph;
+  isph["solver"] = isph_now["solver"] = "isph";
+  EXPECT_EQ(sph::check_same_run(isph, isph_now, "checkpoint.bin"), nlohmann::json::object());
 }
 
 // Each health check on a constructed bad state.
@@ -101,19 +112,19 @@ struct Box {
 
 TEST(Health, NanStopsTheRun) {
   Box b;
-  EXPECT_NO_THROW(sph::check_health(b.P, b.domain, 100.0));
+  EXPECT_NO_THROW(sph::check_health(b.P, b.domain, 100.0, "-cfl"));
   b.P.v[2][1] = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THROW(sph::check_health(b.P, b.domain, 100.0), sph::Error);
+  EXPECT_THROW(sph::check_health(b.P, b.domain, 100.0, "-cfl"), sph::Error);
 }
 
 TEST(Health, ParticleThroughAWallStopsTheRun) {
   Box b;
   b.P.x[1][0] = 1.5;  // periodic axis: fine (wrapped at the next rebuild)
-  EXPECT_NO_THROW(sph::check_health(b.P, b.domain, 100.0));
+  EXPECT_NO_THROW(sph::check_health(b.P, b.domain, 100.0, "-cfl"));
   b.P.x[1][1] = -0.01;  // below the bottom wall
   b.P.x[3][1] = 1.02;   // and another one above the top
   try {
-    sph::check_health(b.P, b.domain, 100.0);
+    sph::check_health(b.P, b.domain, 100.0, "-cfl");
     FAIL() << "no error";
   } catch (const sph::Error& e) {
     // The message names the first such particle (smallest label) and where it is.
@@ -124,15 +135,17 @@ TEST(Health, ParticleThroughAWallStopsTheRun) {
 
 TEST(Health, EnergyGrowthStopsTheRun) {
   Box b;
-  EXPECT_NO_THROW(sph::check_health(b.P, b.domain, 2.1));  // KE = 4 * 0.5
-  EXPECT_THROW(sph::check_health(b.P, b.domain, 1.9), sph::Error);
+  EXPECT_NO_THROW(sph::check_health(b.P, b.domain, 2.1, "-cfl"));  // KE = 4 * 0.5
+  EXPECT_THROW(sph::check_health(b.P, b.domain, 1.9, "-cfl"), sph::Error);
   b.P.v[2] = sph::Vector<2>(3.0, 0.0);  // the fastest particle is named
   try {
-    sph::check_health(b.P, b.domain, 1.9);
+    sph::check_health(b.P, b.domain, 1.9, "-acoustic_cfl");
     FAIL() << "no error";
   } catch (const sph::Error& e) {
     EXPECT_NE(std::string(e.what()).find("fluid particle 2 near (0.6, 0.5) the fastest at speed 3"), std::string::npos)
         << e.what();
+    // The advice names the scheme's own Courant number.
+    EXPECT_NE(std::string(e.what()).find("a smaller -acoustic_cfl or -dt"), std::string::npos) << e.what();
   }
 }
 
@@ -179,7 +192,7 @@ struct Lattice {
 TEST(Health, NeighbourCountCollapseStopsTheRun) {
   for (bool free_surface : {false, true}) {
     Lattice a;  // support 0.3 = 6 dx: about 113 neighbours each
-    sph::NeighbourCountCheck<2> check(free_surface);
+    sph::NeighbourCountCheck<2> check(free_surface, "-cfl");
     check(a.P, a.nh.list(), 0.3);  // reference counts
     EXPECT_NO_THROW(check(a.P, a.nh.list(), 0.3));
     // One particle in a void (its old neighbours out of reach): a collapse only without a free surface.
@@ -189,7 +202,7 @@ TEST(Health, NeighbourCountCollapseStopsTheRun) {
   }
   // The whole lattice spread to twice its spacing: a quarter of the neighbours on average.
   Lattice b;
-  sph::NeighbourCountCheck<2> check(true);
+  sph::NeighbourCountCheck<2> check(true, "-cfl");
   check(b.P, b.nh.list(), 0.3);
   for (std::size_t i = 0; i < b.P.size(); ++i) b.P.x[i] *= 2.0;
   EXPECT_THROW(check(b.P, b.nh.list(), 0.3), sph::Error);

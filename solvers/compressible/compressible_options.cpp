@@ -7,6 +7,7 @@
 
 #include "solvers/compressible/compressible_solver.hpp"
 #include "src/core/options.hpp"
+#include "src/sph/step_limits.hpp"
 
 namespace sph {
 
@@ -24,7 +25,7 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Compressible SPH, ideal gas with grad-h terms (-solver compressible)",
                     "Solver");
-  PetscCall(PetscOptionsReal("-cfl", "Compressible: Courant number on the signal velocity, dt <= cfl h_i / v_sig,i", "",
+  PetscCall(PetscOptionsReal(kAcousticCfl, "Compressible: Courant number on the signal velocity, dt <= acoustic_cfl h_i / v_sig,i", "",
                              o->cfl, &o->cfl, nullptr));
   PetscCall(PetscOptionsReal("-cfl_force", "Force criterion: dt <= cfl_force sqrt(h_i / |a_i|)", "", o->cfl_force,
                              &o->cfl_force, nullptr));
@@ -79,7 +80,7 @@ template <int D> void CompressibleSolver<D>::set_from_options() {
                balsara_,
                conductivity_};
   SPH_PETSC(read_options(&o));
-  require(o.cfl > 0 && o.cfl <= 1, "-cfl", "in (0, 1]", o.cfl);
+  require(o.cfl > 0 && o.cfl <= 1, kAcousticCfl, "in (0, 1]", o.cfl);
   require(o.cfl_force > 0 && o.cfl_force <= 1, "-cfl_force", "in (0, 1]", o.cfl_force);
   require(o.eta >= 0, "-eta", "non-negative (0: kernel default)", o.eta);
   require(o.h_tol > 0 && o.h_tol < 0.1, "-h_tolerance", "in (0, 0.1)", o.h_tol);

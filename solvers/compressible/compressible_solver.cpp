@@ -226,7 +226,7 @@ template <int D> void CompressibleSolver<D>::solve_density() {
       std::ostringstream msg;
       msg << "the smoothing-length iteration did not converge in " << max_iterations << " Newton steps ("
           << static_cast<long>(left) << " particles left, e.g. at x = " << P.x[active.front()].transpose()
-          << "); reduce -cfl or raise -h_tolerance";
+          << "); reduce -acoustic_cfl or raise -h_tolerance";
       throw Error(msg.str());
     }
   }
@@ -335,7 +335,7 @@ template <int D> void CompressibleSolver<D>::check_thermal_state() const {
   std::ostringstream msg;
   msg << (entropy_ ? "entropy function" : "thermal energy") << " became negative or NaN";
   if (bad >= 0) msg << " (particle at x = " << P.x[bad].transpose() << ")";
-  msg << "; reduce -cfl or raise -av_alpha";
+  msg << "; reduce -acoustic_cfl or raise -av_alpha";
   throw Error(msg.str());
 }
 

@@ -17,6 +17,7 @@
 #include "solvers/compressible/compressible_iact.hpp"
 #include "solvers/compressible/pruned_pairs.hpp"
 #include "src/run/solver.hpp"
+#include "src/sph/step_limits.hpp"
 
 namespace sph {
 
@@ -25,6 +26,8 @@ enum class ViscositySwitch { None, MorrisMonaghan };
 template <int D> class CompressibleSolver : public Solver<D> {
  public:
   std::string name() const override { return "compressible"; }
+  std::string courant_option() const override { return kAcousticCfl; }
+  RenamedOption renamed_option(const std::string& option) const override { return acoustic_cfl_rename(option); }
   // Measured in 2D; the 3D figure is scaled from WCSPH's, not measured (docs/performance.md,
   // "Memory per particle").
   double bytes_per_particle() const override { return D == 3 ? 2.5e3 : 0.87e3; }

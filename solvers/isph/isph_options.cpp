@@ -2,6 +2,7 @@
 // description in summary.json. The step: isph_solver.cpp.
 #include "solvers/isph/isph_solver.hpp"
 #include "src/core/options.hpp"
+#include "src/sph/step_limits.hpp"
 
 namespace sph {
 
@@ -20,7 +21,7 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "ISPH projection solver (-solver isph)", "Solver");
   PetscCall(PetscOptionsReal(
-      "-cfl", "ISPH: advective Courant number, dt <= cfl h / U (the explicit schemes read -cfl as an acoustic one)", "",
+      kAdvectiveCfl, "ISPH: advective Courant number, dt <= cfl h / U (the explicit schemes' is -acoustic_cfl)", "",
       o->cfl, &o->cfl, nullptr));
   PetscCall(PetscOptionsEList("-pressure_gradient",
                               "Pressure gradient: corrected (Bonet & Lok), difference, symmetric (Monaghan)", "",
@@ -76,7 +77,7 @@ template <int D> void IsphSolver<D>::set_from_options() {
                PETSC_FALSE,
                PETSC_FALSE};
   SPH_PETSC(read_options(&o));
-  require(o.cfl > 0 && o.cfl <= 1.0, "-cfl", "in (0, 1]", o.cfl);
+  require(o.cfl > 0 && o.cfl <= 1.0, kAdvectiveCfl, "in (0, 1]", o.cfl);
   require(o.particle_divergence_rate >= 0 || o.particle_divergence_rate == -1, "-ppe_particle_divergence_rate",
           "non-negative (or -1: all of it every step)", o.particle_divergence_rate);
   require(o.projection_corrections >= 0, "-projection_corrections", "non-negative", o.projection_corrections);

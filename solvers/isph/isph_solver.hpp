@@ -57,6 +57,7 @@
 #include "src/sph/kernel_average.hpp"
 #include "src/sph/laplacian_smoothing.hpp"
 #include "src/sph/shifting.hpp"
+#include "src/sph/step_limits.hpp"
 
 namespace sph {
 
@@ -68,6 +69,7 @@ enum class SurfaceCondition { Node, Particle };
 template <int D> class IsphSolver : public Solver<D> {
  public:
   std::string name() const override { return "isph"; }
+  std::string courant_option() const override { return kAdvectiveCfl; }
   // Measured: the PPE matrix, BoomerAMG's hierarchy and the step's arrays (docs/performance.md,
   // "Memory per particle").
   double bytes_per_particle() const override { return D == 3 ? 3.6e3 : 1.6e3; }

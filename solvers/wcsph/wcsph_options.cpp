@@ -5,6 +5,7 @@
 
 #include "solvers/wcsph/wcsph_solver.hpp"
 #include "src/core/options.hpp"
+#include "src/sph/step_limits.hpp"
 
 namespace sph {
 
@@ -35,7 +36,7 @@ PetscErrorCode read_options(RawOptions* o) {
                              "", o->c0_factor, &o->c0_factor, nullptr));
   PetscCall(PetscOptionsReal("-tait_gamma", "Tait equation-of-state exponent", "", o->gamma, &o->gamma, nullptr));
   PetscCall(PetscOptionsReal(
-      "-cfl", "WCSPH: acoustic Courant number, dt <= cfl h / (c0 + U_max) (ISPH reads -cfl as an advective one)", "",
+      kAcousticCfl, "WCSPH: acoustic Courant number, dt <= acoustic_cfl h / (c0 + U_max) (ISPH's advective one is -cfl)", "",
       o->cfl, &o->cfl, nullptr));
   PetscCall(PetscOptionsEList("-density", "Density: continuity equation or kernel summation", "", density_names, 2,
                               density_names[o->density], &o->density, nullptr));
@@ -108,7 +109,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   require(o.c0 >= 0, "-c0", "non-negative", o.c0);
   require(o.c0_factor > 0, "-c0_factor", "positive", o.c0_factor);
   require(o.gamma >= 1, "-tait_gamma", "at least 1", o.gamma);
-  require(o.cfl > 0 && o.cfl <= 1, "-cfl", "in (0, 1]", o.cfl);
+  require(o.cfl > 0 && o.cfl <= 1, kAcousticCfl, "in (0, 1]", o.cfl);
   require(o.delta >= 0, "-delta", "non-negative", o.delta);
   require(o.alpha >= 0, "-av_alpha", "non-negative", o.alpha);
   require(o.beta >= 0, "-av_beta", "non-negative", o.beta);

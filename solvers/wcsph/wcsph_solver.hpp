@@ -11,6 +11,7 @@
 #include "src/sph/free_surface.hpp"
 #include "src/sph/laplacian_smoothing.hpp"
 #include "src/sph/shifting.hpp"
+#include "src/sph/step_limits.hpp"
 
 namespace sph {
 
@@ -28,6 +29,8 @@ enum class WcsphGradient { Auto, Corrected, Symmetric };
 template <int D> class WcsphSolver : public Solver<D> {
  public:
   std::string name() const override { return "wcsph"; }
+  std::string courant_option() const override { return kAcousticCfl; }
+  RenamedOption renamed_option(const std::string& option) const override { return acoustic_cfl_rename(option); }
   // Measured (docs/performance.md, "Memory per particle").
   double bytes_per_particle() const override { return D == 3 ? 1.6e3 : 0.56e3; }
   void set_from_options() override;

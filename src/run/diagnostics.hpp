@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "src/core/domain.hpp"
 #include "src/core/error.hpp"
@@ -104,14 +105,18 @@ template <int D> double fluid_share(const Particles<D>& P, const std::vector<dou
 
 // A blow-up's advice. A smaller step helps only where the step caused it, and only from a state not yet
 // damaged, which the last checkpoint before a blow-up often is not (docs/user-guide.md, "Failure messages").
-inline constexpr const char* kBlowUpAdvice =
-    "if the time step is the cause, a smaller -cfl or -dt from the start (or from a checkpoint well before, "
-    "-checkpoints_kept) runs past this time; if it fails as soon, look at the particle named";
+// `courant_option` is the scheme's Courant number (-cfl or -acoustic_cfl, Solver::courant_option).
+inline std::string blow_up_advice(const std::string& courant_option) {
+  return "if the time step is the cause, a smaller " + courant_option +
+         " or -dt from the start (or from a checkpoint well before, -checkpoints_kept) runs past this time; if it "
+         "fails as soon, look at the particle named";
+}
 
 // Run health: stops a run whose state is no longer a number, whose fluid left the box through a
 // non-periodic side (walls crossed, or the open top of a scene), or whose kinetic energy exceeds
 // `ke_bound`. The message names the first such particle and where it is.
-template <int D> void check_health(const Particles<D>& P, const Domain<D>& domain, double ke_bound) {
+template <int D>
+void check_health(const Particles<D>& P, const Domain<D>& domain, double ke_bound, const std::string& courant_option) {
   auto not_finite = [&](std::size_t i) { return !P.x[i].allFinite() || !P.v[i].allFinite() || !std::isfinite(P.p[i]); };
   auto outside = [&](std::size_t i) { return domain.outside(P.x[i]); };
   int bad[2] = {0, 0};  // NaN, outside
@@ -127,7 +132,7 @@ template <int D> void check_health(const Particles<D>& P, const Domain<D>& domai
   if (bad[0]) {
     const NamedParticle<D> p = first_particle(P, not_finite);
     throw Error("position, velocity or pressure became NaN/Inf" +
-                (p.label >= 0 ? " (" + p.where() + " first)" : std::string()) + ": the run blew up; " + kBlowUpAdvice);
+                (p.label >= 0 ? " (" + p.where() + " first)" : std::string()) + ": the run blew up; " + blow_up_advice(courant_option));
   }
   if (bad[1]) {
     const NamedParticle<D> p = first_particle(P, outside);
@@ -148,7 +153,7 @@ template <int D> void check_health(const Particles<D>& P, const Domain<D>& domai
     const NamedParticle<D> p = first_particle(P, [&](std::size_t i) { return P.v[i].norm() == fastest; });
     std::ostringstream msg;
     msg << "kinetic energy " << ke << " exceeds 1000 x its reference scale (1/2 M U^2), " << p.where()
-        << " the fastest at speed " << fastest << ": the run blew up; " << kBlowUpAdvice;
+        << " the fastest at speed " << fastest << ": the run blew up; " << blow_up_advice(courant_option);
     throw Error(msg.str());
   }
 }
@@ -173,7 +178,8 @@ template <int D> void check_initial_state(const Particles<D>& P, double t) {
 // Counted on the current lists, which may miss pairs that came within reach since the last rebuild.
 template <int D> class NeighbourCountCheck {
  public:
-  explicit NeighbourCountCheck(bool free_surface) : free_surface_(free_surface) {}
+  NeighbourCountCheck(bool free_surface, std::string courant_option)
+      : free_surface_(free_surface), courant_option_(std::move(courant_option)) {}
 
   void operator()(const Particles<D>& P, const NeighbourList<D>& nl, double support) {
     double sum = 0.0, count = 0.0, fewest = std::numeric_limits<double>::infinity();
@@ -205,19 +211,21 @@ template <int D> class NeighbourCountCheck {
     if (mean < 0.5 * mean0_ && free_surface_)
       msg << "neighbour count collapsed: fluid particles have " << mean << " neighbours on average (" << mean0_
           << " at the start): the fluid broke into sheets and drops thinner than the kernel support, or blew up "
-             "(see kinetic_energy in timeseries.csv); a finer -nx resolves a splash's sheets, a smaller -cfl does "
-             "not";
+             "(see kinetic_energy in timeseries.csv); a finer -nx resolves a splash's sheets, a smaller "
+          << courant_option_ << " does not";
     else if (mean < 0.5 * mean0_)
       msg << "neighbour count collapsed: fluid particles have " << mean << " neighbours on average (" << mean0_
-          << " at the start): the particles scattered; reduce -cfl or -dt";
+          << " at the start): the particles scattered; reduce " << courant_option_ << " or -dt";
     else if (!free_surface_ && fewest < 0.25 * fewest0_)
       msg << "neighbour count collapsed: a fluid particle has " << fewest << " neighbours (at least " << fewest0_
-          << " at the start): a void opened in the fluid (tensile instability); keep shifting on or reduce -cfl";
+          << " at the start): a void opened in the fluid (tensile instability); keep shifting on or reduce "
+          << courant_option_;
     if (!msg.str().empty()) throw Error(msg.str());
   }
 
  private:
   bool free_surface_;
+  std::string courant_option_;
   double mean0_ = -1.0, fewest0_ = 0.0;
 };
 

@@ -73,7 +73,7 @@ bool identified_by_content(const std::string& name) { return name == "scene_file
 // Options that change only how the steps to come are taken, not the problem: a restart may change
 // them to rescue a failing run (a smaller step, another linear solver); the change is recorded.
 bool changes_numerics_only(const std::string& name) {
-  static const std::set<std::string> exact = {"cfl", "cfl_force", "dt", "ppe_pc_drop_tol", "mat_type"};
+  static const std::set<std::string> exact = {"cfl", "acoustic_cfl", "cfl_force", "dt", "ppe_pc_drop_tol", "mat_type"};
   static const char* prefixes[] = {"ppe_ksp_", "ppe_pc_", "ppe_sub_ksp_", "ppe_sub_pc_"};
   if (exact.count(name)) return true;
   for (const char* p : prefixes)
@@ -82,14 +82,16 @@ bool changes_numerics_only(const std::string& name) {
 }
 
 // A checkpoint written before the pressure solve's options took the prefix ppe_ records -ksp_rtol
-// where this run has -ppe_ksp_rtol: its names are read as they are spelled now.
-nlohmann::json with_current_names(const nlohmann::json& options) {
+// where this run has -ppe_ksp_rtol, and one of an explicit scheme written before its Courant number
+// was named -acoustic_cfl records -cfl: its names are read as they are spelled now.
+nlohmann::json with_current_names(const nlohmann::json& options, const std::string& solver) {
   static const char* old_prefixes[] = {"ksp_", "pc_", "sub_ksp_", "sub_pc_"};
   nlohmann::json renamed = nlohmann::json::object();
   for (const auto& [name, value] : options.items()) {
     bool old = false;
     for (const char* p : old_prefixes) old = old || name.rfind(p, 0) == 0;
-    renamed[old ? "ppe_" + name : name] = value;
+    if (solver != "isph" && name == "cfl") renamed["acoustic_cfl"] = value;
+    else renamed[old ? "ppe_" + name : name] = value;
   }
   return renamed;
 }
@@ -170,7 +172,7 @@ nlohmann::json check_same_run(const nlohmann::json& saved, const nlohmann::json&
           path,
           std::string("-") + key + " " + (saved[key].is_string() ? saved[key].get<std::string>() : saved[key].dump()),
           std::string("-") + key + " " + (now[key].is_string() ? now[key].get<std::string>() : now[key].dump()), key);
-  const nlohmann::json a = with_current_names(saved["options"]);
+  const nlohmann::json a = with_current_names(saved["options"], saved["solver"].get<std::string>());
   const nlohmann::json& b = now["options"];
   const nlohmann::json &pa = saved["parameters"], &pb = now["parameters"];
   std::set<std::string> names;

@@ -58,6 +58,8 @@ template <int D> class Solver {
   // The name now of an option this solver once read under another (without the dash): a run given the
   // old one is told the new one (see check_unused_options).
   virtual RenamedOption renamed_option(const std::string&) const { return {}; }
+  // The option that sets its Courant number (src/sph/step_limits.hpp): failure messages name it.
+  virtual std::string courant_option() const = 0;
   virtual void setup(Discretisation<D>& disc) = 0;
   // Largest time step the scheme's stability limits allow for the current state.
   virtual double stable_dt() const = 0;

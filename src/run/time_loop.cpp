@@ -147,7 +147,7 @@ template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
       s_(run.run_case, run.kernel, run.control.skin >= 0 ? run.control.skin : run.solver.neighbour_skin()),
       checkpoint_path_(run.output_dir + "/checkpoint.bin"),
       steady_(run.control.steady_tol),
-      check_neighbours_(s_.disc.physics.free_surface) {
+      check_neighbours_(s_.disc.physics.free_surface, solver_.courant_option()) {
   memory_.check_scene(s_.P.n_owned);
   const double wall = case_.wall_thickness(), support = s_.kernel.support_radius();
   if (wall > 0 && wall < support * (1 - 1e-12))
@@ -342,7 +342,7 @@ template <int D> void TimeLoop<D>::advance() {
     removed_.count += gone.count, removed_.mass += gone.mass;
     s_.nh.update(s_.P, true);
   }
-  check_health(s_.P, s_.domain, ke_bound_);
+  check_health(s_.P, s_.domain, ke_bound_, solver_.courant_option());
   check_neighbours_(s_.P, s_.nh.list(), s_.nh.support_radius());
   if (opt_.partition_interval > 0 && step_ % opt_.partition_interval == 0) repartition();
 

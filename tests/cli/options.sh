@@ -37,6 +37,11 @@ expect_error "option -sub_pc_type is now -ppe_sub_pc_type" $small -ppe_pc_type b
 expect_error "option -mat_mumps_icntl_4 is now -ppe_mat_mumps_icntl_4" $small -ppe_pc_type lu -mat_mumps_icntl_4 2
 expect_error "unknown option -ksp_tpye .*did you mean -ppe_ksp_type\?" $small -ksp_tpye cg
 expect_error "option -c0 is read by -solver wcsph, not by this run's -case taylor_green and -solver isph" $small -c0 10
+# One name per Courant number: -cfl is ISPH's advective one, -acoustic_cfl the explicit schemes'.
+expect_error "^sph: error: option -cfl is now -acoustic_cfl: the explicit schemes' step is set by the acoustic Courant number; -cfl is ISPH's advective one$" $small -solver wcsph -cfl 0.2
+expect_error "option -cfl is now -acoustic_cfl" -case sod -solver compressible -nx 48 -cfl 0.2 -progress 0 -output_dir $tmp/out -overwrite
+expect_error "option -acoustic_cfl is read by -solver wcsph, -solver compressible, not by this run's -case taylor_green and -solver isph" $small -acoustic_cfl 0.2
+expect_error "-acoustic_cfl must be in \(0, 1\]" $small -solver wcsph -acoustic_cfl 2
 expect_error "option -wall_layers is read by -case lid_driven_cavity.*-case poiseuille" $small -wall_layers 4
 expect_error "-lid_corners symmetric is 2D only" -case lid_driven_cavity -dim 3 -nx 8 -lid_corners symmetric -progress 0 -output_dir $tmp/out -overwrite
 expect_error "Unknown option foo for -profile_interpolation" -case lid_driven_cavity -nx 8 -profile_interpolation foo -progress 0 -output_dir $tmp/out -overwrite
