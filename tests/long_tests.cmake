@@ -7,6 +7,7 @@ foreach(name
     Walls.IsphCavityWithSymmetricLidCornersMatchesGhia Convergence.ObservedOrderInH
     Convergence.IsphErrorApproachesALimitAsDtFalls Walls.WcsphCavityRe100MatchesGhiaAndKeepsItsVolume
     Scene.CylinderArrayDragMatchesSanganiAcrivos Walls.IsphCavityRe100MatchesGhia
-    Restart.Isph3DFreeSurfaceMatchesUninterruptedRunExactly MovingBodies.IsphCouetteTorqueMatchesTheory)
+    Restart.Isph3DFreeSurfaceMatchesUninterruptedRunExactly MovingBodies.IsphCouetteTorqueMatchesTheory
+    MovingBodies.IsphViscousAddedMassAndDampingMatchUnsteadyStokes)
   set_tests_properties(${name} PROPERTIES LABELS "case;long")
 endforeach()
