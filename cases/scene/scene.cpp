@@ -137,6 +137,8 @@ template <int D> void SceneCase<D>::read_file() {
   YamlScene scene = read_yaml_scene(opt_.path, opt_.nx_set ? 1.0 / opt_.nx : opt_.dx_set ? opt_.dx : 0.0, layers);
   file_ = std::move(scene.file);
   body_ = std::move(scene.body);
+  if (std::find(scene.free_slip.begin(), scene.free_slip.end(), 1) != scene.free_slip.end())
+    free_slip_ = std::move(scene.free_slip);
   surfaces_ = std::move(scene.surfaces);
   for (const MotionSpec& spec : scene.motions) {
     PrescribedMotion<D> m;

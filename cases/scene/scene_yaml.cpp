@@ -45,6 +45,7 @@ struct Region {
   bool hydrostatic = false;
   double top = 0.0;  // hydrostatic: the region's highest point along -g
   MotionSpec motion;
+  bool free_slip = false;  // walls and bodies: slip: free
 };
 
 // Parses one scene file; every refusal names the file, the line and the key. A key that is absent gives a
@@ -394,8 +395,8 @@ class Reader {
 
   Region region(const YAML::Node& n, const std::string& key, std::vector<std::string>& bodies, const Point3& g) {
     only_keys(n, key,
-              {"role", "shape", "velocity", "pressure", "motion", "name", "of", "bounds", "vertices", "file", "centre",
-               "center", "radius", "ends", "point", "normal"});
+              {"role", "shape", "velocity", "pressure", "motion", "slip", "name", "of", "bounds", "vertices", "file",
+               "centre", "center", "radius", "ends", "point", "normal"});
     Region r;
     const YAML::Node role = n["role"];
     if (!role.IsDefined()) fail(n, key, "has no role; add role: fluid, role: wall or role: body with name: NAME");
@@ -436,6 +437,13 @@ class Reader {
              "is given for a wall; walls are at rest with no pressure of their own: "
              "remove it or make the region's role fluid");
     if (n["velocity"].IsDefined()) r.velocity = point(n["velocity"], key + ".velocity");
+    if (const YAML::Node slip = n["slip"]; slip.IsDefined()) {
+      if (r.role == Role::Fluid)
+        fail(slip, key + ".slip", "is given for fluid; only walls and bodies have a slip condition");
+      if (!slip.IsScalar() || (slip.Scalar() != "free" && slip.Scalar() != "no_slip"))
+        fail(slip, key + ".slip", "is not free or no_slip; give one of those");
+      r.free_slip = slip.Scalar() == "free";
+    }
     if (const YAML::Node m = n["motion"]; m.IsDefined()) {
       if (r.role != Role::Body)
         fail(m, key + ".motion", "is given for a region that is no body; only role: body moves (fixed walls do not)");
@@ -654,13 +662,13 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
         s.x.push_back(xa);
         if (holder) {
           s.v.push_back({0.0, 0.0, 0.0}), s.p.push_back(0.0), s.kind.push_back(kSceneFixedWall);
-          out.body.push_back(holder->body);
+          out.body.push_back(holder->body), out.free_slip.push_back(holder->free_slip);
           continue;
         }
         const double p =
             in_fluid->hydrostatic ? rho0 * g.norm() * (in_fluid->top + g.normalized().dot(x)) : in_fluid->pressure;
         s.v.push_back({in_fluid->velocity[0], in_fluid->velocity[1], in_fluid->velocity[2]});
-        s.p.push_back(p), s.kind.push_back(kSceneFluid), out.body.push_back(-1);
+        s.p.push_back(p), s.kind.push_back(kSceneFluid), out.body.push_back(-1), out.free_slip.push_back(0);
         ++fluid;
       }
   if (fluid == 0)

@@ -25,7 +25,8 @@
 // Roles: fluid (kind 0); wall (fixed wall, kind 1); {body: NAME} (or role: body, name: NAME), a fixed
 // wall whose particles keep the body's name (YamlScene::body): timeseries.csv reports its force.
 // Region values (fluid only): velocity (default zero); pressure, a number (default 0) or hydrostatic:
-// rho0 |g| times the depth below the region's highest point along -g.
+// rho0 |g| times the depth below the region's highest point along -g. Walls and bodies: slip: free
+// (no shear on the fluid; default no_slip, src/boundary/moving_bodies.hpp).
 //
 // Sampling: lattice points (i + 1/2) dx within the box (and within the regions' bounds), so a box from
 // 0 to 1 holds 1/dx points per side. A point inside a wall or body is a wall particle when it lies
@@ -59,6 +60,7 @@ struct MotionSpec {
 struct YamlScene {
   SceneFile file;                   // particles and field data, as read_scene_file gives them
   std::vector<int> body;            // per particle: index into bodies, -1 for fluid and walls
+  std::vector<char> free_slip;      // per particle: 1 on walls and bodies given slip: free
   std::vector<std::string> bodies;  // the body names, in order of first appearance
   std::vector<MotionSpec> motions;  // per body
   std::vector<SurfaceMesh> surfaces;  // per body, where the body is at t = 0 (within the box)

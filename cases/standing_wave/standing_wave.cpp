@@ -10,7 +10,8 @@ namespace sph {
 
 namespace {
 PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* width, PetscReal* depth, PetscReal* amplitude,
-                            PetscReal* g, PetscReal* re, PetscReal* rho0, PetscBool* side_walls) {
+                            PetscReal* g, PetscReal* re, PetscReal* rho0, PetscBool* side_walls,
+                            PetscBool* free_slip_side_walls) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Standing wave (-case standing_wave)", "Case");
   PetscCall(PetscOptionsInt("-nx", "Particles per unit length", "", *nx, nx, nullptr));
@@ -23,6 +24,10 @@ PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* width, Pe
                              "Walls at both ends (a tank); 0: one whole wavelength 2L, periodic, a floor only (no "
                              "contact lines, whose no-slip dissipation the linear theory leaves out)",
                              "", *side_walls, side_walls, nullptr));
+  PetscCall(PetscOptionsBool("-free_slip_side_walls",
+                             "Side walls without shear: no Stokes layers on them and no no-slip contact lines, whose "
+                             "dissipation the linear theory leaves out (its rate is then the bulk's and the floor's)",
+                             "", *free_slip_side_walls, free_slip_side_walls, nullptr));
   PetscCall(read_wall_scene_options(PetscOptionsObject, layers, rho0));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
@@ -30,9 +35,14 @@ PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* width, Pe
 }  // namespace
 
 void StandingWave::set_from_options() {
-  PetscBool side_walls = side_walls_ ? PETSC_TRUE : PETSC_FALSE;
-  SPH_PETSC(read_options(&nx_, &wall_layers_, &width_, &depth_, &amplitude_, &g_, &re_, &rho0_, &side_walls));
+  PetscBool side_walls = side_walls_ ? PETSC_TRUE : PETSC_FALSE,
+            free_slip = free_slip_side_walls_ ? PETSC_TRUE : PETSC_FALSE;
+  SPH_PETSC(
+      read_options(&nx_, &wall_layers_, &width_, &depth_, &amplitude_, &g_, &re_, &rho0_, &side_walls, &free_slip));
   side_walls_ = side_walls == PETSC_TRUE;
+  free_slip_side_walls_ = free_slip == PETSC_TRUE;
+  if (free_slip_side_walls_ && !side_walls_)
+    throw Error("-free_slip_side_walls needs side walls; remove it or drop -side_walls 0");
   require(nx_ >= 4, "-nx", "at least 4", nx_);
   require(width_ > 0, "-tank_width", "positive", width_);
   require(depth_ > 0, "-depth", "positive", depth_);
@@ -54,7 +64,8 @@ double StandingWave::linear_period() const {
 double StandingWave::damping_rate_theory() const {
   const double k = M_PI / width_, nu = physics().nu, omega = 2.0 * M_PI / linear_period();
   const double layers = std::sqrt(0.5 * nu * omega) * omega * omega / (g_ * std::pow(std::sinh(k * depth_), 2));
-  const double walls = side_walls_ ? std::sinh(2.0 * k * depth_) / (2.0 * k * width_) - depth_ / width_ : 0.0;
+  const double walls =
+      side_walls_ && !free_slip_side_walls_ ? std::sinh(2.0 * k * depth_) / (2.0 * k * width_) - depth_ / width_ : 0.0;
   return 2.0 * nu * k * k + layers * (0.5 + walls);
 }
 
@@ -68,31 +79,48 @@ Physics<2> StandingWave::physics() const {
   return phys;
 }
 
-void StandingWave::create(Particles<2>& P, Domain<2>& domain) const {
-  const double dx = spacing(), k = M_PI / width_;
+// Calls f(i, j, site) for each particle's lattice site (i, j), in the order create() adds them.
+template <class F> void StandingWave::for_each_site(F&& f) const {
   const int L = static_cast<int>(wall_layers_), n = static_cast<int>(std::lround(width_ * nx_));
   const int rows = static_cast<int>(std::lround(depth_ * nx_)), height = 2 * rows;
   // Without side walls: one whole wavelength, periodic in x.
+  const int side = side_walls_ ? L : 0, columns = side_walls_ ? n : 2 * n;
+  for (int j = -L; j < height; ++j)
+    for (int i = -side; i < columns + side; ++i) {
+      if (j < 0) f(i, j, Site::Floor);
+      else if (i < 0 || i >= columns) f(i, j, Site::SideWall);
+      else if (j < rows) f(i, j, Site::Fluid);
+    }
+}
+
+void StandingWave::create(Particles<2>& P, Domain<2>& domain) const {
+  const double dx = spacing(), k = M_PI / width_;
+  const int L = static_cast<int>(wall_layers_), n = static_cast<int>(std::lround(width_ * nx_));
   const int side = side_walls_ ? L : 0, columns = side_walls_ ? n : 2 * n;
   domain.lo = Vector<2>(-side * dx, -L * dx);
   domain.hi = Vector<2>((columns + side) * dx, 20.0 * depth_);
   domain.periodic = {!side_walls_, false};
   Particles<2> all;
-  for (int j = -L; j < height; ++j)
-    for (int i = -side; i < columns + side; ++i) {
-      const Vector<2> lattice((i + 0.5) * dx, (j + 0.5) * dx);
-      const bool wall = j < 0 || i < 0 || i >= columns;
-      if (wall) {
-        all.add(lattice, Vector<2>::Zero(), rho0_ * dx * dx, rho0_, 0.0, kWall);
-      } else if (j < rows) {
-        // The column stretched to the surface h + eta(x): its particles' volume grows with it.
-        const double stretch = 1.0 + amplitude_ * std::cos(k * lattice[0]) / depth_;
-        const Vector<2> x(lattice[0], lattice[1] * stretch);
-        const double surface = depth_ * stretch;
-        all.add(x, Vector<2>::Zero(), rho0_ * dx * dx * stretch, rho0_, rho0_ * g_ * (surface - x[1]), kFluid);
-      }
+  for_each_site([&](int i, int j, Site site) {
+    const Vector<2> lattice((i + 0.5) * dx, (j + 0.5) * dx);
+    if (site != Site::Fluid) {
+      all.add(lattice, Vector<2>::Zero(), rho0_ * dx * dx, rho0_, 0.0, kWall);
+    } else {
+      // The column stretched to the surface h + eta(x): its particles' volume grows with it.
+      const double stretch = 1.0 + amplitude_ * std::cos(k * lattice[0]) / depth_;
+      const Vector<2> x(lattice[0], lattice[1] * stretch);
+      const double surface = depth_ * stretch;
+      all.add(x, Vector<2>::Zero(), rho0_ * dx * dx * stretch, rho0_, rho0_ * g_ * (surface - x[1]), kFluid);
     }
+  });
   P = rank_share(all);
+}
+
+std::vector<char> StandingWave::free_slip_of_particles() const {
+  if (!free_slip_side_walls_) return {};
+  std::vector<char> free_slip;
+  for_each_site([&](int, int, Site site) { free_slip.push_back(site == Site::SideWall); });
+  return free_slip;
 }
 
 double StandingWave::horizontal_momentum(const Particles<2>& P) const {
@@ -172,6 +200,7 @@ nlohmann::json StandingWave::parameters() const {
           {"rho0", rho0_},
           {"wall_layers", wall_layers_},
           {"side_walls", side_walls_},
+          {"free_slip_side_walls", free_slip_side_walls_},
           {"linear_period", linear_period()},
           {"bulk_damping_rate", 2.0 * physics().nu * k * k},
           {"damping_rate_theory", damping_rate_theory()}};

@@ -8,7 +8,8 @@
 // / (2 pi / omega) (NaN before the first full period). Also reported: T, and the decay rate of the
 // momentum's swings (damping_rate, the least-squares slope of the log of their extremes), beside the bulk
 // viscous rate 2 nu k^2 and the theory's whole rate with the walls' Stokes layers in the case's
-// parameters. -side_walls 0: one wavelength 2L, periodic, a floor only. The particles start on a
+// parameters. -side_walls 0: one wavelength 2L, periodic, a floor only; -free_slip_side_walls: side
+// walls without shear, so that only the floor has a Stokes layer. The particles start on a
 // lattice stretched column by column to the surface, each with the mass of its volume and the
 // hydrostatic pressure below that surface.
 #include <vector>
@@ -33,16 +34,19 @@ class StandingWave : public Case<2> {
   std::map<std::string, double> errors(const Particles<2>& P, double t) const override;
   std::string unmeasured_reason(const std::string& name) const override;
   nlohmann::json parameters() const override;
+  std::vector<char> free_slip_of_particles() const override;
 
   double linear_period() const;
   double damping_rate_theory() const;
 
  private:
   double horizontal_momentum(const Particles<2>& P) const;  // of the fluid, all ranks
+  enum class Site { Floor, SideWall, Fluid };
+  template <class F> void for_each_site(F&& f) const;
 
   PetscInt nx_ = 40, wall_layers_ = 4;
   PetscReal width_ = 1.0, depth_ = 0.5, amplitude_ = 0.01, g_ = 1.0, re_ = 1000.0, rho0_ = 1.0;
-  bool side_walls_ = true;
+  bool side_walls_ = true, free_slip_side_walls_ = false;
   std::vector<double> crossings_;  // times where the momentum changes sign
   std::vector<double> extremes_;   // its largest magnitude in each whole swing
   std::vector<double> extreme_times_;

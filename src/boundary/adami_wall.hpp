@@ -7,8 +7,9 @@
 //                                                               the ISPH pressure source and the WCSPH
 //                                                               continuity equation see sliding walls
 //                                                               at rest, moving bodies at v_w)
-// where v_w is the wall's prescribed velocity (kept in Particles::v; a moving lid has v_w != 0) and
-// a_w its acceleration (a moving body's, src/boundary/moving_bodies.hpp; zero for fixed walls). Wall
+// (a free-slip wall particle, MovingBodies::free_slip, takes u_w = the Shepard average of u_f instead:
+// no shear), where v_w is the wall's prescribed velocity (kept in Particles::v; a moving lid has
+// v_w != 0) and a_w its acceleration (a moving body's, src/boundary/moving_bodies.hpp; zero for fixed walls). Wall
 // particles with no fluid neighbour keep p = 0 and u_w = v_w; no fluid particle sees them.
 #include <vector>
 
@@ -116,11 +117,13 @@ template <int D> struct AdamiWall {
   }
 
   // Adami's mirror 2 v_w - u_f of wall particle w, u_f the Shepard average of the fluid's velocity and
-  // r the same average of x_w - x_f. A rigid rotation's velocity changes across the wall: taken at the
-  // particle, w x r_w, it would put the no-slip point inside the body, and a turning cylinder dragged
-  // half the torque along (docs/verification/body_forces.md); it is taken halfway to the fluid instead.
+  // r the same average of x_w - x_f; u_f itself on a free-slip wall. A rigid rotation's velocity changes
+  // across the wall: taken at the particle, w x r_w, it would put the no-slip point inside the body, and a
+  // turning cylinder dragged half the torque along (docs/verification/body_forces.md); it is taken
+  // halfway to the fluid instead.
   static Vector<D> mirror_velocity(const Particles<D>& P, std::size_t w, const Vector<D>& u_f, const Vector<D>& r,
                                    const MovingBodies<D>* bodies) {
+    if (bodies && bodies->free_slip(P, w)) return u_f;
     const PrescribedMotion<D>* m = bodies ? bodies->motion_of(P, w) : nullptr;
     if (!m || m->spin == PrescribedMotion<D>::Type::Fixed) return 2.0 * P.v[w] - u_f;
     return 2.0 * m->point_velocity(Vector<D>(P.x[w] - 0.5 * r), bodies->time()) - u_f;

@@ -5,7 +5,9 @@
 // from a table (src/boundary/motion_table.hpp). Their wall particles are moved by the solvers at their drift, and the wall condition
 // sees the body's velocity and acceleration: Adami et al. (2012)'s pressure extrapolation takes
 // (g - a_w), the continuity equation (WCSPH) and the pressure source (ISPH) the wall's velocity.
-// Membership is by permanent particle id, as for the force groups (src/run/wall_groups.hpp).
+// Membership is by permanent particle id, as for the force groups (src/run/wall_groups.hpp). The same
+// object says which wall particles are free-slip (free_slip()), the other wall condition a case may
+// ask of its wall particles.
 #include <Eigen/Geometry>
 #include <cmath>
 #include <vector>
@@ -132,9 +134,11 @@ template <int D> struct PrescribedMotion {
 template <int D> class MovingBodies {
  public:
   MovingBodies() = default;
-  // label: by particle id, the body's index into motions (-1: none); t: the time the particles are at.
-  MovingBodies(std::vector<PrescribedMotion<D>> motions, std::vector<int> label, double t)
-      : motions_(std::move(motions)), label_(std::move(label)), t_(t) {
+  // label: by particle id, the body's index into motions (-1: none); t: the time the particles are at;
+  // free_slip: by particle id, 1 for a free-slip wall particle (empty: every wall is no-slip).
+  MovingBodies(std::vector<PrescribedMotion<D>> motions, std::vector<int> label, double t,
+               std::vector<char> free_slip = {})
+      : motions_(std::move(motions)), label_(std::move(label)), free_slip_(std::move(free_slip)), t_(t) {
     for (const auto& m : motions_) any_ |= m.moves();
   }
 
@@ -147,6 +151,15 @@ template <int D> class MovingBodies {
       return nullptr;
     const PrescribedMotion<D>& m = motions_[static_cast<std::size_t>(label_[static_cast<std::size_t>(id)])];
     return m.moves() ? &m : nullptr;
+  }
+
+  // Whether wall particle i (owned or ghost) is free-slip: the viscous term then sees the fluid's own
+  // velocity there instead of the no-slip mirror (AdamiWall::mirror_velocity), so the wall exerts no
+  // shear and grows no Stokes layer (docs/verification/free_surface.md, "Standing wave").
+  bool free_slip(const Particles<D>& P, std::size_t i) const {
+    const GlobalIndex id = P.id[i];
+    return P.kind[i] == kWall && id >= 0 && static_cast<std::size_t>(id) < free_slip_.size() &&
+           free_slip_[static_cast<std::size_t>(id)] != 0;
   }
 
   // Moves the owned particles of moving bodies from the time they are at to time t, and gives them
@@ -185,6 +198,7 @@ template <int D> class MovingBodies {
  private:
   std::vector<PrescribedMotion<D>> motions_;
   std::vector<int> label_;
+  std::vector<char> free_slip_;
   double t_ = 0.0;
   bool any_ = false;
 };

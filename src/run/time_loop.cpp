@@ -155,7 +155,8 @@ template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
   solver_.setup(s_.disc);
   if (opt_.restarting()) resume();
   // Bodies with prescribed motion start at the run's time, with their velocity there.
-  s_.disc.bodies = MovingBodies<D>(case_.body_motions(), case_.body_of_particles(), resumed_.t);
+  s_.disc.bodies =
+      MovingBodies<D>(case_.body_motions(), case_.body_of_particles(), resumed_.t, case_.free_slip_of_particles());
   s_.disc.bodies.move_to(s_.P, resumed_.t);
   check_initial_state(s_.P, resumed_.t);
   if (opt_.dt > 0 && !opt_.dt_force && opt_.dt > solver_.stable_dt())

@@ -85,5 +85,10 @@ printf 'dimension: 2\nregions:\n  - {role: fluid, shape: {square: [0, 1, 0, 1]}}
 expect_error "scene file '$tmp/shape.yaml': line 3, regions\[0\].shape: unknown shape 'square'; use one of box, circle" $short -scene_file "$tmp/shape.yaml" -nx 10 -output_dir "$tmp/refused"
 printf 'dimension: 3\nregions: [\n' >"$tmp/syntax.yml"
 expect_error "scene file '$tmp/syntax.yml': line [0-9]+, column [0-9]+: YAML syntax error" $short -scene_file "$tmp/syntax.yml" -nx 10 -output_dir "$tmp/refused"
+# A wall's slip condition: free or no_slip, and only on walls and bodies.
+printf 'dimension: 2\nregions:\n  - {role: fluid, shape: {box: [0, 1, 0, 1]}, slip: free}\n' >"$tmp/slip_fluid.yaml"
+expect_error "scene file '$tmp/slip_fluid.yaml': line 3, regions\[0\].slip: is given for fluid; only walls and bodies have a slip condition" $short -scene_file "$tmp/slip_fluid.yaml" -nx 10 -output_dir "$tmp/refused"
+printf 'dimension: 2\nregions:\n  - {role: wall, shape: {box: [0, 1, 0, 1]}, slip: sticky}\n' >"$tmp/slip_value.yaml"
+expect_error "scene file '$tmp/slip_value.yaml': line 3, regions\[0\].slip: is not free or no_slip; give one of those" $short -scene_file "$tmp/slip_value.yaml" -nx 10 -output_dir "$tmp/refused"
 [ -e "$tmp/refused" ] && { echo "FAIL: a refused scene created its output directory"; fail=1; }
 exit $fail
