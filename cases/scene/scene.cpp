@@ -125,6 +125,7 @@ template <int D> void SceneCase<D>::read_file() {
       throw Error("-nx sets the spacing of YAML scenes; the particles of '" + std::string(opt_.path) +
                   "' are fixed: remove -nx (the spacing is its field data dx, or -scene_dx)");
     file_ = read_scene_file(opt_.path);
+    free_slip_ = file_.free_slip;
     return;
   }
   if (opt_.nx_set && opt_.dx_set) throw Error("-nx and -scene_dx both set the particle spacing; give one of them");

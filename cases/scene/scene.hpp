@@ -65,7 +65,7 @@ template <int D> class SceneCase : public Case<D> {
   SceneFile file_;
   bool yaml_ = false;
   std::vector<int> body_;            // YAML scenes: per particle, index into bodies_ (-1: none)
-  std::vector<char> free_slip_;      // YAML scenes: per particle, 1 on free-slip walls (empty: none)
+  std::vector<char> free_slip_;      // per particle, 1 on free-slip walls (empty: none)
   std::vector<std::string> bodies_;  // YAML scenes: the names of the bodies
   std::vector<PrescribedMotion<D>> motions_;  // YAML scenes: per body
   std::vector<SurfaceMesh> surfaces_;          // YAML scenes: per body, at t = 0

@@ -60,7 +60,7 @@ void check_array_names(const SceneFile& s, vtkPointData* pd) {
     const std::string name = a->GetName();
     std::string lower = name;
     for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    for (const char* known : {"kind", "velocity", "pressure"}) {
+    for (const char* known : {"kind", "velocity", "pressure", "free_slip"}) {
       if (lower != known) continue;
       if (name != known)
         throw Error(s.error("has a point array '" + name + "', which is not read: the array is '" + known +
@@ -106,6 +106,10 @@ SceneFile read_scene_file(const std::string& path) {
   vtkDataArray* pres = pd->GetArray("pressure");
   if (pres && pres->GetNumberOfComponents() != 1)
     throw Error(s.error("point array 'pressure' must have one component"));
+  vtkDataArray* slip = pd->GetArray("free_slip");
+  if (slip && slip->GetNumberOfComponents() != 1)
+    throw Error(s.error("point array 'free_slip' must have one component (1 on free-slip wall particles, else 0)"));
+  if (slip) s.free_slip.assign(n, 0);
 
   s.x.resize(n), s.v.assign(n, {0.0, 0.0, 0.0}), s.p.assign(n, 0.0), s.kind.resize(n);
   double z0 = 0.0;
@@ -130,6 +134,19 @@ SceneFile read_scene_file(const std::string& path) {
     if (vel)
       for (int a = 0; a < vel->GetNumberOfComponents(); ++a) s.v[i][a] = vel->GetComponent(i, a);
     if (pres) s.p[i] = pres->GetComponent(i, 0);
+    if (slip) {
+      const double f = slip->GetComponent(i, 0);
+      if (f != 0 && f != 1) {
+        std::ostringstream v;
+        v << f;
+        throw Error(s.error("particle " + std::to_string(i) + " has free_slip " + v.str() +
+                            "; give 1 on free-slip wall particles, else 0"));
+      }
+      if (f == 1 && s.kind[i] == kSceneFluid)
+        throw Error(s.error("particle " + std::to_string(i) +
+                            " is fluid with free_slip 1; only wall particles have a slip condition"));
+      s.free_slip[i] = static_cast<char>(f);
+    }
     if (!std::isfinite(s.v[i][0]) || !std::isfinite(s.v[i][1]) || !std::isfinite(s.v[i][2]) || !std::isfinite(s.p[i]))
       throw Error(
           s.error("particle " + std::to_string(i) + " has a velocity or pressure that is not a number; fix it"));

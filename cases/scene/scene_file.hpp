@@ -23,6 +23,7 @@ struct SceneFile {
   std::vector<std::array<double, 3>> x, v;           // positions; velocities (zero without the array)
   std::vector<double> p;                             // pressures (zero without the array)
   std::vector<int> kind;                             // SceneKind
+  std::vector<char> free_slip;                       // 1 on free-slip wall particles (empty without the array)
   std::map<std::string, std::vector<double>> field;  // numeric field data arrays, by name
   std::uint64_t checksum = 0;                        // 64-bit FNV-1a of the file's bytes: the scene's identity
 
@@ -39,7 +40,8 @@ inline std::uint64_t fnv1a(std::uint64_t h, const void* data, std::size_t n) {
 }
 
 // Reads and checks the file: readable VTK XML PolyData with points, a `kind` array of 0/1/2, finite
-// coordinates, velocities and pressures, at least one fluid particle. Throws sph::Error otherwise.
+// coordinates, velocities and pressures, at least one fluid particle; an optional `free_slip` array,
+// 1 on free-slip wall particles (src/boundary/moving_bodies.hpp), 0 elsewhere. Throws sph::Error otherwise.
 SceneFile read_scene_file(const std::string& path);
 
 }  // namespace sph

@@ -1,5 +1,6 @@
 """Writing a Scene as the .vtp file that `sph -case scene -scene_file FILE` reads: point arrays kind,
-velocity and pressure, and the parameters as field data."""
+velocity and pressure (and free_slip when a wall particle is free-slip), and the parameters as field
+data."""
 import vtk
 
 
@@ -15,7 +16,14 @@ def _point_arrays(scene):
         velocity.InsertNextTuple3(*v)
         pressure.InsertNextValue(p)
         kind.InsertNextValue(k)
-    return kind, velocity, pressure
+    arrays = [kind, velocity, pressure]
+    if any(scene.free_slip):
+        free_slip = vtk.vtkIntArray()
+        free_slip.SetName("free_slip")
+        for f in scene.free_slip:
+            free_slip.InsertNextValue(1 if f else 0)
+        arrays.append(free_slip)
+    return arrays
 
 
 def _field_array(name, values):

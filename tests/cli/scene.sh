@@ -33,6 +33,31 @@ expect_error "scene file '$tmp/lid_normal.vtp': moving-wall particle [0-9]+ at \
 expect_error "scene file '$tmp/dx_inf.vtp': field data 'dx' holds inf; give a finite number" $short -scene_file "$tmp/dx_inf.vtp"
 expect_error "the scene's field data t_end must be positive \(or pass -t_end\) \(got -1\)" ${short/-t_end 0.02/} -scene_file "$tmp/t_end_negative.vtp"
 expect_ok $short -scene_file "$tmp/t_end_negative.vtp" -output_dir "$tmp/t_end_given"  # the option overrides the file
+# A free_slip array: 1 on free-slip wall particles, else 0; never on fluid.
+for d in free_slip_fluid free_slip_2; do damage $d; done
+expect_error "scene file '$tmp/free_slip_fluid.vtp': particle [0-9]+ is fluid with free_slip 1; only wall particles have a slip condition" $short -scene_file "$tmp/free_slip_fluid.vtp"
+expect_error "scene file '$tmp/free_slip_2.vtp': particle [0-9]+ has free_slip 2; give 1 on free-slip wall particles, else 0" $short -scene_file "$tmp/free_slip_2.vtp"
+# A .vtp scene's free-slip walls do what the YAML scene's do: a channel driven along them by g moves as
+# a plug, its momentum M g t (cases/scenes/free_slip_channel.yaml, tests/test_walls.cpp).
+PYTHONPATH="$src/scripts" /usr/bin/python3 - "$tmp/channel.vtp" <<'PY' || { echo "FAIL: writing the free-slip channel"; fail=1; }
+import sys
+from sph_scene.scene import Scene, FLUID, WALL
+nx, layers = 20, 4
+dx = 1.0 / nx
+s = Scene(2)
+for j in range(-layers, 10 + layers):  # fluid 0 <= y < 0.5, walls below and above
+    for i in range(nx):
+        wall = j < 0 or j >= 10
+        s.add(((i + 0.5) * dx, (j + 0.5) * dx), WALL if wall else FLUID, free_slip=wall)
+s.params = {"dx": dx, "box": [0.0, 1.0, -layers * dx, 0.5 + layers * dx], "periodic": [1, 0], "gravity": [1.0, 0.0],
+            "nu": 0.1, "rho0": 1.0, "U": 1.0, "free_surface": 0, "t_end": 0.2}
+s.write(sys.argv[1])
+PY
+expect_ok -case scene -scene_file "$tmp/channel.vtp" -solver wcsph -progress 0 -threads 1 -output_interval 0 -output_dir "$tmp/channel"
+tail -1 "$tmp/channel/timeseries.csv" | /usr/bin/python3 -c "
+import sys; t, m = (float(v) for v in sys.stdin.read().split(',')[1:5:3])
+sys.exit(0 if abs(m / (0.5 * t) - 1) < 1e-3 else 1)" && echo "ok: a .vtp scene's free-slip walls leave the driven channel a plug" ||
+  { echo "FAIL: a .vtp scene's free-slip channel: momentum is not M g t"; tail -1 "$tmp/channel/timeseries.csv"; fail=1; }
 make_scene cavity --nx 8 --wall-layers 2 -o "$tmp/thin.vtp"
 expect_error "scene file '$tmp/thin.vtp': the walls near \(.*\) are 2 dx thick, thinner than the kernel support \(3 dx\); add wall layers" $short -scene_file "$tmp/thin.vtp"
 # The kernel decides: the same walls are thick enough for a smaller support.

@@ -2,7 +2,8 @@
 """Writes a damaged copy of a good scene file, for the refusal tests.
 
 usage: bad_scene.py GOOD.vtp OUT.vtp DEFECT   (DEFECT: no_kind, kind_5, nan, outside, no_fluid, no_dx,
-       Velocity, velocity_text, velocity_1, lid_normal, dx_inf, t_end_negative)
+       Velocity, velocity_text, velocity_1, lid_normal, dx_inf, t_end_negative, free_slip_fluid,
+       free_slip_2)
 """
 import sys
 
@@ -50,6 +51,15 @@ elif defect in ("dx_inf", "t_end_negative"):
     a.SetName(name)
     a.InsertNextValue(value)
     poly.GetFieldData().AddArray(a)
+elif defect in ("free_slip_fluid", "free_slip_2"):  # a slip flag on a fluid particle, or not 0 or 1
+    a = vtk.vtkIntArray()
+    a.SetName("free_slip")
+    for i in range(kind.GetNumberOfTuples()):
+        a.InsertNextValue(0)
+    fluid = next(i for i in range(kind.GetNumberOfTuples()) if kind.GetValue(i) == 0)
+    wall = next(i for i in range(kind.GetNumberOfTuples()) if kind.GetValue(i) == 1)
+    a.SetValue(fluid, 1) if defect == "free_slip_fluid" else a.SetValue(wall, 2)
+    poly.GetPointData().AddArray(a)
 else:
     sys.exit(f"bad_scene.py: unknown defect {defect}")
 w = vtk.vtkXMLPolyDataWriter()
