@@ -1,7 +1,7 @@
 // The PPE matrix is built in place on compressed rows sized from the pair counts, so PETSc must never
 // allocate while it is filled (each malloc in MatSetValues copies the row storage; PETSc's -info reports
 // them as "Number of mallocs during MatSetValues()"): on a periodic lattice, a disordered one, and a
-// walled box with its extrapolation rows, pinned row and Dirichlet (free-surface) rows. The entries
+// walled box with its extrapolation rows and Dirichlet (free-surface) rows. The entries
 // themselves are checked against a brute-force evaluation of the equations.
 #include <gtest/gtest.h>
 
@@ -100,9 +100,9 @@ TEST(PpeAssembly, WalledBoxNeedsNoMallocs) {
 
 // A closed walled box can only balance a source whose mass-weighted sum is zero (no net mass leaves
 // it). A uniform source is all net source: spread over the fluid rows it cancels, so the pressure
-// must vanish everywhere, and not pile up at the one pinned particle (a point source there once put
+// must vanish everywhere, and not pile up at one particle (a point source at a pinned particle once put
 // a pressure jump of 90 next to it and expelled it through the wall, cavity Re 100 at nx 100).
-TEST(PpeAssembly, ClosedBoxSpreadsTheNetSourceInsteadOfPilingItOnThePinnedParticle) {
+TEST(PpeAssembly, ClosedBoxSpreadsTheNetSourceInsteadOfMakingAPointSource) {
   Scene2 s("lid_driven_cavity", 16);
   s.disorder(0.2);
   PressurePoisson<2> ppe;
@@ -123,8 +123,10 @@ using Dense = std::vector<std::vector<double>>;
 
 // The PPE matrix by brute force over all particle pairs (no neighbour list), from the equations in
 // pressure_poisson.hpp with the classic (Morris) Laplacian; `head` gets the wall rows' right-hand side.
-Dense ppe_by_brute_force(const Scene2& s, const Vector<2>& g, long long pinned, const std::vector<char>& surface,
-                         std::vector<double>& head) {
+// `regularised`: the fluid rows' diagonal shifted by eps times the mean diagonal, as a system without
+// Dirichlet rows is.
+Dense ppe_by_brute_force(const Scene2& s, const Vector<2>& g, const std::vector<char>& surface,
+                         std::vector<double>& head, bool regularised) {
   const Particles<2>& P = s.P;
   const std::size_t n = P.n_owned;
   const double h = s.kernel.h(), support = s.kernel.support_radius();
@@ -149,19 +151,25 @@ Dense ppe_by_brute_force(const Scene2& s, const Vector<2>& g, long long pinned, 
       for (double& a : A[i]) a *= -diag / sumW;
       head[i] *= diag / sumW;
       if (sumW == 0.0) diag = 1.0;
-    } else if (static_cast<long long>(i) == pinned || surface[i]) {
+    } else if (surface[i]) {
       std::fill(A[i].begin(), A[i].end(), 0.0);
       if (diag <= 0.0) diag = 1.0;
     }
     A[i][i] = diag;
+  }
+  if (regularised) {
+    double trace = 0.0;
+    for (std::size_t i = 0; i < n; ++i) trace += A[i][i];
+    for (std::size_t i = 0; i < n; ++i)
+      if (P.kind[i] == kFluid) A[i][i] += PressurePoisson<2>::regularisation * trace / static_cast<double>(n);
   }
   return A;
 }
 
 // The matrix, built row by row in parallel, sorted and merged, must be the one the equations in
 // pressure_poisson.hpp define, entry by entry: here recomputed by brute force over all particle pairs
-// (no neighbour list), for a disordered walled box with gravity, once closed (one pinned row) and once
-// with free-surface (Dirichlet) rows. The wall rows' right-hand side (the body-force head) is checked
+// (no neighbour list), for a disordered walled box with gravity, once closed (its fluid rows'
+// diagonal regularised) and once with free-surface (Dirichlet) rows. The wall rows' right-hand side (the body-force head) is checked
 // through the solution: A p must reproduce it.
 void expect_matrix_from_the_equations(bool with_dirichlet) {
   Scene2 s("lid_driven_cavity", 12);
@@ -178,24 +186,8 @@ void expect_matrix_from_the_equations(bool with_dirichlet) {
   ppe.use_nonsymmetric(true);
   ppe.assemble(P, s.nh, s.kernel, g, &surface);
 
-  // In a closed box: the fluid particle nearest the middle of the fluid's bounding box (ties: the
-  // smallest label), so that neighbours hold it on all sides.
-  long long pinned = -1;
-  if (!with_dirichlet) {
-    Vector<2> lo = Vector<2>::Constant(1e300), hi = -lo;
-    for (std::size_t i = 0; i < n; ++i)
-      if (P.kind[i] == kFluid) lo = lo.cwiseMin(P.x[i]), hi = hi.cwiseMax(P.x[i]);
-    const Vector<2> centre = 0.5 * (lo + hi);
-    for (std::size_t i = 0; i < n; ++i) {
-      if (P.kind[i] != kFluid) continue;
-      const double r = (P.x[i] - centre).squaredNorm();
-      const double best = pinned < 0 ? 1e300 : (P.x[pinned] - centre).squaredNorm();
-      if (r < best || (r == best && P.id[i] < P.id[pinned])) pinned = static_cast<long long>(i);
-    }
-    EXPECT_LT((P.x[pinned] - centre).norm(), s.dx);  // inside the fluid, not at a wall
-  }
   std::vector<double> head;
-  const Dense A = ppe_by_brute_force(s, g, pinned, surface, head);
+  const Dense A = ppe_by_brute_force(s, g, surface, head, !with_dirichlet);
 
   double scale = 0.0;
   for (std::size_t i = 0; i < n; ++i) scale = std::max(scale, std::abs(A[i][i]));
@@ -234,9 +226,8 @@ TEST(PpeAssembly, FreeSurfaceRowsMatrixIsTheOneTheEquationsDefine) { expect_matr
 
 // No source can balance a closed box unless it lies in the matrix's range, and this one's does not:
 // the wall rows make the matrix non-symmetric, so the part outside the range is not just the mean.
-// The pin drops one particle's continuity equation; the solution must satisfy every fluid particle's
-// equation, the pinned one's included, up to one and the same even source (what no pressure can
-// balance, spread over all of them), not leave the rest at the pinned particle as a point source.
+// The solution must satisfy every fluid particle's equation up to one and the same even source (what
+// no pressure can balance, spread over all of them), and every wall row exactly.
 TEST(PpeAssembly, ClosedBoxHoldsEveryContinuityEquationUpToOneEvenSource) {
   Scene2 s("lid_driven_cavity", 12);
   s.disorder(0.3);
@@ -252,7 +243,7 @@ TEST(PpeAssembly, ClosedBoxHoldsEveryContinuityEquationUpToOneEvenSource) {
   ppe.solve(source, P.m, p, false);
 
   std::vector<double> head;
-  const Dense A = ppe_by_brute_force(s, Vector<2>::Zero(), -1, std::vector<char>(n, 0), head);  // no row pinned
+  const Dense A = ppe_by_brute_force(s, Vector<2>::Zero(), std::vector<char>(n, 0), head, false);  // not regularised
   double lowest = 1e300, highest = -1e300, scale = 0.0, wall_residual = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     double Ap = 0.0;
@@ -276,8 +267,8 @@ TEST(PpeAssembly, ClosedBoxHoldsEveryContinuityEquationUpToOneEvenSource) {
 // The preconditioner's matrix (-ppe_pc_drop_tol, default 0.02) against a brute-force reading of its
 // definition, row by row from the pressure matrix: every off-diagonal entry at least tol |a_ii| kept
 // as it is, every weaker one moved onto the diagonal, so each row sums to what the matrix's row does.
-// A walled box with Dirichlet rows, on disordered particles, so wall, fluid, pinned and Dirichlet
-// rows all occur.
+// A walled box with Dirichlet rows, on disordered particles, so wall, fluid and Dirichlet rows all
+// occur.
 TEST(PpeAssembly, PreconditionerMatrixLumpsEachRowsWeakEntriesIntoItsDiagonal) {
   Scene2 s("lid_driven_cavity", 16);
   s.disorder(0.3);

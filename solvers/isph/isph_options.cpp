@@ -106,7 +106,7 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
   if (walls_)
     models["walls"] = {
         {"model", "AdamiWall"},
-        {"ppe", phys.free_surface ? "extrapolation rows" : "extrapolation rows, one fluid pressure pinned"}};
+        {"ppe", phys.free_surface ? "extrapolation rows" : "extrapolation rows, diagonal regularised"}};
   if (phys.free_surface) {
     models["free_surface"] = free_surface_model_.describe();
     models["free_surface"]["condition"] = surface_condition_names[static_cast<int>(surface_condition_)];

@@ -20,6 +20,12 @@ bool is_boomeramg(PC pc) {
   return htype && std::string(htype) == "boomeramg";
 }
 
+bool is_multilevel(PC pc) {
+  PetscBool mg = PETSC_FALSE;
+  SPH_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(pc), &mg, PCGAMG, PCMG, PCML, ""));
+  return mg || is_boomeramg(pc);
+}
+
 // The defaults, then every -ppe_ksp_* / -ppe_pc_* option from the database (viewers included:
 // KSPReset dropped those, which is why the KSP is made anew instead of reset).
 template <int D> void PressurePoisson<D>::create_ksp() {

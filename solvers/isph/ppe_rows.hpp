@@ -39,16 +39,16 @@ struct PpeRows {
   std::vector<PetscInt> di, dj, oi, oj;
   std::vector<PetscScalar> da, oa;
   std::vector<double> rhs;  // right-hand side of wall rows (the body-force head), 0 elsewhere
-  // The continuity equation that the pinned row replaces, as (global column, value) entries, repeated
-  // columns not merged; empty where this rank does not own the pinned row.
-  std::vector<std::pair<PetscInt, PetscScalar>> pinned_equation;
+  // Wall rows with no fluid in reach (p_w = 0, seen by nobody): the only rows of a closed domain's
+  // matrix that a constant pressure does not satisfy, so they lie outside its null vector.
+  std::vector<char> isolated;
 
   // Rows of the owned particles of P. Fluid rows hold the consistent Laplacian when `consistent`
   // holds its factors, else Cummins & Rudman's; wall rows hold the Adami extrapolation (with
   // wall_acceleration, per owned particle, where bodies move); rows flagged
-  // in `dirichlet` and the row `pinned` (-1: none) hold only their diagonal.
+  // in `dirichlet` hold only their diagonal.
   template <int D> void build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                              const Vector<D>& body_force, const std::vector<char>& dirichlet, long pinned,
+                              const Vector<D>& body_force, const std::vector<char>& dirichlet,
                               const std::vector<LaplacianCorrection<D>>* consistent = nullptr,
                               const SurfaceNodes<D>* nodes = nullptr, const WallImpact<D>* impact = nullptr,
                               const std::vector<Vector<D>>* wall_acceleration = nullptr);
@@ -92,7 +92,7 @@ inline void close_gaps(std::vector<PetscInt>& ptr, const std::vector<PetscInt>& 
 }  // namespace detail
 
 template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                     const Vector<D>& body_force, const std::vector<char>& dirichlet, long pinned,
+                                     const Vector<D>& body_force, const std::vector<char>& dirichlet,
                                      const std::vector<LaplacianCorrection<D>>* consistent,
                                      const SurfaceNodes<D>* nodes, const WallImpact<D>* impact,
                                      const std::vector<Vector<D>>* wall_acceleration) {
@@ -105,9 +105,8 @@ template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<
   auto has_entry = [&](int i, int j) {
     if (P.gid[j] == P.gid[i]) return false;
     if (P.kind[i] == kWall) return P.kind[j] == kFluid;
-    return static_cast<long>(i) != pinned && !dirichlet[i];
+    return !dirichlet[i];
   };
-  pinned_equation.clear();
 
   // Count, then lay the rows out: the diagonal comes first in its row until the rows are sorted.
   dlen_.assign(n, 1), olen_.assign(n, 0);
@@ -119,7 +118,7 @@ template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<
   for (std::size_t i = 0; i < n; ++i) di[i + 1] = di[i] + dlen_[i], oi[i + 1] = oi[i] + olen_[i];
   // One spare entry: PETSc is handed valid pointers even when a block is empty.
   dj.resize(di[n] + 1), da.resize(di[n] + 1), oj.resize(oi[n] + 1), oa.resize(oi[n] + 1);
-  rhs.assign(n, 0.0), head_.assign(n, 0.0);
+  rhs.assign(n, 0.0), head_.assign(n, 0.0), isolated.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) dj[di[i]] = P.gid[i] - first, da[di[i]] = 0.0, dlen_[i] = 1, olen_[i] = 0;
 
   // Fluid rows: c_ij off the diagonal, -sum_j c_ij on it; row i is div(grad p / rho)_i times -m_i.
@@ -131,7 +130,6 @@ template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<
                          ? -P.m[i] / P.rho[i] * consistent_laplacian_coefficient((*consistent)[i], P.m[j] / P.rho[j], g)
                          : P.m[i] * ppe_pair_coefficient(P.m[j], P.rho[i], P.rho[j], morris_factor(g, K.h()));
     da[di[i]] -= c;
-    if (static_cast<long>(i) == pinned) pinned_equation.emplace_back(P.gid[j], c);
     if (!has_entry(i, j)) return;
     const double value = P.kind[i] == kWall ? g.W : c;
     if (owned_column(j)) dj[di[i] + dlen_[i]] = P.gid[j] - first, da[di[i] + dlen_[i]++] = value;
@@ -172,13 +170,12 @@ template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<
         for (PetscInt k = 1; k < dlen_[i]; ++k) d[k] *= scale;
         for (PetscInt k = 0; k < olen_[i]; ++k) o[k] *= scale;
         if (sumW > 0.0) rhs[i] = diag * head_[i] / sumW;
-        else d[0] = 1.0;
+        else d[0] = 1.0, isolated[i] = 1;
       } else if (surface_row(i) && !dirichlet[i]) {
         // The node as one more neighbour (p_s = 0 adds nothing to the right-hand side).
         d[0] += consistent ? P.m[i] / P.rho[i] * surface_node_coefficient((*consistent)[i], *nodes, i)
                            : -P.m[i] * 2.0 * nodes->volume[i] / P.rho[i] * nodes->morris_factor(K.h());
-      } else if (static_cast<long>(i) == pinned || dirichlet[i]) {
-        if (static_cast<long>(i) == pinned) pinned_equation.emplace_back(P.gid[i], diag);
+      } else if (dirichlet[i]) {
         d[0] = diag > 0.0 ? diag : 1.0;
       }
       const PetscInt dn = detail::sort_and_merge(&dj[di[i]], d, dlen_[i], scratch);

@@ -1,7 +1,6 @@
 #include "solvers/isph/pressure_poisson.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -13,40 +12,6 @@
 
 namespace sph {
 
-namespace {
-
-// The owned fluid particle nearest the centre of the fluid's bounding box (-1 if another rank owns
-// it); ties go to the smallest label. Every quantity is an exact min/max over the ranks, so the choice
-// does not depend on the partition. Why the middle: an interior particle is held by neighbours on all
-// sides should the restoring solve (spread_pinned_residual) be loose, where a corner one was driven out
-// through the walls (docs/verification/lid_driven_cavity_3d.md, "History").
-template <int D> long central_fluid_particle(const Particles<D>& P) {
-  const std::size_t n = P.n_owned;
-  double lo[D], hi[D];
-  for (int d = 0; d < D; ++d) lo[d] = std::numeric_limits<double>::max(), hi[d] = -lo[d];
-  for (std::size_t i = 0; i < n; ++i)
-    if (P.kind[i] == kFluid)
-      for (int d = 0; d < D; ++d) lo[d] = std::min(lo[d], P.x[i][d]), hi[d] = std::max(hi[d], P.x[i][d]);
-  MPI_Allreduce(MPI_IN_PLACE, lo, D, MPI_DOUBLE, MPI_MIN, PETSC_COMM_WORLD);
-  MPI_Allreduce(MPI_IN_PLACE, hi, D, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
-  Vector<D> centre;
-  for (int d = 0; d < D; ++d) centre[d] = 0.5 * (lo[d] + hi[d]);
-
-  double nearest = std::numeric_limits<double>::max();
-  for (std::size_t i = 0; i < n; ++i)
-    if (P.kind[i] == kFluid) nearest = std::min(nearest, (P.x[i] - centre).squaredNorm());
-  MPI_Allreduce(MPI_IN_PLACE, &nearest, 1, MPI_DOUBLE, MPI_MIN, PETSC_COMM_WORLD);
-  long long label = std::numeric_limits<long long>::max();
-  for (std::size_t i = 0; i < n; ++i)
-    if (P.kind[i] == kFluid && (P.x[i] - centre).squaredNorm() == nearest) label = std::min<long long>(label, P.id[i]);
-  MPI_Allreduce(MPI_IN_PLACE, &label, 1, MPI_LONG_LONG, MPI_MIN, PETSC_COMM_WORLD);
-  for (std::size_t i = 0; i < n; ++i)
-    if (P.kind[i] == kFluid && P.id[i] == label) return static_cast<long>(i);
-  return -1;
-}
-
-}  // namespace
-
 template <int D> PressurePoisson<D>::~PressurePoisson() {
   destroy_system();
   if (ksp_) KSPDestroy(&ksp_);
@@ -57,8 +22,7 @@ template <int D> void PressurePoisson<D>::destroy_system() {
   if (nullspace_) MatNullSpaceDestroy(&nullspace_);
   if (P_) MatDestroy(&P_);
   if (A_) MatDestroy(&A_);
-  if (pinned_equation_) VecDestroy(&pinned_equation_);
-  if (spread_) VecDestroy(&spread_);
+  if (null_vector_) VecDestroy(&null_vector_);
   if (b_) VecDestroy(&b_);
   if (x_) VecDestroy(&x_);
 }
@@ -90,26 +54,21 @@ template <int D> void PressurePoisson<D>::assemble(const Particles<D>& P, const 
   for (std::size_t i = 0; i < n; ++i) any_wall |= P.kind[i] == kWall;
   MPI_Allreduce(MPI_IN_PLACE, &any_wall, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
 
-  // A non-symmetric singular matrix (no Dirichlet rows) has an unknown left null space, so the
-  // right-hand side cannot be projected onto its range.
-  //  - Walled domains pin one fluid particle to p = 0: dropping its continuity equation makes the
-  //    system regular, and spread_pinned_residual restores that equation after each solve. The
-  //    pinned particle is the one nearest the middle of the fluid (see central_fluid_particle).
-  //  - Periodic domains (the consistent Laplacian) add eps * mean(diag) to the diagonal instead. With
-  //    p = c 1 + q, the constant part c absorbs the part of b outside the range, which the q part
-  //    then sees spread evenly over all rows; q is changed by O(eps) and c is removed afterwards.
-  //    A pin would put all of that part on one particle as a point source (docs/pressure-solve.md,
-  //    "Design measurements").
-  pinned_ = -1;
-  closed_ = nonsymmetric_ && !any_dirichlet && any_wall;
-  regularised_ = nonsymmetric_ && !any_dirichlet && !any_wall;
-  if (closed_) pinned_ = central_fluid_particle(P);
+  // A non-symmetric singular matrix (no Dirichlet rows: a periodic or a closed walled domain) has an
+  // unknown left null space, so the right-hand side cannot be projected onto its range. Its fluid rows
+  // get eps * mean(diag) added to their diagonal instead. With p = c v + q (v the null vector: 1 on
+  // the fluid and on the wall rows that see it), c absorbs the part of b outside the range, which q
+  // sees spread evenly over the fluid rows, as one even source; the wall rows hold exactly. q is
+  // changed by O(eps) and c v is removed afterwards. A pin would put all of that part on one particle
+  // as a point source, and restoring its equation cost one more solve per matrix (docs/pressure-solve.md,
+  // "Design measurements").
+  regularised_ = nonsymmetric_ && !any_dirichlet;
 
   // The matrix may be a view of the rows' arrays: it goes first, with the KSP (and its
   // preconditioner's references to it).
   destroy_system();
   SPH_PETSC(KSPDestroy(&ksp_));
-  rows_.build(P, nh.list(), K, body_force, dirichlet_, pinned_, consistent, nodes, impact, wall_acceleration);
+  rows_.build(P, nh.list(), K, body_force, dirichlet_, consistent, nodes, impact, wall_acceleration);
   // A new KSP for each new matrix, made from the options database: every option, viewers included,
   // then acts on every solve. Keeping one KSP saves no set-up time (the preconditioner is rebuilt for
   // each new matrix either way), and some preconditioners cannot be set up again on another matrix
@@ -147,51 +106,21 @@ template <int D> void PressurePoisson<D>::assemble(const Particles<D>& P, const 
     SPH_PETSC(MatGetDiagonal(A_, x_));
     SPH_PETSC(VecSum(x_, &trace));
     SPH_PETSC(VecGetSize(x_, &rows));
-    SPH_PETSC(MatShift(A_, regularisation * trace / rows));
-    if (P_) SPH_PETSC(MatShift(P_, regularisation * trace / rows));
+    const PetscScalar shift = regularisation * trace / rows;
+    SPH_PETSC(VecDuplicate(x_, &null_vector_));
+    PetscScalar *d, *v;
+    SPH_PETSC(VecGetArray(x_, &d));
+    SPH_PETSC(VecGetArray(null_vector_, &v));
+    for (std::size_t i = 0; i < n; ++i) {
+      d[i] = kind_[i] == kFluid ? shift : 0.0;
+      v[i] = rows_.isolated[i] ? 0.0 : 1.0;
+    }
+    SPH_PETSC(VecRestoreArray(x_, &d));
+    SPH_PETSC(VecRestoreArray(null_vector_, &v));
+    SPH_PETSC(MatDiagonalSet(A_, x_, ADD_VALUES));
+    if (P_) SPH_PETSC(MatDiagonalSet(P_, x_, ADD_VALUES));
   }
   SPH_PETSC(KSPSetOperators(ksp_, A_, P_ ? P_ : A_));
-  if (closed_) prepare_spread();
-}
-
-// A closed domain's equations are not all satisfiable: the discrete source has a part outside the
-// matrix's range (the left null vector y is not known: the wall rows and the consistent Laplacian
-// make A non-symmetric). The mean removed by remove_net_source is most of it, not all. With one
-// equation dropped for the pin, the rest lands on the pinned particle as a point source, a pressure spike
-// that makes the results depend on where the pin is (docs/verification/lid_driven_cavity.md, "The walls
-// at rest in the source, and the closed domain's pinned pressure"). So the pinned equation is restored
-// instead: p' = p - lambda z, where A z = e (1 on the fluid rows but the pinned one), satisfies every
-// fluid row up to the same even source lambda, the pinned one included, when
-// lambda = (a_k . p - b_k) / (a_k . z - 1).
-// z costs one solve per matrix, shared by the step's solves.
-template <int D> void PressurePoisson<D>::prepare_spread() {
-  SPH_PETSC(VecDuplicate(x_, &pinned_equation_));
-  SPH_PETSC(VecSet(pinned_equation_, 0.0));
-  for (const auto& [column, value] : rows_.pinned_equation)
-    SPH_PETSC(VecSetValue(pinned_equation_, column, value, ADD_VALUES));
-  SPH_PETSC(VecAssemblyBegin(pinned_equation_));
-  SPH_PETSC(VecAssemblyEnd(pinned_equation_));
-
-  SPH_PETSC(VecDuplicate(x_, &spread_));
-  SPH_PETSC(VecSet(spread_, 0.0));
-  PetscScalar* e;
-  PetscInt n;
-  SPH_PETSC(VecGetLocalSize(b_, &n));
-  SPH_PETSC(VecGetArray(b_, &e));
-  for (PetscInt i = 0; i < n; ++i) e[i] = kind_[i] == kFluid && i != pinned_ ? 1.0 : 0.0;
-  SPH_PETSC(VecRestoreArray(b_, &e));
-  announce_solve("closed-domain spread (A z = 1)");
-  SPH_PETSC(KSPSolve(ksp_, b_, spread_));
-  view_solve();
-  KSPConvergedReason reason;
-  SPH_PETSC(KSPGetConvergedReason(ksp_, &reason));
-  SPH_PETSC(KSPGetIterationNumber(ksp_, &spread_iterations_));
-  if (reason < 0)
-    throw Error(std::string("pressure Poisson solve for the closed domain's even source did not converge (") +
-                KSPConvergedReasons[reason] +
-                "); try -ppe_ksp_max_it, another -ppe_ksp_type/-ppe_pc_type, or a smaller -cfl");
-  SPH_PETSC(VecDot(pinned_equation_, spread_, &spread_denominator_));
-  spread_denominator_ -= 1.0;
 }
 
 // PETSc prints -ppe_ksp_view and the like itself; -ppe_pc_view (the PC's prefix is the KSP's) is left
@@ -211,24 +140,15 @@ template <int D> void PressurePoisson<D>::announce_solve(const char* which) cons
   if (announce_solves_) SPH_PETSC(PetscPrintf(PETSC_COMM_WORLD, "PPE %s solve\n", which));
 }
 
-// x holds the pinned system's solution; b_k, the pinned row's own right-hand side, is `pinned_rhs`.
-template <int D> void PressurePoisson<D>::spread_pinned_residual(double pinned_rhs) {
-  PetscScalar pinned_lhs;
-  SPH_PETSC(VecDot(pinned_equation_, x_, &pinned_lhs));
-  SPH_PETSC(VecAXPY(x_, -(pinned_lhs - pinned_rhs) / spread_denominator_, spread_));
-}
-
-// In a closed walled domain the continuity equations of the fluid, summed, say that no net mass
-// leaves it: the mass-weighted sources must add up to zero, or no pressure satisfies them all. Wall
-// ends (where a lid meets a corner) and round-off leave a net source; with one equation dropped for
-// the pinned particle, all of it would land on that particle as a point source, whose pressure
-// spike can expel it through the wall (docs/verification/lid_driven_cavity.md, "Design measurements").
-// So the net source is spread evenly over the fluid rows instead.
-template <int D> double PressurePoisson<D>::remove_net_source(const std::vector<double>& source,
+// In a closed walled or periodic domain the continuity equations of the fluid, summed, say that no
+// net mass leaves it: the mass-weighted sources must add up to zero, or no pressure satisfies them
+// all. Wall ends (where a lid meets a corner) and round-off leave a net source. Its mean, most of the
+// part outside the matrix's range, is taken off every fluid row here; the regularisation spreads the
+// rest (see assemble). Left on one particle, it made a pressure spike that expelled it through the
+// wall (docs/verification/lid_driven_cavity.md, "Design measurements").
+template <int D> void PressurePoisson<D>::remove_net_source(const std::vector<double>& source,
                                                               const std::vector<double>& mass, PetscScalar* b,
                                                               PetscInt n) const {
-  // The pinned particle's continuity equation is dropped from the system but still counts here, and
-  // its share of the mean is part of the right-hand side that spread_pinned_residual restores.
   double sums[2] = {0.0, 0.0};  // sum of -m s over the fluid particles, their number
   for (PetscInt i = 0; i < n; ++i) {
     if (kind_[i] != kFluid || dirichlet_[i]) continue;
@@ -236,11 +156,29 @@ template <int D> double PressurePoisson<D>::remove_net_source(const std::vector<
     sums[1] += 1.0;
   }
   MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-  if (sums[1] == 0.0) return 0.0;
+  if (sums[1] == 0.0) return;
   const double mean = sums[0] / sums[1];
   for (PetscInt i = 0; i < n; ++i)
-    if (kind_[i] == kFluid && i != pinned_ && !dirichlet_[i]) b[i] -= mean;
-  return mean;
+    if (kind_[i] == kFluid && !dirichlet_[i]) b[i] -= mean;
+}
+
+// The solution less c v, c its mean over the fluid rows: the part along the null vector v that the
+// regularisation let grow (see assemble) carries no physics. The fluid's mean pressure is zero.
+template <int D> void PressurePoisson<D>::remove_null_part() {
+  PetscScalar *x;
+  const PetscScalar* v;
+  PetscInt n;
+  SPH_PETSC(VecGetLocalSize(x_, &n));
+  SPH_PETSC(VecGetArray(x_, &x));
+  SPH_PETSC(VecGetArrayRead(null_vector_, &v));
+  double sums[2] = {0.0, 0.0};  // sum of x over the fluid rows, their number
+  for (PetscInt i = 0; i < n; ++i)
+    if (kind_[i] == kFluid) sums[0] += x[i], sums[1] += 1.0;
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  const double c = sums[1] > 0.0 ? sums[0] / sums[1] : 0.0;
+  for (PetscInt i = 0; i < n; ++i) x[i] -= c * v[i];
+  SPH_PETSC(VecRestoreArrayRead(null_vector_, &v));
+  SPH_PETSC(VecRestoreArray(x_, &x));
 }
 
 template <int D> StepReport PressurePoisson<D>::solve(const std::vector<double>& source,
@@ -252,22 +190,11 @@ template <int D> StepReport PressurePoisson<D>::solve(const std::vector<double>&
   SPH_PETSC(VecGetArray(b_, &b));
   SPH_PETSC(VecGetArray(x_, &x));
   for (PetscInt i = 0; i < n; ++i) {
-    const bool fluid_row = kind_[i] == kFluid && i != pinned_ && !dirichlet_[i];
+    const bool fluid_row = kind_[i] == kFluid && !dirichlet_[i];
     b[i] = fluid_row ? -mass[i] * source[i] : correction ? 0.0 : rows_.rhs[i];
     x[i] = use_guess ? p[i] : 0.0;
   }
-  double pinned_rhs = 0.0;  // b_k, the pinned row's right-hand side were it not pinned
-  if (closed_) {
-    const double mean = remove_net_source(source, mass, b, n);
-    if (pinned_ >= 0) pinned_rhs = -mass[pinned_] * source[pinned_] - mean;
-    MPI_Allreduce(MPI_IN_PLACE, &pinned_rhs, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-  }
-  if (regularised_) {  // most of the part of b outside the range is its mean: spread it evenly
-    double sums[2] = {0.0, static_cast<double>(n)};
-    for (PetscInt i = 0; i < n; ++i) sums[0] += b[i];
-    MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-    for (PetscInt i = 0; i < n; ++i) b[i] -= sums[0] / sums[1];
-  }
+  if (regularised_) remove_net_source(source, mass, b, n);
   SPH_PETSC(VecRestoreArray(b_, &b));
   SPH_PETSC(VecRestoreArray(x_, &x));
   // The discrete divergence of u* need not sum to zero exactly: project out the part of the
@@ -286,14 +213,7 @@ template <int D> StepReport PressurePoisson<D>::solve(const std::vector<double>&
   if (correction) SPH_PETSC(KSPSetTolerances(ksp_, rtol, atol, dtol, max_it));
   view_solve();
   if (nullspace_) SPH_PETSC(MatNullSpaceRemove(nullspace_, x_));
-  if (closed_) spread_pinned_residual(pinned_rhs);
-  if (regularised_) {  // the constant part c (see assemble) carries no physics
-    PetscScalar sum;
-    PetscInt rows;
-    SPH_PETSC(VecSum(x_, &sum));
-    SPH_PETSC(VecGetSize(x_, &rows));
-    SPH_PETSC(VecShift(x_, -sum / rows));
-  }
+  if (regularised_) remove_null_part();
 
   StepReport report;
   KSPConvergedReason reason;
@@ -302,13 +222,20 @@ template <int D> StepReport PressurePoisson<D>::solve(const std::vector<double>&
   SPH_PETSC(KSPGetIterationNumber(ksp_, &its));
   SPH_PETSC(KSPGetResidualNorm(ksp_, &report.linear_residual));
   report.linear_iterations = static_cast<int>(its);
-  if (!correction) report.linear_iterations += static_cast<int>(spread_iterations_), spread_iterations_ = 0;
   report.linear_reason = static_cast<int>(reason);
   if (reason < 0) {
     std::ostringstream msg;
     msg << "pressure Poisson solve did not converge (" << KSPConvergedReasons[reason] << " after " << its
-        << " iterations, residual " << report.linear_residual
-        << "); try -ppe_ksp_max_it, another -ppe_ksp_type/-ppe_pc_type, or a smaller -cfl";
+        << " iterations, residual " << report.linear_residual << ")";
+    PC pc;
+    SPH_PETSC(KSPGetPC(ksp_, &pc));
+    // A one-level preconditioner leaves the regularised system's near-null mode (eigenvalue eps) to
+    // the Krylov method, which cannot reduce it where the source has a part outside the range.
+    if (regularised_ && !is_multilevel(pc))
+      msg << ": with no free surface the pressure system is singular, regularised by a tiny diagonal shift, and "
+             "a one-level preconditioner stalls on the near-constant mode that leaves; use a multigrid one "
+             "(-ppe_pc_type hypre, the default, or gamg)";
+    else msg << "; try -ppe_ksp_max_it, another -ppe_ksp_type/-ppe_pc_type, or a smaller -cfl";
     throw Error(msg.str());
   }
   const PetscScalar* xs;

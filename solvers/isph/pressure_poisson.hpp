@@ -22,10 +22,9 @@
 // so fluid rows see walls through the same Laplacian and the wall pressure makes the normal pressure
 // gradient balance the body force (the homogeneous Neumann condition without one). These rows are
 // not symmetric: the default KSP becomes GMRES (BoomerAMG still preconditions it well: the matrix
-// stays an M-matrix with zero row sums), and a closed domain pins one fluid pressure instead of a
-// null space (see assemble), then restores the pinned particle's continuity equation with one more
-// solve per matrix, so that what no pressure can balance is spread evenly over the fluid rather
-// than left at the pinned particle (see prepare_spread).
+// stays an M-matrix with zero row sums), and a closed domain's singular system is regularised instead
+// of given a null space (see assemble), so that what no pressure can balance is spread evenly over
+// the fluid rows.
 //
 // Free surface: particles flagged as on the surface get the Dirichlet row p = 0 (Lind et al. 2012);
 // the pressure level is then fixed and neither a null space nor a pin is needed.
@@ -41,6 +40,8 @@ namespace sph {
 
 // Whether a preconditioner is hypre's BoomerAMG (ppe_krylov.cpp).
 bool is_boomeramg(PC pc);
+// Whether it is a multigrid (BoomerAMG, GAMG, MG, ML): one that resolves a near-null constant mode.
+bool is_multilevel(PC pc);
 
 template <int D> class PressurePoisson {
  public:
@@ -65,8 +66,8 @@ template <int D> class PressurePoisson {
   static RenamedOption renamed_option(const std::string& option);
 
   // Tells the solver whether the matrix will be non-symmetric (walls, free surface, the consistent
-  // Laplacian): the default KSP becomes GMRES unless the user chose one, and a singular system pins
-  // one pressure instead of attaching a null space.
+  // Laplacian): the default KSP becomes GMRES unless the user chose one, and a singular system is
+  // regularised instead of given a null space.
   void use_nonsymmetric(bool nonsymmetric);
   // The same before set_from_options, from what the options already say (the consistent operators),
   // so that -help shows the defaults a run gets (GMRES, right preconditioning); makes no KSP.
@@ -81,7 +82,8 @@ template <int D> class PressurePoisson {
 
   // Solves div(grad p / rho) = source (one value per owned particle). With use_guess, p holds the
   // initial guess on entry (the previous step's pressure: a good one); otherwise the KSP starts from
-  // zero. On exit p holds the solution, with zero mean. Throws sph::Error when the KSP does not
+  // zero. On exit p holds the solution; a system without Dirichlet rows gives it a zero mean over
+  // the fluid. Throws sph::Error when the KSP does not
   // converge. A `correction` solve (a second one with the same matrix, for a pressure increment) gives
   // the wall rows a zero right-hand side (their body-force head is already in the first pressure) and
   // stops at the first solve's absolute accuracy (rtol times that solve's right-hand-side norm).
@@ -94,20 +96,20 @@ template <int D> class PressurePoisson {
   void release();
 
   ::Mat matrix() const { return A_; }
+  // eps: a singular non-symmetric system's fluid rows get eps times its mean diagonal added (see assemble).
+  static constexpr double regularisation = 1e-8;
   // The matrix BoomerAMG is built from: A's rows with their weak entries lumped (-ppe_pc_drop_tol), or A.
   ::Mat preconditioner_matrix() const { return P_ ? P_ : A_; }
   nlohmann::json describe() const;
 
  private:
-  // Closed domains: spreads the net mass source over the fluid rows of b and returns what each row
-  // lost (see the .cpp).
-  double remove_net_source(const std::vector<double>& source, const std::vector<double>& mass, PetscScalar* b,
-                           PetscInt n) const;
-  // Closed domains: the pinned equation and the response to an even source (see the .cpp).
-  void prepare_spread();
+  // Singular systems (see assemble): takes the net mass source's mean off the fluid rows of b, and
+  // the part along the null vector off the solution.
+  void remove_net_source(const std::vector<double>& source, const std::vector<double>& mass, PetscScalar* b,
+                         PetscInt n) const;
+  void remove_null_part();
   void view_solve() const;
   void announce_solve(const char* which) const;
-  void spread_pinned_residual(double pinned_rhs);
   void destroy_system();
   void create_ksp();
   void right_preconditioning();
@@ -127,14 +129,8 @@ template <int D> class PressurePoisson {
   PetscViewer mat_viewer_ = nullptr;  // -mat_view (see set_from_options)
   bool announce_solves_ = false;      // a KSP viewer is on: each solve prints which one it is
   PetscViewerFormat mat_format_ = PETSC_VIEWER_DEFAULT;
-  long pinned_ = -1;                              // local row pinned to p = 0 (closed domains), -1: none
-  bool closed_ = false;                           // walls, no Dirichlet rows: one fluid pressure is pinned on some rank
-  ::Vec pinned_equation_ = nullptr;               // closed domains: the pinned row's continuity equation, a_k
-  ::Vec spread_ = nullptr;                        // z with A z = 1 on the fluid rows but the pinned one, 0 elsewhere
-  PetscScalar spread_denominator_ = 0.0;          // a_k . z - 1
-  PetscInt spread_iterations_ = 0;                // the KSP iterations z took, counted with the next solve
-  bool regularised_ = false;                      // periodic and non-symmetric: the diagonal is shifted (see assemble)
-  static constexpr double regularisation = 1e-8;  // eps: the shift over the mean diagonal
+  bool regularised_ = false;      // non-symmetric and singular: the fluid rows' diagonal is shifted (see assemble)
+  ::Vec null_vector_ = nullptr;  // v: 1 on the fluid rows and the wall rows that see fluid, 0 elsewhere
   std::vector<int> kind_;                         // particle kind of each owned row
   std::vector<char> dirichlet_;                   // rows with p = 0
   PpeRows rows_;                                  // the matrix rows, and the right-hand side of wall rows
