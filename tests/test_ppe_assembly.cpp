@@ -169,8 +169,8 @@ Dense ppe_by_brute_force(const Scene2& s, const Vector<2>& g, const std::vector<
 // The matrix, built row by row in parallel, sorted and merged, must be the one the equations in
 // pressure_poisson.hpp define, entry by entry: here recomputed by brute force over all particle pairs
 // (no neighbour list), for a disordered walled box with gravity, once closed (its fluid rows'
-// diagonal regularised) and once with free-surface (Dirichlet) rows. The wall rows' right-hand side (the body-force head) is checked
-// through the solution: A p must reproduce it.
+// diagonal regularised) and once with free-surface (Dirichlet) rows. The wall rows' right-hand side
+// (the body-force head) is checked through the solution: A p must reproduce it.
 void expect_matrix_from_the_equations(bool with_dirichlet) {
   Scene2 s("lid_driven_cavity", 12);
   s.disorder(0.3);

@@ -147,8 +147,8 @@ template <int D> void PressurePoisson<D>::announce_solve(const char* which) cons
 // rest (see assemble). Left on one particle, it made a pressure spike that expelled it through the
 // wall (docs/verification/lid_driven_cavity.md, "Design measurements").
 template <int D> void PressurePoisson<D>::remove_net_source(const std::vector<double>& source,
-                                                              const std::vector<double>& mass, PetscScalar* b,
-                                                              PetscInt n) const {
+                                                            const std::vector<double>& mass, PetscScalar* b,
+                                                            PetscInt n) const {
   double sums[2] = {0.0, 0.0};  // sum of -m s over the fluid particles, their number
   for (PetscInt i = 0; i < n; ++i) {
     if (kind_[i] != kFluid || dirichlet_[i]) continue;
@@ -165,7 +165,7 @@ template <int D> void PressurePoisson<D>::remove_net_source(const std::vector<do
 // The solution less c v, c its mean over the fluid rows: the part along the null vector v that the
 // regularisation let grow (see assemble) carries no physics. The fluid's mean pressure is zero.
 template <int D> void PressurePoisson<D>::remove_null_part() {
-  PetscScalar *x;
+  PetscScalar* x;
   const PetscScalar* v;
   PetscInt n;
   SPH_PETSC(VecGetLocalSize(x_, &n));

@@ -129,12 +129,12 @@ template <int D> class PressurePoisson {
   PetscViewer mat_viewer_ = nullptr;  // -mat_view (see set_from_options)
   bool announce_solves_ = false;      // a KSP viewer is on: each solve prints which one it is
   PetscViewerFormat mat_format_ = PETSC_VIEWER_DEFAULT;
-  bool regularised_ = false;      // non-symmetric and singular: the fluid rows' diagonal is shifted (see assemble)
+  bool regularised_ = false;     // non-symmetric and singular: the fluid rows' diagonal is shifted (see assemble)
   ::Vec null_vector_ = nullptr;  // v: 1 on the fluid rows and the wall rows that see fluid, 0 elsewhere
-  std::vector<int> kind_;                         // particle kind of each owned row
-  std::vector<char> dirichlet_;                   // rows with p = 0
-  PpeRows rows_;                                  // the matrix rows, and the right-hand side of wall rows
-  PpeRows pc_rows_;                               // P_'s rows
+  std::vector<int> kind_;        // particle kind of each owned row
+  std::vector<char> dirichlet_;  // rows with p = 0
+  PpeRows rows_;                 // the matrix rows, and the right-hand side of wall rows
+  PpeRows pc_rows_;              // P_'s rows
   // -ppe_pc_drop_tol (see assemble and lump_weak_entries). The default is the fastest pressure solve
   // across 2D and 3D scenes, lattices and disordered particles (docs/pressure-solve.md, "The
   // preconditioner's matrix").
