@@ -91,6 +91,7 @@ std::map<std::string, double> EllipticalDrop::errors(const Particles<2>& P, doub
   const double a = R_ * std::sqrt(x2 / x2_0_), b = R_ * std::sqrt(y2 / y2_0_);
   const auto [a_ref, b_ref] = semi_axes(t);
   return {{"semi_axis_a", a},
+          {"semi_axis_b", b},
           {"semi_axis_rel", std::abs(a - a_ref) / a_ref},
           {"semi_axis_b_rel", std::abs(b - b_ref) / b_ref}};
 }

@@ -8,7 +8,7 @@
 // to round-off, is the reference. The particles move as the flow does, x(t) = (a / R) x(0), so the
 // drop's semi-axis is read off its particles' second moments: a = R sqrt(<x^2>(t) / <x^2>(0)), exact
 // for that linear map on any lattice. Errors: semi_axis_rel = |a - a_ODE| / a_ODE; semi_axis_b_rel the
-// same for b; also reported: semi_axis_a.
+// same for b; also reported: semi_axis_a, semi_axis_b.
 #include "src/run/case.hpp"
 
 namespace sph {
