@@ -101,12 +101,18 @@ template <int D> void SceneCase<D>::set_from_options() {
   resolve_parameters();
   check_particles_in_box();
 
-  // Free surface and wall thickness from the particles' arrangement (every rank, the whole scene).
-  std::vector<Vector<D>> x(file_.x.size());
-  std::vector<int> kind(file_.x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    for (int a = 0; a < D; ++a) x[i][a] = file_.x[i][a];
-    kind[i] = file_.kind[i] == kSceneFluid ? kFluid : kWall;
+  // Free surface and wall thickness from the particles' arrangement (every rank, the whole scene). A
+  // thin plate's layers stand for a solid beside each face that the arrangement does not show (they
+  // overlap the other side's fluid): left out here. They come last (add_plate_layers), so the indices
+  // of x are file_'s.
+  std::vector<Vector<D>> x;
+  std::vector<int> kind;
+  for (std::size_t i = 0; i < file_.x.size(); ++i) {
+    if (!plate_face_.empty() && plate_face_[i] != 0) continue;
+    Vector<D> xi;
+    for (int a = 0; a < D; ++a) xi[a] = file_.x[i][a];
+    x.push_back(xi);
+    kind.push_back(file_.kind[i] == kSceneFluid ? kFluid : kWall);
   }
   const PointGrid<D> grid(x, box_, dx_);
   const std::vector<int> count = neighbour_counts(grid, x, dx_);
@@ -141,6 +147,14 @@ template <int D> void SceneCase<D>::read_file() {
   if (std::find(scene.free_slip.begin(), scene.free_slip.end(), 1) != scene.free_slip.end())
     free_slip_ = std::move(scene.free_slip);
   surfaces_ = std::move(scene.surfaces);
+  if (!scene.plates.empty()) {
+    plate_face_ = std::move(scene.plate_face);
+    for (const auto& q : scene.plates) {
+      typename Screens<D>::Plate plate;
+      for (int a = 0; a < D; ++a) plate.a[a] = a < 2 ? q[a] : 0.0, plate.b[a] = a < 2 ? q[2 + a] : 0.0;
+      plates_.push_back(plate);
+    }
+  }
   for (const MotionSpec& spec : scene.motions) {
     PrescribedMotion<D> m;
     using Type = typename PrescribedMotion<D>::Type;
@@ -337,6 +351,7 @@ template <int D> void SceneCase<D>::create(Particles<D>& P, Domain<D>& domain) c
     all.add(x, v, mass, physics_.rho0, file_.p[i], file_.kind[i] == kSceneFluid ? kFluid : kWall);
   }
   P = rank_share(all);
+  if (!plates_.empty()) domain.screens = std::make_shared<const Screens<D>>(plates_, plate_face_);
 }
 
 template <int D> int SceneCase<D>::resolution() const { return std::max(1, static_cast<int>(std::lround(1.0 / dx_))); }

@@ -69,6 +69,10 @@ template <int D> class SceneCase : public Case<D> {
   std::vector<std::string> bodies_;  // YAML scenes: the names of the bodies
   std::vector<PrescribedMotion<D>> motions_;  // YAML scenes: per body
   std::vector<SurfaceMesh> surfaces_;          // YAML scenes: per body, at t = 0
+  // YAML scenes: the thin plates (src/neighbours/screens.hpp), and per particle the plate face it
+  // stands for (0: none; empty without plates).
+  std::vector<typename Screens<D>::Plate> plates_;
+  std::vector<std::int8_t> plate_face_;
   Domain<D> box_;
   Physics<D> physics_;
   double dx_ = 0.0, t_end_ = 1.0, walls_ = 0.0;

@@ -33,8 +33,15 @@ std::string number_text(double v) {
 enum class Role { Fluid, Wall, Body };
 
 // A region's keys that hold an inline shape's parameters (Reader::inline_shape).
-const std::set<std::string> kInlineParameters = {"of",     "bounds", "vertices", "file",  "centre",
-                                                 "center", "radius", "ends",     "point", "normal"};
+const std::set<std::string> kInlineParameters = {"of",   "bounds", "vertices", "file", "centre", "center",   "radius",
+                                                 "ends", "point",  "normal",   "from", "to",     "thickness"};
+
+// A thin plate (2D): its mid-line from a to b and its thickness, which may be below the kernel
+// support (src/neighbours/screens.hpp).
+struct PlateSpec {
+  Point3 a = Point3::Zero(), b = Point3::Zero();
+  double thickness = 0.0;
+};
 
 struct Region {
   Role role = Role::Fluid;
@@ -46,6 +53,8 @@ struct Region {
   double top = 0.0;  // hydrostatic: the region's highest point along -g
   MotionSpec motion;
   bool free_slip = false;  // walls and bodies: slip: free
+  bool is_plate = false;   // shape: plate (then `shape` is its outline, for the bounds)
+  PlateSpec plate;
 };
 
 // Parses one scene file; every refusal names the file, the line and the key. A key that is absent gives a
@@ -393,10 +402,34 @@ class Reader {
     return nested;
   }
 
+  // {from: [x, y], to: [x, y], thickness: T (default 0)}: a plate's mid-line and thickness; its outline,
+  // a rectangle, is the region's shape for the bounds and the body's surface.
+  void read_plate(const YAML::Node& v, const std::string& k, Region& r) {
+    if (dim != 2)
+      fail(v, k,
+           "is a plate, which only 2D scenes have; in 3D give the solid at least the kernel's support in thickness");
+    if (!v["from"].IsDefined() || !v["to"].IsDefined())
+      fail(v, k, "is a plate without from and to; give its mid-line: from: [x, y], to: [x, y]");
+    r.is_plate = true;
+    r.plate.a = point(v["from"], k + ".from");
+    r.plate.b = point(v["to"], k + ".to");
+    if ((r.plate.b - r.plate.a).norm() == 0)
+      fail(v["to"], k + ".to", "is the plate's from point; give the plate a length");
+    if (v["thickness"].IsDefined()) {
+      r.plate.thickness = number(v["thickness"], k + ".thickness");
+      if (!(r.plate.thickness >= 0))
+        fail(v["thickness"], k + ".thickness", "is negative; give a thickness of 0 or more");
+    }
+    const Eigen::Vector2d a = r.plate.a.head<2>(), b = r.plate.b.head<2>(), e = (b - a).normalized();
+    const Eigen::Vector2d n(-e[1], e[0]);
+    const double half = std::max(0.5 * r.plate.thickness, 1e-12);
+    r.shape = make_polygon({a - half * n, b - half * n, b + half * n, a + half * n});
+  }
+
   Region region(const YAML::Node& n, const std::string& key, std::vector<std::string>& bodies, const Point3& g) {
     only_keys(n, key,
-              {"role", "shape", "velocity", "pressure", "motion", "slip", "name", "of", "bounds", "vertices", "file",
-               "centre", "center", "radius", "ends", "point", "normal"});
+              {"role", "shape",  "velocity", "pressure", "motion", "slip",  "name",   "of",   "bounds", "vertices",
+               "file", "centre", "center",   "radius",   "ends",   "point", "normal", "from", "to",     "thickness"});
     Region r;
     const YAML::Node role = n["role"];
     if (!role.IsDefined()) fail(n, key, "has no role; add role: fluid, role: wall or role: body with name: NAME");
@@ -430,7 +463,17 @@ class Reader {
       if (kInlineParameters.count(item.first.Scalar()) && !inline_form)
         fail(item.first, key,
              "gives " + item.first.Scalar() + " beside a nested shape; write shape: NAME for the inline form");
-    r.shape = shape(inline_form ? inline_shape(n, key) : s, key + ".shape");
+    const bool plate =
+        inline_form ? s.Scalar() == "plate" : s.IsMap() && s.size() == 1 && s.begin()->first.Scalar() == "plate";
+    if (plate) {
+      read_plate(inline_form ? n : s["plate"], key + ".shape", r);
+      if (r.role == Role::Fluid) fail(n, key, "is a plate of fluid; a plate is a wall or a body (role: wall)");
+      if (n["motion"].IsDefined())
+        fail(n["motion"], key + ".motion",
+             "moves a plate; plates are fixed (a body of at least the kernel's support in thickness can move)");
+    } else {
+      r.shape = shape(inline_form ? inline_shape(n, key) : s, key + ".shape");
+    }
     for (const char* value : {"velocity", "pressure"})
       if (r.role != Role::Fluid && n[value].IsDefined())
         fail(n[value], key + "." + value,
@@ -541,6 +584,77 @@ int yaml_scene_dimension(const std::string& path) {
   return r.dim;
 }
 
+namespace {
+// A plate's unit direction from a to b and its normal (the +1 face's side), in the xy plane.
+std::pair<Point3, Point3> plate_frame(const PlateSpec& p) {
+  const Point3 e = (p.b - p.a).normalized();
+  return {e, Point3(-e[1], e[0], 0.0)};
+}
+
+// Whether lattice point x lies within a plate or closer to its faces than half a spacing: no fluid
+// there (the first fluid particles stand dx/2 off each face, as beside any wall).
+bool in_plate_gap(const std::vector<Region>& plates, const Point3& x, double dx) {
+  const double on = kOnSurface * dx;
+  for (const Region& r : plates) {
+    const auto [e, n] = plate_frame(r.plate);
+    const double along = (x - r.plate.a).dot(e), length = (r.plate.b - r.plate.a).norm();
+    const double gap = 0.5 * (r.plate.thickness + dx) - on;
+    if (std::abs((x - r.plate.a).dot(n)) < gap && along > -gap && along < length + gap) return true;
+  }
+  return false;
+}
+
+// Each face's wall layers: rows along the plate's part within the box, spaced as near dx as divides
+// that part (on an axis-aligned plate, the lattice's own points), from the face inwards through the
+// plate and on, layer after layer, into the other side; each particle labelled with its face (+1 the
+// side the normal points to, -1 the other) for the neighbour lists (src/neighbours/screens.hpp).
+void add_plate_layers(const std::vector<Region>& plates, int wall_layers, double dx, const Point3& box_lo,
+                      const Point3& box_hi, YamlScene& out) {
+  SceneFile& s = out.file;
+  out.plate_face.resize(s.x.size(), 0);
+  for (std::size_t k = 0; k < plates.size(); ++k) {
+    const PlateSpec& p = plates[k].plate;
+    const auto [e, n] = plate_frame(p);
+    const double length = (p.b - p.a).norm();
+    // The part of the mid-line within the box: [s0, s1] along it.
+    double s0 = 0.0, s1 = length;
+    for (int a = 0; a < 2; ++a) {
+      if (std::abs(e[a]) < 1e-14) continue;
+      double t0 = (box_lo[a] - p.a[a]) / e[a], t1 = (box_hi[a] - p.a[a]) / e[a];
+      if (t0 > t1) std::swap(t0, t1);
+      s0 = std::max(s0, t0), s1 = std::min(s1, t1);
+    }
+    const long rows = std::lround((s1 - s0) / dx);
+    if (rows < 1) continue;
+    const double step = (s1 - s0) / static_cast<double>(rows);
+    for (int face : {1, -1})
+      for (int layer = 0; layer < wall_layers; ++layer)
+        for (long m = 0; m < rows; ++m) {
+          const Point3 x = p.a + (s0 + (m + 0.5) * step) * e + (face * (0.5 * p.thickness - (layer + 0.5) * dx)) * n;
+          bool inside = true;
+          for (int a = 0; a < 2; ++a) inside = inside && x[a] >= box_lo[a] && x[a] <= box_hi[a];
+          if (!inside) continue;
+          s.x.push_back({x[0], x[1], 0.0});
+          s.v.push_back({0.0, 0.0, 0.0}), s.p.push_back(0.0), s.kind.push_back(kSceneFixedWall);
+          out.body.push_back(plates[k].body), out.free_slip.push_back(plates[k].free_slip);
+          out.plate_face.push_back(static_cast<std::int8_t>(face * static_cast<int>(k + 1)));
+        }
+    out.plates.push_back({p.a[0], p.a[1], p.b[0], p.b[1]});
+  }
+}
+
+// A plate's outline (its two faces, and its ends when it has a thickness) added to a body's surface.
+void add_outline(const PlateSpec& p, SurfaceMesh& surface) {
+  const auto [e, n] = plate_frame(p);
+  const Point3 h = 0.5 * p.thickness * n;
+  const Point3 corners[4] = {p.a - h, p.b - h, p.b + h, p.a + h};
+  const long first = static_cast<long>(surface.points.size());
+  for (const Point3& c : corners) surface.points.push_back({c[0], c[1], 0.0});
+  surface.lines = true;
+  for (long c = 0; c < 4; ++c) surface.cells.push_back({first + c, first + (c + 1) % 4});
+}
+}  // namespace
+
 YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
   Reader r(path);
   const YAML::Node root = r.parse();
@@ -596,7 +710,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
   const YAML::Node list = root["regions"];
   if (!list.IsDefined() || !list.IsSequence() || list.size() == 0)
     r.fail(list.IsDefined() ? list : root, "regions", "needs a list of regions - {role: ..., shape: ...}");
-  std::vector<Region> solids, fluids;
+  std::vector<Region> solids, fluids, plates;
   Bounds reach{Point3::Constant(kInf), Point3::Constant(-kInf)};
   std::vector<char> given;  // per body: its motion was given
   for (std::size_t k = 0; k < list.size(); ++k) {
@@ -614,7 +728,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
     }
     const Bounds b = region.shape->bounds();
     reach.lo = reach.lo.cwiseMin(b.lo), reach.hi = reach.hi.cwiseMax(b.hi);
-    (region.role == Role::Fluid ? fluids : solids).push_back(region);
+    (region.is_plate ? plates : region.role == Role::Fluid ? fluids : solids).push_back(region);
   }
 
   // The lattice over the regions' reach, within the box.
@@ -651,7 +765,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
           if (d <= on) holder = &w;
         }
         const Region* in_fluid = nullptr;
-        if (!holder)
+        if (!holder && !in_plate_gap(plates, x, dx))
           for (const Region& f : fluids)
             if (f.shape->distance(x) <= on) in_fluid = &f;
         // A body is kept whole: it is a solid with a mass, and a hollow shell's inner face would read
@@ -671,6 +785,8 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
         s.p.push_back(p), s.kind.push_back(kSceneFluid), out.body.push_back(-1), out.free_slip.push_back(0);
         ++fluid;
       }
+  add_plate_layers(plates, wall_layers, dx, box_lo, box_hi, out);
+  out.plate_face.resize(s.x.size(), 0);
   if (fluid == 0)
     r.fail(list, "regions",
            "hold no fluid particle at dx = " + number_text(dx) +
@@ -694,9 +810,12 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
       lo[a] = std::max(lo[a] - 2 * dx, box_lo[a]), hi[a] = std::min(hi[a] + 2 * dx, box_hi[a]);
       extent = std::max(extent, hi[a] - lo[a]);
     }
-    if (parts.empty() || !std::isfinite(extent)) continue;
-    const double step = D == 2 ? std::min(0.25 * dx, extent / 8) : std::max(0.25 * dx, extent / 200);
-    out.surfaces[b] = body_surface(parts, D, lo, hi, step);
+    if (!parts.empty() && std::isfinite(extent)) {
+      const double step = D == 2 ? std::min(0.25 * dx, extent / 8) : std::max(0.25 * dx, extent / 200);
+      out.surfaces[b] = body_surface(parts, D, lo, hi, step);
+    }
+    for (const Region& p : plates)
+      if (p.body == static_cast<int>(b)) add_outline(p.plate, out.surfaces[b]);
   }
 
   std::uint64_t h = r.checksum;

@@ -18,7 +18,8 @@
 // sphere (3D) {centre, radius}; polygon (2D) [[x, y], ...]; cylinder (3D) {ends: [[x, y, z], [x, y, z]],
 // radius}; half_space {point, normal}, solid where (x - point) . normal <= 0; union / intersection
 // [shapes]; difference [A, B, ...], A minus the others; mesh FILE, a closed .stl, .obj or .vtp surface
-// (3D; the path relative to the YAML file).
+// (3D; the path relative to the YAML file); plate {from, to, thickness} (2D walls and fixed bodies
+// thinner than the kernel's support: each face's own layers, src/neighbours/screens.hpp).
 // The flat form says the same: the physics keys at the top (gravity: [0, -1], nu: 0.01), a shape
 // inline with its parameters beside it (shape: circle, centre: [1, 0.5], radius: 0.2; shape:
 // difference, of: [...]; box: bounds, polygon: vertices, mesh: file), role: body with name: NAME.
@@ -34,6 +35,7 @@
 // box, which cuts it), and anywhere inside a body (bodies are whole); a point in no solid and inside a
 // fluid region is fluid; other points are dropped.
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 #include <vector>
@@ -64,6 +66,10 @@ struct YamlScene {
   std::vector<std::string> bodies;  // the body names, in order of first appearance
   std::vector<MotionSpec> motions;  // per body
   std::vector<SurfaceMesh> surfaces;  // per body, where the body is at t = 0 (within the box)
+  // Thin plates (2D): per particle, 0 or the face whose layers it belongs to, +-(k + 1) for plate k
+  // (src/neighbours/screens.hpp); each plate's mid-line x0, y0, x1, y1.
+  std::vector<std::int8_t> plate_face;
+  std::vector<std::array<double, 4>> plates;
 };
 
 // By the extension: .yaml or .yml.

@@ -2,8 +2,10 @@
 // The simulation box: bounds and, per axis, whether the box is periodic.
 #include <array>
 #include <cmath>
+#include <memory>
 
 #include "src/core/types.hpp"
+#include "src/neighbours/screens.hpp"
 
 namespace sph {
 
@@ -11,6 +13,8 @@ template <int D> struct Domain {
   Vector<D> lo = Vector<D>::Zero();
   Vector<D> hi = Vector<D>::Ones();
   std::array<bool, D> periodic{};
+  // Thin plates that hide the particles on one side from those on the other (null: none).
+  std::shared_ptr<const Screens<D>> screens;
 
   Vector<D> length() const { return hi - lo; }
 

@@ -13,6 +13,18 @@ template <int D> class NeighbourList {
   // Lists, for each of the first n_query points, every other point closer than `radius`,
   // in increasing index order (deterministic loops, reproducible sums).
   void build(const std::vector<Vector<D>>& x, std::size_t n_query, double radius);
+  // Drops the pairs (i, j) for which keep(i, j) is false, keeping the order of the rest.
+  template <class Keep> void filter(Keep&& keep) {
+    std::size_t out = 0;
+    for (std::size_t i = 0; i + 1 < offset_.size(); ++i) {
+      const std::size_t begin = offset_[i], end = offset_[i + 1];
+      offset_[i] = out;
+      for (std::size_t k = begin; k < end; ++k)
+        if (keep(i, index_[k])) index_[out++] = index_[k];
+    }
+    if (!offset_.empty()) offset_.back() = out;
+    index_.resize(out);
+  }
 
   std::size_t size() const { return offset_.empty() ? 0 : offset_.size() - 1; }
   const int* begin(std::size_t i) const { return index_.data() + offset_[i]; }
