@@ -729,6 +729,9 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
     const Bounds b = region.shape->bounds();
     reach.lo = reach.lo.cwiseMin(b.lo), reach.hi = reach.hi.cwiseMax(b.hi);
     (region.is_plate ? plates : region.role == Role::Fluid ? fluids : solids).push_back(region);
+    // A particle names its plate's face in a signed byte (src/neighbours/screens.hpp).
+    if (plates.size() > 127)
+      r.fail(list[k], "regions[" + std::to_string(k) + "]", "is the 128th plate; a scene holds at most 127");
   }
 
   // The lattice over the regions' reach, within the box.

@@ -3,9 +3,10 @@
 // support cannot hold the wall layers the support needs inside itself, so each face of a plate gets
 // its own layers, laid from that face through the plate and on into the fluid of the other side, and
 // seen from its own side only. The neighbour lists drop every pair that the plate separates: a face's
-// layers and whatever lies on the other side, and two particles whose segment crosses the plate
-// (docs/verification/thin_plate.md).
+// layers and whatever lies on the other side, and two particles on opposite sides that both lie
+// alongside the plate (docs/verification/thin_plate.md).
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "src/core/types.hpp"

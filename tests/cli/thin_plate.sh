@@ -68,4 +68,12 @@ plate_scene 2 "{role: fluid, shape: plate, from: [0, 0.5], to: [1, 0.5]}" "$tmp/
 expect_error "is a plate of fluid" $short -scene_file "$tmp/fluid.yaml" -nx 10 -max_steps 1 -output_dir "$tmp/r3"
 plate_scene 2 "{role: wall, shape: plate, from: [0, 0.5], to: [0, 0.5]}" "$tmp/point.yaml"
 expect_error "is the plate's from point; give the plate a length" $short -scene_file "$tmp/point.yaml" -nx 10 -max_steps 1 -output_dir "$tmp/r4"
+python3 - "$tmp/many.yaml" <<'PY'
+import sys
+with open(sys.argv[1], "w") as f:
+    f.write("dimension: 2\nbox: [0, 1, 0, 1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 1]}\n")
+    for k in range(128):
+        f.write("  - {role: wall, shape: plate, from: [%g, 0.5], to: [%g, 0.6]}\n" % (k / 128, k / 128))
+PY
+expect_error "regions\[128\]: is the 128th plate; a scene holds at most 127" $short -scene_file "$tmp/many.yaml" -nx 10 -max_steps 1 -output_dir "$tmp/r5"
 exit $fail
