@@ -1,6 +1,7 @@
 #include "solvers/isph/isph_solver.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "src/boundary/adami_wall.hpp"
 #include "src/core/log_events.hpp"
@@ -163,7 +164,7 @@ template <int D> std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences
 }
 
 template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double tau,
-                                                   const std::vector<LaplacianCorrection<D>>& corrections) {
+                                                   std::vector<LaplacianCorrection<D>> corrections) {
   Particles<D>& P = disc_->particles;
   Neighbourhood<D>& nh = disc_->neighbourhood;
   const Kernel<D>& K = disc_->kernel;
@@ -237,20 +238,22 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
   // (SurfaceNodes::splash), or a particle with no fluid neighbour and no node (alone on a wall, a node
   // fixes its pressure level).
   std::vector<char> dirichlet;
-  std::vector<LaplacianCorrection<D>> factors = corrections;
   if (nodes) {
-    if (consistent) add_surface_nodes(P, nh.list(), K, nodes_, factors);
+    if (consistent) add_surface_nodes(P, nh.list(), K, nodes_, corrections);
     dirichlet = isolated_fluid_particles(P, nh.list(), K);
     for (std::size_t i = 0; i < P.n_owned; ++i) dirichlet[i] = nodes_.is_splash(i) || (dirichlet[i] && !nodes_.has(i));
   }
   // Moving bodies' rows extrapolate with g - a_w (Adami et al. 2012).
   const std::vector<Vector<D>> wall_acceleration = disc_->bodies.accelerations(P, disc_->bodies.time());
   auto assemble = [&] {
-    ppe_.assemble(P, nh, K, phys.gravity, nodes ? &dirichlet : surface_flags, consistent ? &factors : nullptr,
+    ppe_.assemble(P, nh, K, phys.gravity, nodes ? &dirichlet : surface_flags, consistent ? &corrections : nullptr,
                   nodes ? &nodes_ : nullptr, wall_impact_ ? &impact : nullptr,
                   wall_acceleration.empty() ? nullptr : &wall_acceleration);
   };
   assemble();
+  // Only a surface particle released below assembles again: otherwise the factors go before the
+  // solve, where the step's memory peaks (docs/performance.md, "Memory per particle").
+  if (!nodes) corrections = {};
   log_assembly.end();
   LogEventScope log_solve(ppe_solve_event());
   // The first solve starts from zero: the case's initial pressure is not the projection's.
@@ -272,6 +275,9 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
     report.linear_residual = again.linear_residual, report.linear_reason = again.linear_reason;
   }
   ++solves_;
+  // After the step's last solve the system goes before the forces, which would otherwise add to the
+  // step's memory peak (docs/performance.md, "Memory per particle").
+  if (projection_corrections_ == 0) ppe_.release();
   log_solve.end();
   nh.halo().update(P.p);
 
@@ -297,6 +303,7 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
     std::vector<double> increment(P.n_owned, 0.0);
     const StepReport pass_report = ppe_.solve(increment_source, P.m, increment, false, true);
     report.linear_iterations += pass_report.linear_iterations;
+    if (pass + 1 == projection_corrections_) ppe_.release();
     log_pass_solve.end();
     const LogEventScope log_pass_correction(LogEvent::Forces);
     increment.resize(P.size());
@@ -308,7 +315,6 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
     }
     nh.halo().update(P.p);
   }
-  ppe_.release();
   return report;
 }
 
@@ -399,6 +405,8 @@ template <int D> void IsphSolver<D>::closing_kick_without_pressure(double dt, St
   for (std::size_t i = 0; i < n; ++i)
     if (fluid(i)) s.u_star[i] += (0.5 * dt) * phys.gravity;
   if (consistent && !phys.viscous()) s.corrections = laplacian_corrections_if_used();
+  // Spent: freed before the pressure system is built, where the step's memory peaks.
+  s.acc = {}, s.gravity = {}, s.u_half = {};
 }
 
 // The projection of u*, then the step's pressure: P.p holds psi after it, turned into the step's mean
@@ -409,7 +417,7 @@ template <int D> StepReport IsphSolver<D>::project_and_update_pressure(double dt
   disc_->neighbourhood.halo().update(s.u_star);
   const std::vector<double> p_start(P.p.begin(), P.p.begin() + n);
   const double energy_before_projection = EnergyBudget::kinetic_energy(P, s.u_star);
-  const StepReport report = project(s.u_star, s.have_pressure ? 0.5 * dt : dt, s.corrections);
+  const StepReport report = project(s.u_star, s.have_pressure ? 0.5 * dt : dt, std::move(s.corrections));
   s.energy_after_projection = EnergyBudget::kinetic_energy(P, P.v);  // the shift starts from it
   energy_.add_change(EnergyCause::Pressure, energy_before_projection, s.energy_after_projection);
   std::vector<double>& mean_pressure = P.fields[mean_pressure_];

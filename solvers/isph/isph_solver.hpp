@@ -72,7 +72,7 @@ template <int D> class IsphSolver : public Solver<D> {
   std::string courant_option() const override { return kAdvectiveCfl; }
   // Measured: the PPE matrix, BoomerAMG's hierarchy and the step's arrays (docs/performance.md,
   // "Memory per particle").
-  double bytes_per_particle() const override { return D == 3 ? 3.6e3 : 1.6e3; }
+  double bytes_per_particle() const override { return D == 3 ? 3.1e3 : 1.3e3; }
   // The pressure solve, not the list rebuild, sets ISPH's step's cost: a thinner skin saves memory for
   // no time (docs/performance.md, "Memory per particle").
   double neighbour_skin() const override { return 0.1; }
@@ -114,8 +114,8 @@ template <int D> class IsphSolver : public Solver<D> {
                                               std::vector<LaplacianCorrection<D>>* factors = nullptr) const;
   std::vector<LaplacianCorrection<D>> laplacian_corrections_if_used() const;
   // Makes P.v = u_star - tau grad p / rho divergence-free at the current positions; returns the solve.
-  StepReport project(const std::vector<Vector<D>>& u_star, double tau,
-                     const std::vector<LaplacianCorrection<D>>& corrections);
+  // The factors are taken: freed once the system is assembled.
+  StepReport project(const std::vector<Vector<D>>& u_star, double tau, std::vector<LaplacianCorrection<D>> corrections);
   void shift(double dt);
   double max_speed() const;
 

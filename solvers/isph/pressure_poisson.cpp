@@ -181,6 +181,23 @@ template <int D> void PressurePoisson<D>::remove_null_part() {
   SPH_PETSC(VecRestoreArray(x_, &x));
 }
 
+// BoomerAMG builds from a copy of its matrix in hypre's format unless it is handed one. Converted at
+// the first solve, once the caller has freed what only the assembly needed, PETSc's copy and the
+// lumped rows go before the hierarchy is built: the step's memory peak (docs/performance.md, "Memory
+// per particle").
+template <int D> void PressurePoisson<D>::hand_preconditioner_matrix_to_hypre() {
+  if (!P_) return;
+  PetscBool converted = PETSC_FALSE;
+  SPH_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(P_), MATHYPRE, &converted));
+  if (converted) return;
+  ::Mat copy;
+  SPH_PETSC(MatConvert(P_, MATHYPRE, MAT_INITIAL_MATRIX, &copy));
+  SPH_PETSC(MatDestroy(&P_));
+  pc_rows_.release();
+  P_ = copy;
+  SPH_PETSC(KSPSetOperators(ksp_, A_, P_));
+}
+
 template <int D> StepReport PressurePoisson<D>::solve(const std::vector<double>& source,
                                                       const std::vector<double>& mass, std::vector<double>& p,
                                                       bool use_guess, bool correction) {
@@ -209,6 +226,7 @@ template <int D> StepReport PressurePoisson<D>::solve(const std::vector<double>&
   if (correction) SPH_PETSC(KSPSetTolerances(ksp_, rtol, std::max(atol, rtol * first_rhs_norm_), dtol, max_it));
   else SPH_PETSC(VecNorm(b_, NORM_2, &first_rhs_norm_));
   announce_solve(correction ? "correction" : "projection");
+  hand_preconditioner_matrix_to_hypre();
   SPH_PETSC(KSPSolve(ksp_, b_, x_));
   if (correction) SPH_PETSC(KSPSetTolerances(ksp_, rtol, atol, dtol, max_it));
   view_solve();

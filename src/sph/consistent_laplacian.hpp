@@ -265,27 +265,28 @@ std::vector<std::vector<double>> divergences_corrected(const Particles<D>& P, co
   constexpr std::size_t max_fields = 2;
   if (u.empty() || u.size() > max_fields) throw std::logic_error("divergences_corrected: one or two fields");
   const std::size_t nf = u.size();
-  struct Sums {
-    Tensor<D> M;
-    std::array<Tensor<D>, max_fields> G;
-  };
-  const std::vector<Sums> sums = sum_over_pairs(
-      P, nl, K, Sums{Tensor<D>::Zero(), {Tensor<D>::Zero(), Tensor<D>::Zero()}},
-      [&](Sums& s, int i, int j, const PairGeometry<D>& g) {
-        const double Vj = P.m[j] / P.rho[j];
-        s.M += correction_moment_term(Vj, g);
-        for (std::size_t f = 0; f < nf; ++f) s.G[f] += difference_vector_gradient_term(Vj, (*u[f])[i], (*u[f])[j], g);
+  // Each particle's sums live only while it is visited: stored for every particle they were the
+  // largest array of the projection's correction pass, its memory peak (docs/performance.md, "Memory
+  // per particle").
+  std::vector<std::vector<double>> div(nf, std::vector<double>(P.n_owned, 0.0));
+  for_each_particle_pairs(
+      P, nl, K,
+      [&](std::size_t i, auto&& visit_pairs) {
+        Tensor<D> M = Tensor<D>::Zero();
+        std::array<Tensor<D>, max_fields> G{Tensor<D>::Zero(), Tensor<D>::Zero()};
+        visit_pairs([&](int ii, int j, const PairGeometry<D>& g) {
+          const double Vj = P.m[j] / P.rho[j];
+          M += correction_moment_term(Vj, g);
+          for (std::size_t f = 0; f < nf; ++f) G[f] += difference_vector_gradient_term(Vj, (*u[f])[ii], (*u[f])[j], g);
+        });
+        // A surface node moves with its particle: it adds to the moments only.
+        const Tensor<D> L =
+            nodes && nodes->is_splash(i)
+                ? Tensor<D>(Tensor<D>::Identity())
+                : correction_from_moments(nodes && nodes->has(i) ? Tensor<D>(M + nodes->moment_term(i)) : M);
+        for (std::size_t f = 0; f < nf; ++f) div[f][i] = (L * G[f]).trace();
       },
       rows);
-  std::vector<std::vector<double>> div(nf, std::vector<double>(P.n_owned));
-  for (std::size_t i = 0; i < P.n_owned; ++i) {
-    // A surface node moves with its particle: it adds to the moments only.
-    const Tensor<D> L = nodes && nodes->is_splash(i)
-                            ? Tensor<D>(Tensor<D>::Identity())
-                            : correction_from_moments(
-                                  nodes && nodes->has(i) ? Tensor<D>(sums[i].M + nodes->moment_term(i)) : sums[i].M);
-    for (std::size_t f = 0; f < nf; ++f) div[f][i] = (L * sums[i].G[f]).trace();
-  }
   return div;
 }
 

@@ -110,20 +110,23 @@ template <int D> std::vector<Vector<D>> gradient_corrected(const Particles<D>& P
   return grad;
 }
 
-// Per particle, the moment matrix and the uncorrected gradient sum of f, from one pair loop.
-template <int D> struct GradientSums {
-  Tensor<D> M;
-  Vector<D> grad;
-};
-template <int D> std::vector<GradientSums<D>> gradient_sums(const Particles<D>& P, const NeighbourList<D>& nl,
-                                                            const Kernel<D>& K, const std::vector<double>& f,
-                                                            Rows rows = Rows::All) {
-  return sum_over_pairs(
-      P, nl, K, GradientSums<D>{Tensor<D>::Zero(), Vector<D>::Zero()},
-      [&](GradientSums<D>& s, int i, int j, const PairGeometry<D>& g) {
-        const double Vj = P.m[j] / P.rho[j];
-        s.M += correction_moment_term(Vj, g);
-        s.grad += difference_gradient_term(Vj, f[i], f[j], g);
+// Per particle, the moment matrix M and the uncorrected gradient sum g of f, from one pair loop, handed
+// to done(i, M, g) while the particle is visited: stored for every particle they were the largest array
+// of ISPH's velocity correction, its memory peak (docs/performance.md, "Memory per particle").
+template <int D, class Done> void for_each_gradient_sum(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                        const Kernel<D>& K, const std::vector<double>& f, Rows rows,
+                                                        Done&& done) {
+  for_each_particle_pairs(
+      P, nl, K,
+      [&](std::size_t i, auto&& visit_pairs) {
+        Tensor<D> M = Tensor<D>::Zero();
+        Vector<D> grad = Vector<D>::Zero();
+        visit_pairs([&](int ii, int j, const PairGeometry<D>& g) {
+          const double Vj = P.m[j] / P.rho[j];
+          M += correction_moment_term(Vj, g);
+          grad += difference_gradient_term(Vj, f[ii], f[j], g);
+        });
+        done(i, M, grad);
       },
       rows);
 }
@@ -133,9 +136,10 @@ template <int D> std::vector<GradientSums<D>> gradient_sums(const Particles<D>& 
 template <int D> std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl,
                                                            const Kernel<D>& K, const std::vector<double>& f,
                                                            Rows rows = Rows::All) {
-  const std::vector<GradientSums<D>> sums = gradient_sums(P, nl, K, f, rows);
-  std::vector<Vector<D>> grad(P.n_owned);
-  for (std::size_t i = 0; i < P.n_owned; ++i) grad[i] = correction_from_moments(sums[i].M) * sums[i].grad;
+  std::vector<Vector<D>> grad(P.n_owned, Vector<D>::Zero());
+  for_each_gradient_sum(P, nl, K, f, rows, [&](std::size_t i, const Tensor<D>& M, const Vector<D>& g) {
+    grad[i] = correction_from_moments(M) * g;
+  });
   return grad;
 }
 
