@@ -10,8 +10,36 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sph {
+
+namespace {
+
+double distance_to(const std::vector<const Shape*>& parts, const Point3& x) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const Shape* s : parts) d = std::min(d, s->distance(x));
+  return d;
+}
+
+// Orders each cell's points so that its normal (mesh_normal) points out of the body, where the
+// distance grows, and marks the mesh closed when its normals sum to zero: a uniform pressure then
+// pushes on it with no net force, which the surface's force integral relies on.
+void orient_outwards(SurfaceMesh& mesh, const std::vector<const Shape*>& parts, int dim, double step) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double total = 0.0;
+  for (std::vector<long>& cell : mesh.cells) {
+    if (cell.size() < static_cast<std::size_t>(dim)) continue;
+    const Point3 centre = face_centre(mesh, cell), n = face_area_normal(mesh, cell);
+    if (!(n.norm() > 0.0)) continue;
+    const Point3 e = 0.25 * step * n.normalized();
+    if (distance_to(parts, centre + e) < distance_to(parts, centre - e)) std::reverse(cell.begin(), cell.end());
+    sum += face_area_normal(mesh, cell), total += n.norm();
+  }
+  mesh.closed = total > 0.0 && sum.norm() <= 1e-9 * total;
+}
+
+}  // namespace
 
 SurfaceMesh body_surface(const std::vector<const Shape*>& parts, int dim, const Point3& lo, const Point3& hi,
                          double step) {
@@ -29,9 +57,7 @@ SurfaceMesh body_surface(const std::vector<const Shape*>& parts, int dim, const 
     for (int y = 0; y < n[1]; ++y)
       for (int x = 0; x < n[0]; ++x, ++k) {
         const Point3 p(lo[0] + x * step, lo[1] + y * step, dim == 3 ? lo[2] + z * step : 0.0);
-        double d = std::numeric_limits<double>::infinity();
-        for (const Shape* s : parts) d = std::min(d, s->distance(p));
-        distance->SetValue(k, d);
+        distance->SetValue(k, distance_to(parts, p));
       }
   grid->GetPointData()->SetScalars(distance);
   vtkNew<vtkContourFilter> contour;
@@ -50,6 +76,7 @@ SurfaceMesh body_surface(const std::vector<const Shape*>& parts, int dim, const 
   const vtkIdType* ids = nullptr;
   vtkIdType count = 0;
   for (cells->InitTraversal(); cells->GetNextCell(count, ids);) mesh.cells.emplace_back(ids, ids + count);
+  orient_outwards(mesh, parts, dim, step);
   return mesh;
 }
 

@@ -651,6 +651,9 @@ void add_outline(const PlateSpec& p, SurfaceMesh& surface) {
   const long first = static_cast<long>(surface.points.size());
   for (const Point3& c : corners) surface.points.push_back({c[0], c[1], 0.0});
   surface.lines = true;
+  // A plate's sides hold different pressures that no fit across it can tell apart: its forces come
+  // from the pairs (src/run/wall_groups.hpp).
+  surface.closed = false;
   for (long c = 0; c < 4; ++c) surface.cells.push_back({first + c, first + (c + 1) % 4});
 }
 }  // namespace

@@ -10,6 +10,7 @@ namespace sph {
 
 namespace {
 const char* const box_exit_names[] = {"stop", "remove"};
+const char* const body_pressure_force_names[] = {"surface", "pairs"};
 
 PetscErrorCode read_options(RunControl* o) {
   PetscFunctionBeginUser;
@@ -35,6 +36,13 @@ PetscErrorCode read_options(RunControl* o) {
                              "Write the force and moment on every body and on the walls to timeseries.csv each step "
                              "(force_<body>_x, ..., moment_<body>; pressure and viscous parts)",
                              "", o->wall_forces, &o->wall_forces, nullptr));
+  PetscCall(PetscOptionsEList("-body_pressure_force",
+                              "A body's pressure force: surface (the pressure fitted at its surface's faces and "
+                              "integrated over them, so a uniform pressure gives none; bodies of YAML scenes with a "
+                              "closed surface) or pairs (summed over the wall-fluid pairs, as for the walls, plates "
+                              "and bodies of .vtp scenes)",
+                              "", body_pressure_force_names, 2, body_pressure_force_names[o->body_pressure_force],
+                              &o->body_pressure_force, nullptr));
   PetscCall(PetscOptionsBool("-overwrite",
                              "Replace the run already in -output_dir (its frames, tables, summary, checkpoint)", "",
                              o->overwrite, &o->overwrite, nullptr));

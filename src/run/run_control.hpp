@@ -23,6 +23,7 @@ struct RunControl {
   PetscBool overwrite = PETSC_FALSE;  // replace a run already in output_dir
   PetscBool dt_force = PETSC_FALSE;   // run a -dt above the stability limit anyway
   PetscBool wall_forces = PETSC_TRUE;  // timeseries.csv's force columns (src/run/wall_groups.hpp)
+  PetscInt body_pressure_force = 0;    // 0 surface, 1 pairs (src/run/wall_groups.hpp)
   PetscInt box_exit = 0;               // fluid leaving the box: 0 stop the run, 1 remove it (src/run/box_exit.hpp)
   char output_dir[PETSC_MAX_PATH_LEN] = "";
   char output_fields[128] = "";   // extra point arrays in the frames: "vorticity"

@@ -266,7 +266,7 @@ template <int D> void TimeLoop<D>::open_outputs() {
   if (walls_column_) columns.push_back("fluid_in_walls");
   if (opt_.box_exit == 1) columns.push_back("removed_fluid");
   if (walls_column_ && opt_.wall_forces) {
-    wall_groups_.emplace(case_, s_.P);
+    wall_groups_.emplace(case_, s_.P, opt_.body_pressure_force == 0);
     const std::vector<std::string> forces = wall_groups_->columns();
     columns.insert(columns.end(), forces.begin(), forces.end());
   }

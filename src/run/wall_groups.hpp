@@ -8,6 +8,7 @@
 
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/run/case.hpp"
+#include "src/sph/surface_force.hpp"
 #include "src/sph/wall_forces.hpp"
 
 namespace sph {
@@ -16,7 +17,10 @@ template <int D> class WallGroups {
  public:
   // The case's bodies (labels by id, the order create() made the particles in) and the wall particles
   // left over. No groups without wall particles.
-  WallGroups(const Case<D>& run_case, const Particles<D>& P) : label_(run_case.body_of_particles()) {
+  // surface_pressure: a body with a closed surface (a YAML scene's) takes its pressure force from the
+  // pressure fitted on that surface (src/sph/surface_force.hpp) rather than from the pairs.
+  WallGroups(const Case<D>& run_case, const Particles<D>& P, bool surface_pressure)
+      : label_(run_case.body_of_particles()) {
     const std::vector<std::string> bodies = run_case.body_names();
     std::vector<double> count(bodies.size() + 1, 0.0), volume(bodies.size() + 1, 0.0);
     std::vector<Vector<D>> sum(bodies.size() + 1, Vector<D>::Zero());
@@ -34,6 +38,11 @@ template <int D> class WallGroups {
     for (std::size_t b = 0; b < bodies.size(); ++b) add(bodies[b], count[b + 1], sum[b + 1]);
     walls_group_ = count[0] > 0 ? static_cast<int>(names_.size()) : -1;
     if (count[0] > 0) add("walls", count[0], sum[0]);
+    const std::vector<SurfaceMesh> meshes = run_case.body_surfaces();
+    faces_.resize(bodies.size());
+    if (surface_pressure)
+      for (std::size_t b = 0; b < bodies.size() && b < meshes.size(); ++b)
+        if (meshes[b].closed && count[b + 1] > 0) faces_[b] = faces_of(meshes[b]);
   }
 
   bool empty() const { return names_.empty(); }
@@ -65,6 +74,13 @@ template <int D> class WallGroups {
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (P.kind[i] == kWall) group[i] = body_of(P.id[i]) >= 0 ? body_of(P.id[i]) : walls_group_;
     std::vector<GroupForce<D>> F = wall_group_forces(P, nh.list(), K, p, rho, group, physics.nu, about_, &bodies);
+    for (std::size_t b = 0; b < faces_.size() && b < F.size(); ++b) {
+      if (faces_[b].centre.empty()) continue;
+      const Faces now = moved(b, bodies.time());
+      const SurfaceForce<D> S = surface_pressure_force(P, K, now.centre, now.area_normal, P.p, about_[b]);
+      F[b].moment += S.moment - F[b].pressure_moment;
+      F[b].pressure = S.force, F[b].pressure_moment = S.moment;
+    }
     // The pair sums carry the traction of the viscous term's Laplacian form, mu du/dn; the stress's
     // other part, mu (grad u)^T n, integrates over a body turning at w to a torque -2 mu V w (in 2D
     // and 3D), and to no force (docs/verification/body_forces.md, the Couette torque).
@@ -84,9 +100,13 @@ template <int D> class WallGroups {
   // For summary.json: each group's wall particles and the point its moment is taken about.
   nlohmann::json describe() const {
     nlohmann::json j = nlohmann::json::object();
-    for (std::size_t g = 0; g < names_.size(); ++g)
+    for (std::size_t g = 0; g < names_.size(); ++g) {
+      const bool surface = g < faces_.size() && !faces_[g].centre.empty();
       j[names_[g]] = {{"particles", particles_[g]},
-                      {"moment_about", std::vector<double>(about_[g].data(), about_[g].data() + D)}};
+                      {"moment_about", std::vector<double>(about_[g].data(), about_[g].data() + D)},
+                      {"pressure_force", surface ? "surface" : "pairs"}};
+      if (surface) j[names_[g]]["surface_faces"] = faces_[g].centre.size();
+    }
     return j;
   }
 
@@ -102,7 +122,32 @@ template <int D> class WallGroups {
     about_.push_back(count > 0 ? Vector<D>(sum / count) : Vector<D>::Zero());
   }
 
-  std::vector<int> label_;  // by id: the body's index, -1 for none
+  // A body's surface faces as laid out: centres and area normals (outwards).
+  struct Faces {
+    std::vector<Vector<D>> centre, area_normal;
+  };
+  static Faces faces_of(const SurfaceMesh& mesh) {
+    Faces f;
+    for (const std::vector<long>& cell : mesh.cells) {
+      const Eigen::Vector3d c = face_centre(mesh, cell), n = face_area_normal(mesh, cell);
+      f.centre.push_back(c.head<D>()), f.area_normal.push_back(n.head<D>());
+    }
+    return f;
+  }
+  // Body b's faces at time t: a rigid motion moves each centre and turns each normal with it.
+  Faces moved(std::size_t b, double t) const {
+    if (b >= motions_.size() || !motions_[b].moves()) return faces_[b];
+    Faces f = faces_[b];
+    for (std::size_t q = 0; q < f.centre.size(); ++q) {
+      const Vector<D> c = motions_[b].moved(faces_[b].centre[q], 0.0, t);
+      f.area_normal[q] = motions_[b].moved(Vector<D>(faces_[b].centre[q] + faces_[b].area_normal[q]), 0.0, t) - c;
+      f.centre[q] = c;
+    }
+    return f;
+  }
+
+  std::vector<int> label_;    // by id: the body's index, -1 for none
+  std::vector<Faces> faces_;  // per body: empty where its pressure force comes from the pairs
   std::vector<double> volume_;  // per body, as laid out
   std::vector<PrescribedMotion<D>> motions_;
   std::vector<std::string> names_;

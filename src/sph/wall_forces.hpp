@@ -24,7 +24,8 @@ namespace sph {
 // pair's force acting at the pair's midpoint.
 template <int D> struct GroupForce {
   Vector<D> pressure = Vector<D>::Zero(), viscous = Vector<D>::Zero();
-  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();           // of both parts
+  Eigen::Vector3d pressure_moment = Eigen::Vector3d::Zero();  // of the pressure part alone
   Vector<D> total() const { return pressure + viscous; }
 };
 
@@ -78,7 +79,7 @@ std::vector<GroupForce<D>> wall_group_forces(const Particles<D>& P, const Neighb
     if (P.kind[w] != kWall || group[w] < 0) continue;
     const Sums& s = sums[w];
     GroupForce<D>& F = out[static_cast<std::size_t>(group[w])];
-    F.pressure += s.pressure, F.moment += s.pressure_moment;
+    F.pressure += s.pressure, F.moment += s.pressure_moment, F.pressure_moment += s.pressure_moment;
     if (s.shepard_weight > 0.0) {
       const Vector<D> mirror = AdamiWall<D>::mirror_velocity(P, w, s.shepard_u / s.shepard_weight,
                                                              s.shepard_r / s.shepard_weight, bodies);
@@ -92,6 +93,7 @@ std::vector<GroupForce<D>> wall_group_forces(const Particles<D>& P, const Neighb
     flat.insert(flat.end(), F.pressure.data(), F.pressure.data() + D);
     flat.insert(flat.end(), F.viscous.data(), F.viscous.data() + D);
     flat.insert(flat.end(), F.moment.data(), F.moment.data() + 3);
+    flat.insert(flat.end(), F.pressure_moment.data(), F.pressure_moment.data() + 3);
   }
   MPI_Allreduce(MPI_IN_PLACE, flat.data(), static_cast<int>(flat.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   const double* v = flat.data();
@@ -99,6 +101,7 @@ std::vector<GroupForce<D>> wall_group_forces(const Particles<D>& P, const Neighb
     for (int a = 0; a < D; ++a) F.pressure[a] = *v++;
     for (int a = 0; a < D; ++a) F.viscous[a] = *v++;
     for (int a = 0; a < 3; ++a) F.moment[a] = *v++;
+    for (int a = 0; a < 3; ++a) F.pressure_moment[a] = *v++;
   }
   return out;
 }
