@@ -93,10 +93,13 @@ template <class T, int C> T from_row(const Eigen::Matrix<double, 1, C>& r) {
 }  // namespace detail
 
 // A fluid field (double or Vector<D>, one value per particle) at arbitrary points, by the chosen fit,
-// reduced over all ranks: every rank gets every point's value.
+// reduced over all ranks: every rank gets every point's value. For a scalar field and the linear fit,
+// `gradient` (if given) gets the fitted gradient at each point (zero where the fit fell back to
+// Shepard's value), so that a + b.(y - x) serves around x.
 template <int D, class T> std::vector<T> probe_fluid(const Particles<D>& P, const Kernel<D>& K,
                                                      const std::vector<Vector<D>>& points, ProbeInterpolation fit,
-                                                     const std::vector<T>& field) {
+                                                     const std::vector<T>& field,
+                                                     std::vector<Vector<D>>* gradient = nullptr) {
   constexpr int m = D + 1;  // basis 1, (y - x)/h
   constexpr int C = std::is_same_v<T, double> ? 1 : D;
   using Moments = Eigen::Matrix<double, m, m>;
@@ -124,6 +127,7 @@ template <int D, class T> std::vector<T> probe_fluid(const Particles<D>& P, cons
   }
   MPI_Allreduce(MPI_IN_PLACE, buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   std::vector<T> u(n, detail::from_row<T, C>(Eigen::Matrix<double, 1, C>::Zero()));
+  if (gradient) gradient->assign(n, Vector<D>::Zero());
   for (std::size_t k = 0; k < n; ++k) {
     const Eigen::Map<const Moments> M(&buf[k * per_point]);
     const Eigen::Map<const Sums> B(&buf[k * per_point + m * m]);
@@ -136,6 +140,8 @@ template <int D, class T> std::vector<T> probe_fluid(const Particles<D>& P, cons
     if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-10)) continue;
     const Sums coefficients = ldlt.solve(Sums(B));
     u[k] = detail::from_row<T, C>(Eigen::Matrix<double, 1, C>(coefficients.row(0)));
+    if constexpr (std::is_same_v<T, double>)
+      if (gradient) (*gradient)[k] = coefficients.template bottomRows<D>().col(0) * inv_h;
   }
   return u;
 }
