@@ -426,6 +426,20 @@ TEST(SceneShapes, MeshCubeSamplesAsTheEquivalentBox) {
     EXPECT_EQ(positions(wall_mesh, sph::kSceneFixedWall), positions(wall_box, sph::kSceneFixedWall)) << "dx " << dx;
     EXPECT_EQ(positions(wall_mesh, sph::kSceneFluid), positions(wall_box, sph::kSceneFluid)) << "dx " << dx;
   }
+  // As a body, the mesh is its own surface (not a contour of its distance, which cuts the edges):
+  // closed, refined to faces no wider than the spacing, pointing out, enclosing the cube exactly.
+  const auto body = sample("mesh_body", head + pool + "  - {role: body, name: cube, shape: {mesh: cube.stl}}\n", 0.1);
+  ASSERT_EQ(body.surfaces.size(), 1u);
+  const sph::SurfaceMesh& mesh = body.surfaces[0];
+  EXPECT_TRUE(mesh.closed);
+  EXPECT_GT(mesh.cells.size(), 12u);
+  double volume = 0.0;  // (1/3) sum x . n a over the faces (divergence theorem)
+  for (const auto& cell : mesh.cells) {
+    const Eigen::Vector3d x = sph::face_centre(mesh, cell), n = sph::face_area_normal(mesh, cell);
+    EXPECT_GT((x - Eigen::Vector3d(0.5, 0.4, 0.6)).dot(n), 0.0);
+    volume += x.dot(n) / 3.0;
+  }
+  EXPECT_NEAR(volume, 0.6 * 0.6 * 0.6, 1e-6);  // an STL holds single-precision coordinates
   // An open surface (a cube without its last face) has no inside: refused.
   ASSERT_TRUE(write_cube_stl(folder() + "/open.stl", Point3(0.2, 0.1, 0.3), Point3(0.8, 0.7, 0.9), 5));
   EXPECT_NE(refusal("open", head + pool + "  - {role: wall, shape: {mesh: open.stl}}\n").find("not a closed surface"),

@@ -39,10 +39,46 @@ void orient_outwards(SurfaceMesh& mesh, const std::vector<const Shape*>& parts, 
   mesh.closed = total > 0.0 && sum.norm() <= 1e-9 * total;
 }
 
+// Splits every triangle into four, by its edges' midpoints, until no edge is longer than `step`: a
+// mesh's own triangles may span the body, and the surface's force takes one pressure a face.
+void refine_triangles(SurfaceMesh& mesh, double step) {
+  std::vector<std::vector<long>> done, todo = mesh.cells;
+  const auto point = [&](long k) { return Point3(mesh.points[static_cast<std::size_t>(k)].data()); };
+  const auto add = [&](const Point3& x) {
+    mesh.points.push_back({x[0], x[1], x[2]});
+    return static_cast<long>(mesh.points.size()) - 1;
+  };
+  while (!todo.empty()) {
+    std::vector<long> t = todo.back();
+    todo.pop_back();
+    const bool long_edge =
+        t.size() == 3 && ((point(t[0]) - point(t[1])).norm() > step || (point(t[1]) - point(t[2])).norm() > step ||
+                          (point(t[2]) - point(t[0])).norm() > step);
+    if (!long_edge) {
+      done.push_back(t);
+      continue;
+    }
+    const long a = add(0.5 * (point(t[0]) + point(t[1]))), b = add(0.5 * (point(t[1]) + point(t[2]))),
+               c = add(0.5 * (point(t[2]) + point(t[0])));
+    for (const std::vector<long>& s : {std::vector<long>{t[0], a, c}, std::vector<long>{a, t[1], b},
+                                       std::vector<long>{c, b, t[2]}, std::vector<long>{a, b, c}})
+      todo.push_back(s);
+  }
+  mesh.cells = std::move(done);
+}
+
 }  // namespace
 
 SurfaceMesh body_surface(const std::vector<const Shape*>& parts, int dim, const Point3& lo, const Point3& hi,
                          double step) {
+  if (parts.size() == 1 && dim == 3) {
+    SurfaceMesh own = parts[0]->own_surface();
+    if (!own.cells.empty()) {
+      refine_triangles(own, step);
+      orient_outwards(own, parts, dim, step);
+      return own;
+    }
+  }
   int n[3] = {1, 1, 1};
   for (int a = 0; a < dim; ++a) n[a] = std::max(2, static_cast<int>(std::ceil((hi[a] - lo[a]) / step)) + 1);
   vtkNew<vtkImageData> grid;

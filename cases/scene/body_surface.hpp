@@ -8,7 +8,8 @@
 
 namespace sph {
 
-// The surface where the union of `parts` meets the rest, within [lo, hi], sampled every `step`.
+// The surface where the union of `parts` meets the rest, within [lo, hi], sampled every `step`; a
+// single part with a surface of its own (a mesh) gives that, whole.
 SurfaceMesh body_surface(const std::vector<const Shape*>& parts, int dim, const Point3& lo, const Point3& hi,
                          double step);
 

@@ -204,6 +204,17 @@ class Mesh : public Shape {
       surface_->GetPoint(i, p), h = std::max(h, Point3(p[0], p[1], p[2]).dot(up));
     return h;
   }
+  SurfaceMesh own_surface() const override {
+    SurfaceMesh mesh;
+    double p[3];
+    for (vtkIdType i = 0; i < surface_->GetNumberOfPoints(); ++i)
+      surface_->GetPoint(i, p), mesh.points.push_back({p[0], p[1], p[2]});
+    const vtkIdType* ids = nullptr;
+    vtkIdType count = 0;
+    vtkCellArray* cells = surface_->GetPolys();
+    for (cells->InitTraversal(); cells->GetNextCell(count, ids);) mesh.cells.emplace_back(ids, ids + count);
+    return mesh;
+  }
 
  private:
   vtkSmartPointer<vtkPolyData> surface_;

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "src/io/surface_writer.hpp"
+
 namespace sph {
 
 using Point3 = Eigen::Vector3d;
@@ -24,6 +26,9 @@ class Shape {
   // The largest up . x over the shape (+infinity when unbounded that way): a region's top for its
   // hydrostatic pressure. An upper bound for intersections and differences (their first part's top).
   virtual double highest(const Point3& up) const = 0;
+  // The shape's own surface, where it has one (a mesh's triangles): exact where a contour of the
+  // distance would cut its edges. Empty for the others.
+  virtual SurfaceMesh own_surface() const { return {}; }
 };
 using ShapePtr = std::shared_ptr<const Shape>;
 
