@@ -67,9 +67,14 @@ LatticeConstants lattice_constants(const Lattice& L) {
     q[j] = 0.25 * (L.P.x[j] - xc).squaredNorm();
   }
   LatticeConstants k;
+  // x and q are not periodic: each ghost holds them at its own (image's) position, which the centre
+  // particle's sums read as a whole plane would. The ghost check would take that for a stale copy.
+  const bool checks = ghost_checks();
+  ghost_checks() = false;
   k.e0 = density_summation(L.P, L.nl(), L.K)[c] / kRho0 - 1.0;
   k.eM = gradient_difference(L.P, L.nl(), L.K, fx)[c][0] - 1.0;
   k.eL = laplacian_morris(L.P, L.nl(), L.K, q)[c] - 1.0;
+  ghost_checks() = checks;
   return k;
 }
 
@@ -157,7 +162,8 @@ Measurement measure(const KernelCase& kc) {
     M.max_div_solenoidal.push_back(divu);
     // Density: masses m_i = rho(x_i) dx^2 sampling a non-uniform rho = rho0 (1 + 0.2 f).
     auto rho_exact = [](const V2& x) { return kRho0 * (1.0 + 0.2 * f_s(x)); };
-    for (std::size_t i = 0; i < L.P.size(); ++i) L.P.m[i] = rho_exact(L.P.x[i]) * L.dx * L.dx;
+    for (std::size_t i = 0; i < L.P.n_owned; ++i) L.P.m[i] = rho_exact(L.P.x[i]) * L.dx * L.dx;
+    L.nh->halo().update(L.P.m);
     const auto rho = density_summation(L.P, L.nl(), L.K);
     M.err[kDensity].push_back(rel_error(L, rho, rho_exact));
     M.err[kDensityScaled].push_back(rel_error(L, rho, scaled_s(rho_exact, 1 + c.e0)));

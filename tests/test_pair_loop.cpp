@@ -2,10 +2,13 @@
 
 #include <cmath>
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "operator_lattice.hpp"
 #include "src/neighbours/neighbourhood.hpp"
+#include "src/sph/operators.hpp"
 #include "src/sph/pair_loop.hpp"
 
 namespace {
@@ -66,6 +69,43 @@ TEST(PairLoop, BatchesHoldExactlyThePairsOfABruteForceSearch) {
       EXPECT_EQ(nested_count[i], 0u) << "particle " << i << ": a nested loop saw a wrong pair count";
     }
   }
+}
+
+}  // namespace
+
+namespace {
+
+// The ghost check (src/neighbours/ghost_check.hpp), which every test binary and every run of the test
+// suite has on: on the periodic lattice, whose ghosts are periodic images, a value written on an owned
+// particle and not refreshed stops the next pair loop with a message naming the field, the particles'
+// own fields and an operator's field alike; refreshed, the loop runs. With the checks off nothing is
+// compared.
+TEST(GhostCheck, APairLoopStopsAtGhostsThatMissedAWrite) {
+  ASSERT_TRUE(ghost_checks());
+  Lattice L(16, kCases[0]);
+  ASSERT_GT(L.P.n_ghost, 0u);
+  const std::vector<V2> u = L.sample<V2>(u_tg);
+  EXPECT_NO_THROW(divergence(L.P, L.nl(), L.K, u));
+  // Particle 0 sits in a corner: every periodic image of it is a ghost.
+  L.P.p[0] += 1.0;
+  try {
+    divergence(L.P, L.nl(), L.K, u);
+    ADD_FAILURE() << "a stale pressure ghost went unnoticed";
+  } catch (const std::logic_error& e) {
+    EXPECT_NE(std::string(e.what()).find("ghost copies of p "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("test_pair_loop.cpp"), std::string::npos) << "the caller: " << e.what();
+  }
+  L.nh->halo().update(L.P.p);
+  EXPECT_NO_THROW(divergence(L.P, L.nl(), L.K, u));
+
+  std::vector<V2> w = u;
+  w[0] *= 2.0;
+  EXPECT_THROW(divergence(L.P, L.nl(), L.K, w), std::logic_error);
+  ghost_checks() = false;
+  EXPECT_NO_THROW(divergence(L.P, L.nl(), L.K, w));
+  ghost_checks() = true;
+  L.nh->halo().update(w);
+  EXPECT_NO_THROW(divergence(L.P, L.nl(), L.K, w));
 }
 
 }  // namespace

@@ -92,10 +92,7 @@ std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vec
   const Kernel<D>& K = disc_->kernel;
   // No-slip walls: the viscous term sees the mirrored wall velocity (Adami et al. 2012).
   std::vector<Vector<D>> u_wall;
-  if (walls_) {
-    u_wall = AdamiWall<D>::viscous_velocity(AdamiWall<D>::stencil(P, nh.list(), K), P, &u, &disc_->bodies);
-    nh.halo().update(u_wall);
-  }
+  if (walls_) u_wall = AdamiWall<D>::viscous_velocity(nh, K, P, &u, &disc_->bodies);
   const std::vector<Vector<D>>& uv = walls_ ? u_wall : u;
   if (operators_ != OperatorSet::Consistent) {
     std::vector<Vector<D>> lap = laplacian_morris(P, nh.list(), K, uv);
@@ -179,12 +176,8 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
   if (phys.free_surface) {
     surface = free_surface_model_.detect(P, nh.list(), K, true);
     if (nodes) nodes_ = surface_nodes(P, nh, K, surface, 0.5 * disc_->dx);
-    if (consistent && !nodes) {
-      std::vector<double> flags(surface.begin(), surface.end());
-      flags.resize(P.size(), 0.0);
-      nh.halo().update(flags);
-      near_surface = near_free_surface(P, nh.list(), K, flags);
-    }
+    if (consistent && !nodes)
+      near_surface = near_free_surface(P, nh.list(), K, surface_flags_with_ghosts(surface, P, nh));
   }
   const std::vector<char>* surface_flags = phys.free_surface ? &surface : nullptr;
   // Scale separation where a free surface cuts the support: with p = 0 on the surface particles,
@@ -230,9 +223,8 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
     // An impact is a free surface meeting a wall. Fluid already against a wall moves along it, and the
     // term on its small normal velocity (zero at the wall, O(dx) at the first particles) damps smooth
     // flows along walls (docs/verification/free_surface.md, the standing wave).
-    impacting.assign(P.size(), phys.free_surface ? 0.0 : 1.0);
-    for (std::size_t i = 0; i < surface.size(); ++i) impacting[i] = surface[i];
-    nh.halo().update(impacting);
+    impacting = phys.free_surface ? surface_flags_with_ghosts(surface, P, nh) : std::vector<double>(P.size(), 1.0);
+    check_ghosts(nh.list(), predicted, "the impact term's velocity");
   }
   // With surface nodes, p = 0 only where a particle has none: a sheet or a drop too thin for one
   // (SurfaceNodes::splash), or a particle with no fluid neighbour and no node (alone on a wall, a node
@@ -256,8 +248,15 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
   if (!nodes) corrections = {};
   log_assembly.end();
   LogEventScope log_solve(ppe_solve_event());
+  // Each solve writes the owned pressures; their ghosts follow at once (a second assembly's pair loop
+  // reads the particles' fields).
+  auto solve = [&](bool warm_start) {
+    const StepReport r = ppe_.solve(source, P.m, P.p, warm_start);
+    nh.halo().update(P.p);
+    return r;
+  };
   // The first solve starts from zero: the case's initial pressure is not the projection's.
-  StepReport report = ppe_.solve(source, P.m, P.p, solves_ > 0);
+  StepReport report = solve(solves_ > 0);
   // A free surface holds no tension: a surface particle that the solve puts under tension (p < 0) is
   // being pulled away from the fluid. It is let go (p = 0 on it) and the system solved again, at most
   // twice a step. Held, such particles were sucked into the walls they slid along (a dam break's
@@ -270,7 +269,7 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
     MPI_Allreduce(MPI_IN_PLACE, &released, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
     if (!released) break;
     assemble();
-    const StepReport again = ppe_.solve(source, P.m, P.p, true);
+    const StepReport again = solve(true);
     report.linear_iterations += again.linear_iterations;
     report.linear_residual = again.linear_residual, report.linear_reason = again.linear_reason;
   }
@@ -279,7 +278,6 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
   // step's memory peak (docs/performance.md, "Memory per particle").
   if (projection_corrections_ == 0) ppe_.release();
   log_solve.end();
-  nh.halo().update(P.p);
 
   LogEventScope log_correction(LogEvent::Forces);
   const std::vector<Vector<D>> grad_p = pressure_gradient(P.p);
@@ -341,7 +339,6 @@ template <int D> void IsphSolver<D>::opening_kick_and_drift(double dt, StepState
   const Physics<D>& phys = disc_->physics;
   const std::size_t n = P.n_owned;
   nh.update(P);
-  nh.halo().update(P.p);
   energy_.start(P);
   const LogEventScope log_forces(LogEvent::Forces);
   s.have_pressure = solves_ > 0;

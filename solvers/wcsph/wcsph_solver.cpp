@@ -83,13 +83,7 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
   if (gradient_ == WcsphGradient::Auto)
     gradient_ = disc.physics.free_surface ? WcsphGradient::Symmetric : WcsphGradient::Corrected;
   disc.neighbourhood.update(P, true);
-  if (density_ == DensityMethod::Summation) {
-    const std::vector<double> rho = density_summation(P, disc.neighbourhood.list(), disc.kernel);
-    std::copy(rho.begin(), rho.end(), P.rho.begin());
-  }
-  disc.neighbourhood.halo().update(P.rho);
-  update_pressure();
-  compute_rates();
+  compute_rates();  // the start's densities (by summation, if chosen), pressures and rates
 }
 
 // The sound speed keeps density variations near 1/c0_factor^2 only if c0 exceeds every speed whose
@@ -172,10 +166,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
 
   // No-slip walls: the viscous term sees the mirrored wall velocity (Adami et al. 2012).
   std::vector<Vector<D>> u_visc;
-  if (walls_ && phys.viscous()) {
-    u_visc = AdamiWall<D>::viscous_velocity(AdamiWall<D>::stencil(P, nl, K), P, nullptr, &disc_->bodies);
-    nh.halo().update(u_visc);
-  }
+  if (walls_ && phys.viscous()) u_visc = AdamiWall<D>::viscous_velocity(nh, K, P, nullptr, &disc_->bodies);
   const std::vector<Vector<D>>& uv = u_visc.empty() ? P.v : u_visc;
 
   const bool consistent = operators_ == OperatorSet::Consistent;
@@ -223,14 +214,17 @@ template <int D> void WcsphSolver<D>::compute_rates() {
     // Remembered: the flags' hysteresis, and the shift at the end of the step reuses them.
     surface_ = free_surface_.detect(P, nl, K, true);
     if (diffuse && !diffusion_at_surface_) {
-      surface_flags_.assign(surface_.begin(), surface_.end());
-      surface_flags_.resize(P.size(), 0.0);
-      nh.halo().update(surface_flags_);
+      surface_flags_ = surface_flags_with_ghosts(surface_, P, nh);
       in.surface = &surface_flags_;
     }
   }
   if (diffusion_ == DensityDiffusion::Fourtakas)
     in.hydrostatic_density_gradient = eos_.rho0 * phys.gravity / (eos_.c0 * eos_.c0);
+  check_ghosts(nl, uv, "the viscous term's velocity");
+  check_ghosts(nl, diffused, "the diffused density");
+  if (!grad_rho.empty()) check_ghosts(nl, grad_rho, "the density gradient");
+  if (in.surface) check_ghosts(nl, *in.surface, "the surface flags");
+  if (in.wall_velocity) check_ghosts(nl, *in.wall_velocity, "the walls' velocity");
   const bool consistent_viscous = consistent && phys.viscous();
   // Each particle's sums live in locals while its pairs are visited, and are stored once. The
   // consistent viscous Laplacian is gathered in the same loop as the rest, which saves a pass over the

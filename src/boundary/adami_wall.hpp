@@ -15,6 +15,7 @@
 
 #include "src/boundary/moving_bodies.hpp"
 #include "src/core/physics.hpp"
+#include "src/neighbours/neighbourhood.hpp"
 #include "src/sph/pair_loop.hpp"
 
 namespace sph {
@@ -113,6 +114,14 @@ template <int D> struct AdamiWall {
         avg += s.weight[k] * v[s.fluid[k]], r += s.weight[k] * s.r_wf[k];
       u[w] = mirror_velocity(P, w, avg, r, bodies);
     }
+    return u;
+  }
+
+  // The same over the neighbourhood's pairs, with the ghosts' values: what a pair loop reads.
+  static std::vector<Vector<D>> viscous_velocity(const Neighbourhood<D>& nh, const Kernel<D>& K, const Particles<D>& P,
+                                                 const std::vector<Vector<D>>* field, const MovingBodies<D>* bodies) {
+    std::vector<Vector<D>> u = viscous_velocity(stencil(P, nh.list(), K), P, field, bodies);
+    nh.halo().update(u);
     return u;
   }
 

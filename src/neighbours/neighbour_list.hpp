@@ -8,6 +8,8 @@
 
 namespace sph {
 
+template <int D> class Halo;
+
 template <int D> class NeighbourList {
  public:
   // Lists, for each of the first n_query points, every other point closer than `radius`,
@@ -32,11 +34,16 @@ template <int D> class NeighbourList {
   std::size_t count(std::size_t i) const { return offset_[i + 1] - offset_[i]; }
   std::size_t total() const { return index_.size(); }
   double radius() const { return radius_; }
+  // The halo whose ghost slots the indices past the owned particles refer to (null: a list built on
+  // its own), so that a pair loop can check that those slots are fresh (ghost_check.hpp).
+  const Halo<D>* halo() const { return halo_; }
+  void set_halo(const Halo<D>* halo) { halo_ = halo; }
 
  private:
   std::vector<std::size_t> offset_;
   std::vector<int> index_;
   double radius_ = 0.0;
+  const Halo<D>* halo_ = nullptr;
 };
 
 }  // namespace sph

@@ -28,6 +28,7 @@ template <int D> bool Neighbourhood<D>::update(Particles<D>& P, bool force) {
   const double radius = support_ + skin_;
   halo_.build(P, domain_, radius);
   list_.build(P.x, P.n_owned, radius);
+  list_.set_halo(&halo_);
   if (domain_.screens && domain_.screens->any()) {
     const Screens<D>& screens = *domain_.screens;
     list_.filter([&](std::size_t i, int j) { return screens.see(P.x[i], P.id[i], P.x[j], P.id[j]); });

@@ -80,6 +80,10 @@ PetscErrorCode read_options(RunControl* o) {
                               "run and counted in timeseries.csv's removed_fluid: splashes thrown out of an open "
                               "tank)",
                               "", box_exit_names, 2, box_exit_names[o->box_exit], &o->box_exit, nullptr));
+  PetscCall(PetscOptionsBool("-check_ghosts",
+                             "Check before every pair loop that the ghost copies hold their owners' values, and stop "
+                             "at a stale one (an internal error: for developers and bug reports; on in debug builds)",
+                             "", o->check_ghosts, &o->check_ghosts, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -107,6 +111,7 @@ void read_run_control(RunControl& opt, double case_steady_tol, int dim) {
   require(opt.partition_interval >= 0, "-partition_interval", "non-negative", opt.partition_interval);
   require(opt.threads >= 0, "-threads", "non-negative", opt.threads);
   opt.threads = configure_threads(static_cast<int>(opt.threads));
+  ghost_checks() = opt.check_ghosts;
   std::stringstream fields(opt.output_fields);
   for (std::string f; std::getline(fields, f, ',');) {
     if (f != "vorticity") throw Error("-output_fields takes vorticity (got '" + f + "')");

@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "src/neighbours/ghost_check.hpp"
+
 namespace sph {
 
 struct RunControl {
@@ -25,6 +27,7 @@ struct RunControl {
   PetscBool wall_forces = PETSC_TRUE;  // timeseries.csv's force columns (src/run/wall_groups.hpp)
   PetscInt body_pressure_force = 0;    // 0 surface, 1 pairs (src/run/wall_groups.hpp)
   PetscInt box_exit = 0;               // fluid leaving the box: 0 stop the run, 1 remove it (src/run/box_exit.hpp)
+  PetscBool check_ghosts = ghost_checks() ? PETSC_TRUE : PETSC_FALSE;  // src/neighbours/ghost_check.hpp
   char output_dir[PETSC_MAX_PATH_LEN] = "";
   char output_fields[128] = "";   // extra point arrays in the frames: "vorticity"
   bool vorticity_output = false;  // from output_fields

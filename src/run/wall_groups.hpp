@@ -62,18 +62,15 @@ template <int D> class WallGroups {
   }
 
   // The columns' values for the current state. Refreshes the ghosts' positions and velocities as the
-  // step left the owned ones (as the solvers do before their own pair loops) and reads the pressure
-  // and density through copies, so the run goes on bitwise the same.
+  // step left the owned ones (as the solvers do before their own pair loops); the pressure's and
+  // density's ghosts are fresh (docs/developer.md, "Ghosts").
   std::vector<double> row(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, const Physics<D>& physics,
                           const MovingBodies<D>& bodies) const {
     nh.update(P);
-    std::vector<double> p = P.p, rho = P.rho;
-    nh.halo().update(p);
-    nh.halo().update(rho);
     std::vector<int> group(P.n_owned, -1);
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (P.kind[i] == kWall) group[i] = body_of(P.id[i]) >= 0 ? body_of(P.id[i]) : walls_group_;
-    std::vector<GroupForce<D>> F = wall_group_forces(P, nh.list(), K, p, rho, group, physics.nu, about_, &bodies);
+    std::vector<GroupForce<D>> F = wall_group_forces(P, nh.list(), K, P.p, P.rho, group, physics.nu, about_, &bodies);
     for (std::size_t b = 0; b < faces_.size() && b < F.size(); ++b) {
       if (faces_[b].centre.empty()) continue;
       const Faces now = moved(b, bodies.time());

@@ -215,27 +215,27 @@ template <int D> struct FusedConsistentLaplacian {
 };
 
 // lap f_i = sum_j w_ij (f_j - f_i) for scalar or vector fields.
-template <int D, class T> std::vector<T> laplacian_consistent(const Particles<D>& P, const NeighbourList<D>& nl,
-                                                              const Kernel<D>& K,
-                                                              const std::vector<LaplacianCorrection<D>>& c,
-                                                              const std::vector<T>& f, Rows rows = Rows::All) {
+template <int D, class T>
+std::vector<T> laplacian_consistent(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                    const std::vector<LaplacianCorrection<D>>& c, const std::vector<T>& f,
+                                    Rows rows = Rows::All, CallSite at = CallSite()) {
+  check_ghosts(nl, f, "the Laplacian's field", at);
   return sum_over_pairs(
       P, nl, K, T(f.empty() ? T() : f[0] * 0.0),
       [&](T& lap, int i, int j, const PairGeometry<D>& g) {
         lap += consistent_laplacian_coefficient(c[i], P.m[j] / P.rho[j], g) * (f[j] - f[i]);
       },
-      rows);
+      rows, at);
 }
 
 // The consistent Laplacian of a vector field with each particle's factors gathered in the same pass
 // (FusedConsistentLaplacian): the operator of laplacian_corrections + laplacian_consistent, to
 // round-off, in one pass over the pairs instead of two. `factors`, if given, receives every owned
 // particle's factors (Morris' where a row is not visited), as laplacian_corrections gives them.
-template <int D>
-std::vector<Vector<D>> laplacian_consistent_one_pass(const Particles<D>& P, const NeighbourList<D>& nl,
-                                                     const Kernel<D>& K, const std::vector<Vector<D>>& f,
-                                                     Rows rows = Rows::All,
-                                                     std::vector<LaplacianCorrection<D>>* factors = nullptr) {
+template <int D> std::vector<Vector<D>> laplacian_consistent_one_pass(
+    const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const std::vector<Vector<D>>& f,
+    Rows rows = Rows::All, std::vector<LaplacianCorrection<D>>* factors = nullptr, CallSite at = CallSite()) {
+  check_ghosts(nl, f, "the Laplacian's field", at);
   std::vector<Vector<D>> out(P.n_owned, Vector<D>::Zero());
   if (factors) factors->assign(P.n_owned, LaplacianCorrection<D>());
   const double inv_R = 1.0 / K.support_radius();
@@ -248,7 +248,7 @@ std::vector<Vector<D>> laplacian_consistent_one_pass(const Particles<D>& P, cons
         });
         out[i] = lap.finish(inv_R, factors ? &(*factors)[i] : nullptr);
       },
-      rows);
+      rows, at);
   return out;
 }
 
@@ -261,9 +261,11 @@ template <int D>
 std::vector<std::vector<double>> divergences_corrected(const Particles<D>& P, const NeighbourList<D>& nl,
                                                        const Kernel<D>& K,
                                                        const std::vector<const std::vector<Vector<D>>*>& u,
-                                                       Rows rows = Rows::All, const SurfaceNodes<D>* nodes = nullptr) {
+                                                       Rows rows = Rows::All, const SurfaceNodes<D>* nodes = nullptr,
+                                                       CallSite at = CallSite()) {
   constexpr std::size_t max_fields = 2;
   if (u.empty() || u.size() > max_fields) throw std::logic_error("divergences_corrected: one or two fields");
+  for (const auto* field : u) check_ghosts(nl, *field, "the divergence's field", at);
   const std::size_t nf = u.size();
   // Each particle's sums live only while it is visited: stored for every particle they were the
   // largest array of the projection's correction pass, its memory peak (docs/performance.md, "Memory
@@ -286,7 +288,7 @@ std::vector<std::vector<double>> divergences_corrected(const Particles<D>& P, co
                 : correction_from_moments(nodes && nodes->has(i) ? Tensor<D>(M + nodes->moment_term(i)) : M);
         for (std::size_t f = 0; f < nf; ++f) div[f][i] = (L * G[f]).trace();
       },
-      rows);
+      rows, at);
   return div;
 }
 

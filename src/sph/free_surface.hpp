@@ -60,10 +60,21 @@ template <int D> std::vector<char> free_surface_particles(const Particles<D>& P,
 // holds owned and ghost values.
 template <int D> std::vector<char> near_free_surface(const Particles<D>& P, const NeighbourList<D>& nl,
                                                      const Kernel<D>& K, const std::vector<double>& surface) {
+  check_ghosts(nl, surface, "the surface flags");
   std::vector<char> near(P.n_owned, 0);
   for (std::size_t i = 0; i < P.n_owned; ++i) near[i] = surface[i] != 0.0;
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>&) { near[i] |= surface[j] != 0.0; });
   return near;
+}
+
+// The owned particles' surface flags (1: on the surface) as a field with its ghosts' values, for the
+// pair loops that read a neighbour's flag.
+template <int D> std::vector<double> surface_flags_with_ghosts(const std::vector<char>& surface, const Particles<D>& P,
+                                                               const Neighbourhood<D>& nh) {
+  std::vector<double> flags(surface.begin(), surface.end());
+  flags.resize(P.size(), 0.0);
+  nh.halo().update(flags);
+  return flags;
 }
 
 // How the surface is found (-free_surface_detection): div r below a threshold, with hysteresis (above),
@@ -175,9 +186,7 @@ template <int D> ShiftBoundary<D> FreeSurface<D>::shift_boundary(const Particles
                                                                  const Kernel<D>& K,
                                                                  const std::vector<char>& surface) const {
   const NeighbourList<D>& nl = nh.list();
-  std::vector<double> flags(surface.begin(), surface.end());
-  flags.resize(P.size(), 0.0);
-  nh.halo().update(flags);
+  const std::vector<double> flags = surface_flags_with_ghosts(surface, P, nh);
   // The surface particles' own normals, -grad C / |grad C| (walls included), for their neighbours.
   std::vector<Vector<D>> own = sum_over_pairs(
       P, nl, K, Vector<D>(Vector<D>::Zero()),

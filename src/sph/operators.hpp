@@ -38,31 +38,42 @@ std::vector<double> density_summation(const Particles<D>& P, const NeighbourList
 
 // (div u)_i = -(1/rho_i) sum_j m_j u_ij . grad_i W_ij  (exact for uniform u).
 template <int D> std::vector<double> divergence(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                                const std::vector<Vector<D>>& u) {
+                                                const std::vector<Vector<D>>& u, CallSite at = CallSite()) {
+  check_ghosts(nl, u, "the divergence's field", at);
   std::vector<double> div(P.n_owned, 0.0);
-  for_each_pair(P, nl, K,
-                [&](int i, int j, const PairGeometry<D>& g) { div[i] -= P.m[j] * (u[i] - u[j]).dot(g.gradW); });
+  for_each_pair(
+      P, nl, K, [&](int i, int j, const PairGeometry<D>& g) { div[i] -= P.m[j] * (u[i] - u[j]).dot(g.gradW); },
+      Rows::All, at);
   for (std::size_t i = 0; i < P.n_owned; ++i) div[i] /= P.rho[i];
   return div;
 }
 
 // (grad f)_i = sum_j V_j (f_j - f_i) grad_i W_ij  (zero for constant f).
 template <int D> std::vector<Vector<D>> gradient_difference(const Particles<D>& P, const NeighbourList<D>& nl,
-                                                            const Kernel<D>& K, const std::vector<double>& f) {
-  return sum_over_pairs(P, nl, K, Vector<D>(Vector<D>::Zero()),
-                        [&](Vector<D>& grad, int i, int j, const PairGeometry<D>& g) {
-                          grad += difference_gradient_term(P.m[j] / P.rho[j], f[i], f[j], g);
-                        });
+                                                            const Kernel<D>& K, const std::vector<double>& f,
+                                                            CallSite at = CallSite()) {
+  check_ghosts(nl, f, "the gradient's field", at);
+  return sum_over_pairs(
+      P, nl, K, Vector<D>(Vector<D>::Zero()),
+      [&](Vector<D>& grad, int i, int j, const PairGeometry<D>& g) {
+        grad += difference_gradient_term(P.m[j] / P.rho[j], f[i], f[j], g);
+      },
+      Rows::All, at);
 }
 
 // (grad f)_i = rho_i sum_j m_j (f_i/rho_i^2 + f_j/rho_j^2) grad_i W_ij: the momentum-conserving
 // (antisymmetric in i, j) form of Monaghan (1992).
 template <int D> std::vector<Vector<D>> gradient_symmetric(const Particles<D>& P, const NeighbourList<D>& nl,
-                                                           const Kernel<D>& K, const std::vector<double>& f) {
+                                                           const Kernel<D>& K, const std::vector<double>& f,
+                                                           CallSite at = CallSite()) {
+  check_ghosts(nl, f, "the gradient's field", at);
   std::vector<Vector<D>> grad(P.n_owned, Vector<D>::Zero());
-  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
-    grad[i] += (P.m[j] * (f[i] / (P.rho[i] * P.rho[i]) + f[j] / (P.rho[j] * P.rho[j]))) * g.gradW;
-  });
+  for_each_pair(
+      P, nl, K,
+      [&](int i, int j, const PairGeometry<D>& g) {
+        grad[i] += (P.m[j] * (f[i] / (P.rho[i] * P.rho[i]) + f[j] / (P.rho[j] * P.rho[j]))) * g.gradW;
+      },
+      Rows::All, at);
   for (std::size_t i = 0; i < P.n_owned; ++i) grad[i] *= P.rho[i];
   return grad;
 }
@@ -115,7 +126,8 @@ template <int D> std::vector<Vector<D>> gradient_corrected(const Particles<D>& P
 // of ISPH's velocity correction, its memory peak (docs/performance.md, "Memory per particle").
 template <int D, class Done> void for_each_gradient_sum(const Particles<D>& P, const NeighbourList<D>& nl,
                                                         const Kernel<D>& K, const std::vector<double>& f, Rows rows,
-                                                        Done&& done) {
+                                                        Done&& done, CallSite at = CallSite()) {
+  check_ghosts(nl, f, "the gradient's field", at);
   for_each_particle_pairs(
       P, nl, K,
       [&](std::size_t i, auto&& visit_pairs) {
@@ -128,40 +140,50 @@ template <int D, class Done> void for_each_gradient_sum(const Particles<D>& P, c
         });
         done(i, M, grad);
       },
-      rows);
+      rows, at);
 }
 
 // The same, with the correction matrices gathered in the same pair loop (bitwise the same result, one
 // pair loop instead of two) for callers that need no other corrected quantity.
 template <int D> std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl,
                                                            const Kernel<D>& K, const std::vector<double>& f,
-                                                           Rows rows = Rows::All) {
+                                                           Rows rows = Rows::All, CallSite at = CallSite()) {
   std::vector<Vector<D>> grad(P.n_owned, Vector<D>::Zero());
-  for_each_gradient_sum(P, nl, K, f, rows, [&](std::size_t i, const Tensor<D>& M, const Vector<D>& g) {
-    grad[i] = correction_from_moments(M) * g;
-  });
+  for_each_gradient_sum(
+      P, nl, K, f, rows,
+      [&](std::size_t i, const Tensor<D>& M, const Vector<D>& g) { grad[i] = correction_from_moments(M) * g; }, at);
   return grad;
 }
 
 // Corrected gradient of a vector field: G_i(a, b) = d u_b / d x_a.
 template <int D> std::vector<Tensor<D>> vector_gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl,
                                                                   const Kernel<D>& K, const std::vector<Tensor<D>>& L,
-                                                                  const std::vector<Vector<D>>& u) {
+                                                                  const std::vector<Vector<D>>& u,
+                                                                  CallSite at = CallSite()) {
+  check_ghosts(nl, u, "the gradient's field", at);
   std::vector<Tensor<D>> G(P.n_owned, Tensor<D>::Zero());
-  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
-    G[i] += difference_vector_gradient_term(P.m[j] / P.rho[j], u[i], u[j], g);
-  });
+  for_each_pair(
+      P, nl, K,
+      [&](int i, int j, const PairGeometry<D>& g) {
+        G[i] += difference_vector_gradient_term(P.m[j] / P.rho[j], u[i], u[j], g);
+      },
+      Rows::All, at);
   for (std::size_t i = 0; i < P.n_owned; ++i) G[i] = L[i] * G[i];
   return G;
 }
 
 // Morris et al. (1997) Laplacian: (lap f)_i = 2 sum_j V_j (f_i - f_j) F_ij.
 template <int D, class T> std::vector<T> laplacian_morris(const Particles<D>& P, const NeighbourList<D>& nl,
-                                                          const Kernel<D>& K, const std::vector<T>& f) {
+                                                          const Kernel<D>& K, const std::vector<T>& f,
+                                                          CallSite at = CallSite()) {
+  check_ghosts(nl, f, "the Laplacian's field", at);
   std::vector<T> lap(P.n_owned, T(f.empty() ? T() : f[0] * 0.0));
-  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
-    lap[i] += (2.0 * P.m[j] / P.rho[j] * morris_factor(g, K.h())) * (f[i] - f[j]);
-  });
+  for_each_pair(
+      P, nl, K,
+      [&](int i, int j, const PairGeometry<D>& g) {
+        lap[i] += (2.0 * P.m[j] / P.rho[j] * morris_factor(g, K.h())) * (f[i] - f[j]);
+      },
+      Rows::All, at);
   return lap;
 }
 

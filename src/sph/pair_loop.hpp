@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "src/kernels/kernel.hpp"
+#include "src/neighbours/ghost_check.hpp"
 #include "src/neighbours/neighbour_list.hpp"
 #include "src/particles/particles.hpp"
 
@@ -130,7 +131,8 @@ template <int D, class PairFn> inline void pairs_of(std::size_t i, const Particl
 // anything) and does not throw. Each i's pairs still run in list order on one thread, so every sum
 // is bitwise the same on any thread count.
 template <int D, class PairFn> void for_each_pair(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                                  PairFn&& f, Rows rows = Rows::All) {
+                                                  PairFn&& f, Rows rows = Rows::All, CallSite at = CallSite()) {
+  check_particle_ghosts(P, nl, at);
   const double rc2 = K.support_radius() * K.support_radius();
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
 #pragma omp parallel for schedule(static)
@@ -143,7 +145,8 @@ template <int D, class PairFn> void for_each_pair(const Particles<D>& P, const N
 // long as one particle's computation (moment matrices solved on the spot), kept in f's locals.
 template <int D, class ParticleFn> void for_each_particle_pairs(const Particles<D>& P, const NeighbourList<D>& nl,
                                                                 const Kernel<D>& K, ParticleFn&& f,
-                                                                Rows rows = Rows::All) {
+                                                                Rows rows = Rows::All, CallSite at = CallSite()) {
+  check_particle_ghosts(P, nl, at);
   const double rc2 = K.support_radius() * K.support_radius();
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
 #pragma omp parallel for schedule(static)
@@ -160,7 +163,8 @@ template <int D, class ParticleFn> void for_each_particle_pairs(const Particles<
 // measurements"). Acc may be a struct of several sums.
 template <int D, class Acc, class SumFn>
 std::vector<Acc> sum_over_pairs(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const Acc& zero,
-                                SumFn&& f, Rows rows = Rows::All) {
+                                SumFn&& f, Rows rows = Rows::All, CallSite at = CallSite()) {
+  check_particle_ghosts(P, nl, at);
   std::vector<Acc> out(P.n_owned, zero);
   const double rc2 = K.support_radius() * K.support_radius();
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
@@ -176,8 +180,9 @@ std::vector<Acc> sum_over_pairs(const Particles<D>& P, const NeighbourList<D>& n
 }
 
 // f(i, j) for the same pairs, without evaluating the kernel (to count them), threaded like for_each_pair.
-template <int D, class IndexFn>
-void for_each_pair_index(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, IndexFn&& f) {
+template <int D, class IndexFn> void for_each_pair_index(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                         const Kernel<D>& K, IndexFn&& f, CallSite at = CallSite()) {
+  check_particle_ghosts(P, nl, at);
   const double rc2 = K.support_radius() * K.support_radius();
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
 #pragma omp parallel for schedule(static)
@@ -189,7 +194,9 @@ void for_each_pair_index(const Particles<D>& P, const NeighbourList<D>& nl, cons
 // The same pairs on one thread, i ascending: for callers that build output in order (matrix rows,
 // compressed stencils) or write to shared state.
 template <int D, class PairFn> void for_each_pair_in_order(const Particles<D>& P, const NeighbourList<D>& nl,
-                                                           const Kernel<D>& K, PairFn&& f, Rows rows = Rows::All) {
+                                                           const Kernel<D>& K, PairFn&& f, Rows rows = Rows::All,
+                                                           CallSite at = CallSite()) {
+  check_particle_ghosts(P, nl, at);
   const double rc2 = K.support_radius() * K.support_radius();
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (visited(rows, P.kind[i])) detail::pairs_of(i, P, nl, K, rc2, f);

@@ -166,7 +166,7 @@ template <int D> void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, con
   if (scalars.size() > max_scalars) throw std::logic_error("shift_particles: more than 4 scalar fields");
   const std::size_t ns = scalars.size();
   std::array<const double*, max_scalars> f{};
-  for (std::size_t k = 0; k < ns; ++k) f[k] = scalars[k]->data();
+  for (std::size_t k = 0; k < ns; ++k) f[k] = scalars[k]->data(), check_ghosts(nl, *scalars[k], "a shifted field");
   for_each_particle_pairs(
       P, nl, K,
       [&](std::size_t i, auto&& visit_pairs) {
@@ -224,6 +224,10 @@ template <int D> void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, con
     P.x[i] += dr[i];
     P.v[i] += Tensor<D>(L[i] * grad_u[i]).transpose() * dr[i];
   }
+  // The ghosts follow what the shift wrote (the lists stay those of the last update).
+  nh.halo().update_positions(P.x);
+  nh.halo().update(P.v);
+  for (std::vector<double>* field : scalars) nh.halo().update(*field);
 }
 
 }  // namespace sph

@@ -104,12 +104,15 @@ template <int D> SurfaceNodes<D> surface_nodes(const Particles<D>& P, const Neig
 // singular.
 template <int D> std::vector<Vector<D>> gradient_corrected(const Particles<D>& P, const NeighbourList<D>& nl,
                                                            const Kernel<D>& K, const std::vector<double>& f, Rows rows,
-                                                           const SurfaceNodes<D>& nodes) {
+                                                           const SurfaceNodes<D>& nodes, CallSite at = CallSite()) {
   std::vector<Vector<D>> grad(P.n_owned, Vector<D>::Zero());
-  for_each_gradient_sum(P, nl, K, f, rows, [&](std::size_t i, Tensor<D> M, Vector<D> g) {
-    if (nodes.has(i)) M += nodes.moment_term(i), g += nodes.gradient_term(i, f[i]);
-    grad[i] = nodes.is_splash(i) ? g : Vector<D>(correction_from_moments(M) * g);
-  });
+  for_each_gradient_sum(
+      P, nl, K, f, rows,
+      [&](std::size_t i, Tensor<D> M, Vector<D> g) {
+        if (nodes.has(i)) M += nodes.moment_term(i), g += nodes.gradient_term(i, f[i]);
+        grad[i] = nodes.is_splash(i) ? g : Vector<D>(correction_from_moments(M) * g);
+      },
+      at);
   return grad;
 }
 

@@ -46,6 +46,8 @@ std::vector<GroupForce<D>> wall_group_forces(const Particles<D>& P, const Neighb
                                              const std::vector<Vector<D>>& about,
                                              const MovingBodies<D>* bodies = nullptr) {
   const std::size_t n_groups = about.size();
+  check_ghosts(nl, p, "the wall forces' pressure");
+  check_ghosts(nl, rho, "the wall forces' density");
   // Per wall particle, in one pass over its fluid pairs: the pressure force, the viscous sums, with the
   // Shepard averages that the mirror velocity needs (AdamiWall::viscous_velocity's, without gathering a
   // stencil), and the moments. Each pair's force acts halfway between its two particles, where the
