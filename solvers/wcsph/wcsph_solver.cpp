@@ -319,7 +319,6 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
   kick_drift_rates_kick(dt);
   if (shifting_model_.enabled) shift(dt);
   const LogEventScope log_density(LogEvent::Density);
-  disc_->neighbourhood.halo().update(disc_->particles.rho);
   update_pressure();
   return {};
 }
@@ -345,12 +344,13 @@ template <int D> void WcsphSolver<D>::kick_drift_rates_kick(double dt) {
         compute_rates();
       });
   disc_->bodies.move_to(P, t_end);  // the closing kick left the walls' velocity of the step's start
+  nh.halo().update(P.rho);          // the closing kick's densities, for the shift and the pressures
 }
 
 template <int D> void WcsphSolver<D>::shift(double dt) {
   Particles<D>& P = disc_->particles;
   Neighbourhood<D>& nh = disc_->neighbourhood;
-  if (!nh.update(P)) nh.halo().update(P.rho);
+  nh.update(P);
   // At a free surface particles shift only along it (Lind et al. 2012), beside it never outwards. The
   // surface is the rates' one: the particles have not moved since.
   ShiftBoundary<D> boundary;

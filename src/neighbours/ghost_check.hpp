@@ -52,9 +52,7 @@ inline void throw_if_stale(long stale, const char* field, CallSite at) {
                          std::to_string(at.line) + " are stale (ghost " + std::to_string(stale) +
                          "): a value written on owned particles was not refreshed before the loop");
 }
-}  // namespace detail
 
-namespace detail {
 // The comparisons, kept out of line: the pair loops that call the checks stay as lean as without them.
 template <int D, class T> [[gnu::noinline, gnu::cold]] void compare_ghosts(const Halo<D>& halo, const std::vector<T>& f,
                                                                            const char* field, CallSite at) {
