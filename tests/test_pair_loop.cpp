@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "operator_lattice.hpp"
+#include "solvers/compressible/pruned_pairs.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/sph/operators.hpp"
 #include "src/sph/pair_loop.hpp"
@@ -106,6 +107,32 @@ TEST(GhostCheck, APairLoopStopsAtGhostsThatMissedAWrite) {
   ghost_checks() = true;
   L.nh->halo().update(w);
   EXPECT_NO_THROW(divergence(L.P, L.nl(), L.K, w));
+}
+
+// The compressible solver's variable-h loop runs over its pruned lists, which know the halo of the
+// list they were pruned from: a stale ghost stops it too.
+TEST(GhostCheck, TheVariableHLoopStopsAtGhostsThatMissedAWrite) {
+  ASSERT_TRUE(ghost_checks());
+  Lattice L(16, kCases[0]);
+  const std::vector<double> h(L.P.size(), L.K.h());
+  const double kappa = L.K.support_radius() / L.K.h();
+  compressible::PrunedPairs<2> pairs;
+  pairs.build(L.P, L.nl(), h, kappa, 1.0);
+  ASSERT_EQ(pairs.halo(), L.nl().halo());
+  const std::vector<Kernel<2>> kernels(L.P.size(), L.K);
+  std::vector<std::size_t> visited(L.P.n_owned, 0);  // threads share the particles i
+  auto count = [&](int i, int, const VariableHPair<2>&) { ++visited[static_cast<std::size_t>(i)]; };
+  EXPECT_NO_THROW(for_each_variable_h_pair(L.P, pairs, kernels, count));
+  for (std::size_t i = 0; i < L.P.n_owned; ++i) EXPECT_EQ(visited[i], pairs.count(i)) << "particle " << i;
+  L.P.rho[0] *= 1.01;
+  try {
+    for_each_variable_h_pair(L.P, pairs, kernels, count);
+    ADD_FAILURE() << "a stale density ghost went unnoticed";
+  } catch (const std::logic_error& e) {
+    EXPECT_NE(std::string(e.what()).find("ghost copies of rho "), std::string::npos) << e.what();
+  }
+  L.nh->halo().update(L.P.rho);
+  EXPECT_NO_THROW(for_each_variable_h_pair(L.P, pairs, kernels, count));
 }
 
 }  // namespace

@@ -172,6 +172,9 @@ template <int D> void CompressibleSolver<D>::solve_density() {
     ensure_search_radius(mpi_max(h_max), false);
     if (pairs_built_at_rebuild_ != disc_->neighbourhood.rebuilds()) prune_pairs();
     const NeighbourList<D>& nl = disc_->neighbourhood.list();
+    check_position_ghosts(P, nl);
+    check_ghosts(nl, P.m, "m");
+    if (need_div) check_ghosts(nl, P.v, "v");
 
     // Threads share the active particles; each writes only its own entries. Which ones stay active
     // is collected afterwards, in order.
@@ -280,6 +283,9 @@ template <int D> void CompressibleSolver<D>::compute_forces() {
   f.vsig.assign(n, 0.0);
 
   if (!pairs_valid()) prune_pairs();
+  check_ghosts(pairs_, f.h, "h"), check_ghosts(pairs_, q_, "q"), check_ghosts(pairs_, cs_, "cs");
+  if (av_.active()) check_ghosts(pairs_, f.alpha, "alpha"), check_ghosts(pairs_, balsara_factor_, "balsara_factor");
+  if (conductivity_) check_ghosts(pairs_, f.u, "u");
   for_each_variable_h_pair(P, pairs_, kernels_, [&](int i, int j, const VariableHPair<D>& g) {
     const Vector<D> vij = P.v[i] - P.v[j];
     f.acc[i] += pressure_acceleration(P.m[j], q_[i], q_[j], g);

@@ -22,6 +22,7 @@ template <int D> class PrunedPairs {
   void build(const Particles<D>& P, const NeighbourList<D>& nl, const std::vector<double>& h, double kappa,
              double margin) {
     const std::size_t n = P.n_owned;
+    halo_ = nl.halo();
     reach_.resize(n);
     for (std::size_t i = 0; i < n; ++i) reach_[i] = margin * kappa * h[i];
     build_compressed_rows(n, offset_, index_, [&](std::size_t i, std::vector<int>& out) {
@@ -37,13 +38,17 @@ template <int D> class PrunedPairs {
   const int* end(std::size_t i) const { return index_.data() + offset_[i + 1]; }
   std::size_t size() const { return offset_.empty() ? 0 : offset_.size() - 1; }
   std::size_t total() const { return index_.size(); }
+  std::size_t count(std::size_t i) const { return offset_[i + 1] - offset_[i]; }
   // Radius within which i's list is complete.
   double reach(std::size_t i) const { return reach_[i]; }
+  // The halo whose ghost slots the indices past the owned particles refer to (the full list's).
+  const Halo<D>* halo() const { return halo_; }
 
  private:
   std::vector<std::size_t> offset_;
   std::vector<int> index_;
   std::vector<double> reach_;
+  const Halo<D>* halo_ = nullptr;
 };
 
 }  // namespace sph::compressible

@@ -62,10 +62,15 @@ template <int D, class T> [[gnu::noinline, gnu::cold]] void compare_ghosts(const
 }
 
 template <int D>
-[[gnu::noinline, gnu::cold]] void compare_particle_ghosts(const Halo<D>& halo, const Particles<D>& P, CallSite at) {
+[[gnu::noinline, gnu::cold]] void compare_position_ghosts(const Halo<D>& halo, const Particles<D>& P, CallSite at) {
   std::vector<Vector<D>> x(P.x.begin(), P.x.begin() + std::min(P.x.size(), halo.n_owned()));
   halo.update_positions(x);
   throw_if_stale(first_stale(x, P.x, halo.n_owned()), "x", at);
+}
+
+template <int D>
+[[gnu::noinline, gnu::cold]] void compare_particle_ghosts(const Halo<D>& halo, const Particles<D>& P, CallSite at) {
+  compare_position_ghosts(halo, P, at);
   compare_ghosts(halo, P.v, "v", at);
   compare_ghosts(halo, P.m, "m", at);
   compare_ghosts(halo, P.rho, "rho", at);
@@ -74,14 +79,22 @@ template <int D>
 }
 }  // namespace detail
 
+// A list is a NeighbourList or any other list whose halo() names the halo its ghost indices refer to.
+
 // Throws std::logic_error when f's ghost slots differ, bit for bit, from their owners' values.
-template <int D, class T>
-void check_ghosts(const NeighbourList<D>& nl, const std::vector<T>& f, const char* field, CallSite at = CallSite()) {
+template <class List, class T>
+void check_ghosts(const List& nl, const std::vector<T>& f, const char* field, CallSite at = CallSite()) {
   if (ghost_checks() && nl.halo()) detail::compare_ghosts(*nl.halo(), f, field, at);
 }
 
+// The ghosts' positions, with their periodic shifts.
+template <int D, class List>
+void check_position_ghosts(const Particles<D>& P, const List& nl, CallSite at = CallSite()) {
+  if (ghost_checks() && nl.halo()) detail::compare_position_ghosts(*nl.halo(), P, at);
+}
+
 // The particles' own fields, which every pair loop may read; positions with the ghosts' periodic shifts.
-template <int D> void check_particle_ghosts(const Particles<D>& P, const NeighbourList<D>& nl, CallSite at) {
+template <int D, class List> void check_particle_ghosts(const Particles<D>& P, const List& nl, CallSite at) {
   if (ghost_checks() && nl.halo()) detail::compare_particle_ghosts(*nl.halo(), P, at);
 }
 

@@ -208,7 +208,8 @@ template <int D, class PairFn> void for_each_pair_in_order(const Particles<D>& P
 // hold every pair within the supports in use.
 
 // For owned particle i: f(j, r_ij, r) for every neighbour j with 0 < r < support of K (i's own kernel),
-// the "gather" view used by the density / smoothing-length iteration.
+// the "gather" view used by the density / smoothing-length iteration. Called once per particle, it
+// checks no ghosts: its caller checks those it reads, once, before its loop.
 template <int D, class List, class Fn> inline void for_each_gather_neighbour(const Particles<D>& P, const List& nl,
                                                                              std::size_t i, const Kernel<D>& K,
                                                                              Fn&& f) {
@@ -236,8 +237,10 @@ template <int D> struct VariableHPair {
 
 // f(i, j, pair) for every owned i and neighbour j within the larger of the two supports ("scatter +
 // gather", what the symmetric force needs). kernels[k] is particle k's kernel (owned and ghosts).
-template <int D, class List, class Fn>
-void for_each_variable_h_pair(const Particles<D>& P, const List& nl, const std::vector<Kernel<D>>& kernels, Fn&& f) {
+template <int D, class List, class Fn> void for_each_variable_h_pair(const Particles<D>& P, const List& nl,
+                                                                     const std::vector<Kernel<D>>& kernels, Fn&& f,
+                                                                     CallSite at = CallSite()) {
+  check_particle_ghosts(P, nl, at);
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(P.n_owned);
   // Threads share the particles i; f writes only to entries of i (as for sph::for_each_pair).
 #pragma omp parallel for schedule(static)
