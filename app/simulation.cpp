@@ -18,7 +18,6 @@ std::vector<OptionOwner> option_owners(const RunOptions& chosen);
 namespace {
 
 template <int D> void run_in_dim(const RunOptions& names) {
-  const std::vector<std::string> valueless = check_finite_option_values(option_owners(names));
   const std::unique_ptr<Case<D>> run_case = create_case<D>(names.case_name);
   const std::unique_ptr<Solver<D>> solver = create_solver<D>(names.solver_name);
   run_case->set_from_options();
@@ -35,7 +34,6 @@ template <int D> void run_in_dim(const RunOptions& names) {
           ? (checkpoint_folder.empty() ? std::string(".") : checkpoint_folder)
           : "out/" + run_case->output_name() + "-" + names.solver_name + "-" + std::to_string(run_case->resolution());
   check_unused_options(option_owners(names));
-  check_valueless_options(valueless, option_owners(names));
   run_time_loop<D>({*run_case, *solver, names.case_name, names.solver_name, control, kernel, output_dir,
                     [&names] { check_late_options(option_owners(names)); }});
   finish_options_check();

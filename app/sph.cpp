@@ -16,6 +16,7 @@
 #include "cases/registry.hpp"
 #include "solvers/registry.hpp"
 #include "src/core/error.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/run/interrupt.hpp"
 #include "src/run/provenance.hpp"
 
@@ -49,20 +50,13 @@ PetscErrorCode read_names(sph::RunOptions* o, PetscInt* dim, PetscBool* dim_set)
   for (const auto& s : sph::solver_names()) solvers.push_back(s.c_str());
   PetscInt c = 0, s = 0;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Scene and scheme", "sph");
-  PetscCall(PetscOptionsEList("-case", "Scene to run", "", cases.data(), static_cast<PetscInt>(cases.size()), cases[0],
-                              &c, nullptr));
-  PetscCall(PetscOptionsEList("-solver", "Time-stepping scheme", "", solvers.data(),
-                              static_cast<PetscInt>(solvers.size()), solvers[0], &s, nullptr));
-  PetscCall(PetscOptionsInt("-dim", "Spatial dimension (default: the case's own)", "", *dim, dim, dim_set));
+  PetscCall(sph::option_choice(PetscOptionsObject, "-case", "Scene to run", cases.data(),
+                               static_cast<PetscInt>(cases.size()), cases[0], &c, nullptr));
+  PetscCall(sph::option_choice(PetscOptionsObject, "-solver", "Time-stepping scheme", solvers.data(),
+                               static_cast<PetscInt>(solvers.size()), solvers[0], &s, nullptr));
+  PetscCall(
+      sph::option_int(PetscOptionsObject, "-dim", "Spatial dimension (default: the case's own)", *dim, dim, dim_set));
   PetscOptionsEnd();
-  // PETSc keeps the default for a choice given without a value: a run of the wrong scene.
-  for (const char* name : {"-case", "-solver", "-dim"}) {
-    const char* value = nullptr;
-    PetscBool given = PETSC_FALSE;
-    PetscCall(PetscOptionsFindPair(nullptr, nullptr, name, &value, &given));
-    PetscCheck(!given || value, PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG,
-               "option %s was given without a value; name one (-help lists them) or leave it out", name);
-  }
   o->case_name = cases[c];
   o->solver_name = solvers[s];
   PetscFunctionReturn(0);

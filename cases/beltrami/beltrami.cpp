@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cases/common/exact_flow_errors.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -13,12 +14,14 @@ constexpr double kL = 2.0 * M_PI;  // side of the cube
 PetscErrorCode read_options(PetscInt* nx, PetscReal* re, PetscReal* A, PetscReal* B, PetscReal* C, PetscReal* rho0) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Beltrami (ABC) flow (-case beltrami, 3D)", "Case");
-  PetscCall(PetscOptionsInt("-nx", "Particles per side of the periodic cube [0, 2 pi)^3", "", *nx, nx, nullptr));
-  PetscCall(PetscOptionsReal("-re", "Reynolds number U L / nu, U = max |u(x, 0)|, L = 2 pi", "", *re, re, nullptr));
-  PetscCall(PetscOptionsReal("-A", "ABC coefficient A (u = A sin z + C cos y, ...)", "", *A, A, nullptr));
-  PetscCall(PetscOptionsReal("-B", "ABC coefficient B", "", *B, B, nullptr));
-  PetscCall(PetscOptionsReal("-C", "ABC coefficient C", "", *C, C, nullptr));
-  PetscCall(PetscOptionsReal("-rho0", "Density", "", *rho0, rho0, nullptr));
+  PetscCall(
+      option_int(PetscOptionsObject, "-nx", "Particles per side of the periodic cube [0, 2 pi)^3", *nx, nx, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-re", "Reynolds number U L / nu, U = max |u(x, 0)|, L = 2 pi", *re, re,
+                        nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-A", "ABC coefficient A (u = A sin z + C cos y, ...)", *A, A, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-B", "ABC coefficient B", *B, B, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-C", "ABC coefficient C", *C, C, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-rho0", "Density", *rho0, rho0, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

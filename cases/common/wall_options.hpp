@@ -3,15 +3,16 @@
 // lists them under the case) and checked after it.
 #include <petscsys.h>
 
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
 
 inline PetscErrorCode read_wall_scene_options(PetscOptionItems* PetscOptionsObject, PetscInt* layers, PetscReal* rho0) {
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsReal("-rho0", "Density", "", *rho0, rho0, nullptr));
-  PetscCall(PetscOptionsInt("-wall_layers", "Layers of wall particles (must cover the kernel support)", "", *layers,
-                            layers, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-rho0", "Density", *rho0, rho0, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-wall_layers", "Layers of wall particles (must cover the kernel support)",
+                       *layers, layers, nullptr));
   PetscFunctionReturn(0);
 }
 

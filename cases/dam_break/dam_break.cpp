@@ -8,6 +8,7 @@
 #include "cases/common/lattice.hpp"
 #include "cases/common/reference_data.hpp"
 #include "cases/common/wall_options.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -17,10 +18,10 @@ PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* a, PetscR
                             PetscReal* rho0) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Dam break (-case dam_break)", "Case");
-  PetscCall(PetscOptionsInt("-nx", "Particles across the column width a", "", *nx, nx, nullptr));
-  PetscCall(PetscOptionsReal("-column_width", "Column width a (height 2a, tank 4a)", "", *a, a, nullptr));
-  PetscCall(PetscOptionsReal("-g", "Gravity", "", *g, g, nullptr));
-  PetscCall(PetscOptionsReal("-re", "Reynolds number sqrt(g a^3) / nu", "", *re, re, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-nx", "Particles across the column width a", *nx, nx, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-column_width", "Column width a (height 2a, tank 4a)", *a, a, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-g", "Gravity", *g, g, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-re", "Reynolds number sqrt(g a^3) / nu", *re, re, nullptr));
   PetscCall(read_wall_scene_options(PetscOptionsObject, layers, rho0));
   PetscOptionsEnd();
   PetscFunctionReturn(0);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cases/common/lattice.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -12,10 +13,11 @@ namespace {
 PetscErrorCode read_options(PetscInt* nx, PetscReal* R, PetscReal* A0, PetscReal* rho0) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Elliptical drop (-case elliptical_drop)", "Case");
-  PetscCall(PetscOptionsInt("-nx", "Particles across the drop's radius", "", *nx, nx, nullptr));
-  PetscCall(PetscOptionsReal("-radius", "The drop's initial radius R", "", *R, R, nullptr));
-  PetscCall(PetscOptionsReal("-strain_rate", "The initial strain rate A0: u = A0 (x, -y)", "", *A0, A0, nullptr));
-  PetscCall(PetscOptionsReal("-rho0", "Density", "", *rho0, rho0, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-nx", "Particles across the drop's radius", *nx, nx, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-radius", "The drop's initial radius R", *R, R, nullptr));
+  PetscCall(
+      option_real(PetscOptionsObject, "-strain_rate", "The initial strain rate A0: u = A0 (x, -y)", *A0, A0, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-rho0", "Density", *rho0, rho0, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

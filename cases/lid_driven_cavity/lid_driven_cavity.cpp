@@ -9,6 +9,7 @@
 #include "cases/common/lattice.hpp"
 #include "cases/common/reference_data.hpp"
 #include "cases/common/wall_options.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -20,25 +21,26 @@ PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* re, Petsc
                             PetscInt* interpolation, PetscInt* corners, PetscReal* average_from) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Lid-driven cavity (-case lid_driven_cavity)", "Case");
-  PetscCall(PetscOptionsInt("-nx", "Fluid particles per side of the unit cavity", "", *nx, nx, nullptr));
-  PetscCall(PetscOptionsReal("-re", "Reynolds number U L / nu (references: 100, 400, 1000)", "", *re, re, nullptr));
-  PetscCall(PetscOptionsReal("-U", "Lid speed", "", *U, U, nullptr));
-  PetscCall(PetscOptionsEList("-lid_corners",
-                              "Wall blocks where the lid meets the side walls: upstream (the upstream block moves "
-                              "with the lid, the downstream one is fixed) or symmetric (both at U/2, the mean of the "
-                              "two walls meeting there; 2D ISPH fails at Re 1000)",
-                              "", lid_corners_names, 2, lid_corners_names[*corners], corners, nullptr));
-  PetscCall(PetscOptionsEList("-profile_interpolation",
-                              "How the centreline profiles are read off the particles: linear (moving least squares, "
-                              "second order next to walls too) or shepard (kernel average, the metric before; O(h) "
-                              "biased where the support is cut)",
-                              "", probe_interpolation_names, 2, probe_interpolation_names[*interpolation],
-                              interpolation, nullptr));
-  PetscCall(PetscOptionsReal("-profile_average_from",
-                             "Average the centreline profiles over t >= this time and report their errors as "
-                             "centreline_rms_u_averaged / _v_averaged (default -1: no average; use with "
-                             "-steady_tol 0 and a -t_end past it)",
-                             "", *average_from, average_from, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-nx", "Fluid particles per side of the unit cavity", *nx, nx, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-re", "Reynolds number U L / nu (references: 100, 400, 1000)", *re, re,
+                        nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-U", "Lid speed", *U, U, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-lid_corners",
+                          "Wall blocks where the lid meets the side walls: upstream (the upstream block moves "
+                          "with the lid, the downstream one is fixed) or symmetric (both at U/2, the mean of the "
+                          "two walls meeting there; 2D ISPH fails at Re 1000)",
+                          lid_corners_names, 2, lid_corners_names[*corners], corners, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-profile_interpolation",
+                          "How the centreline profiles are read off the particles: linear (moving least squares, "
+                          "second order next to walls too) or shepard (kernel average, the metric before; O(h) "
+                          "biased where the support is cut)",
+                          probe_interpolation_names, 2, probe_interpolation_names[*interpolation], interpolation,
+                          nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-profile_average_from",
+                        "Average the centreline profiles over t >= this time and report their errors as "
+                        "centreline_rms_u_averaged / _v_averaged (default -1: no average; use with "
+                        "-steady_tol 0 and a -t_end past it)",
+                        *average_from, average_from, nullptr));
   PetscCall(read_wall_scene_options(PetscOptionsObject, layers, rho0));
   PetscOptionsEnd();
   PetscFunctionReturn(0);

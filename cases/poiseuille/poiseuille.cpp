@@ -4,6 +4,7 @@
 
 #include "cases/common/lattice.hpp"
 #include "cases/common/wall_options.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -12,9 +13,9 @@ namespace {
 PetscErrorCode read_options(PetscInt* ny, PetscInt* layers, PetscReal* re, PetscReal* U, PetscReal* rho0) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Poiseuille channel flow (-case poiseuille)", "Case");
-  PetscCall(PetscOptionsInt("-nx", "Fluid particles across the channel", "", *ny, ny, nullptr));
-  PetscCall(PetscOptionsReal("-re", "Reynolds number U L / nu of the steady flow", "", *re, re, nullptr));
-  PetscCall(PetscOptionsReal("-U", "Steady centreline speed (sets the body force)", "", *U, U, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-nx", "Fluid particles across the channel", *ny, ny, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-re", "Reynolds number U L / nu of the steady flow", *re, re, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-U", "Steady centreline speed (sets the body force)", *U, U, nullptr));
   PetscCall(read_wall_scene_options(PetscOptionsObject, layers, rho0));
   PetscOptionsEnd();
   PetscFunctionReturn(0);

@@ -9,6 +9,7 @@
 #include "cases/common/lattice.hpp"
 #include "cases/scene/scene_geometry.hpp"
 #include "cases/scene/scene_yaml.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 #include "src/kernels/kernel_options.hpp"
 
@@ -47,36 +48,37 @@ template <int D> std::array<bool, D> parse_axes(const std::string& text) {
 PetscErrorCode read_options(SceneOptions* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Scene from a file (-case scene)", "Case");
-  PetscCall(PetscOptionsString("-scene_file",
-                               "VTK XML PolyData (.vtp) scene: point arrays kind (0 fluid, 1 fixed wall, 2 "
-                               "moving wall), velocity, pressure; parameters as field data. Or a YAML (.yaml, "
-                               ".yml) scene of shapes, sampled at the run's spacing",
-                               "", o->path, o->path, sizeof(o->path), nullptr));
-  PetscCall(PetscOptionsInt("-nx", "YAML scenes: particles per unit length, dx = 1/nx", "", o->nx, &o->nx, &o->nx_set));
-  PetscCall(PetscOptionsReal("-scene_dx", "Particle spacing (overrides the file's field data dx)", "", o->dx, &o->dx,
-                             &o->dx_set));
-  PetscCall(PetscOptionsRealArray("-scene_box",
-                                  "Box xmin,xmax,ymin,ymax[,zmin,zmax] (overrides field data box; default: "
-                                  "the particles' bounding box grown by dx/2)",
-                                  "", o->box, &o->box_n, &o->box_set));
-  PetscCall(PetscOptionsString("-scene_periodic",
-                               "Periodic axes, e.g. x or x,y, or none (overrides field data periodic)", "", o->periodic,
-                               o->periodic, sizeof(o->periodic), &o->periodic_set));
-  PetscCall(PetscOptionsRealArray("-gravity",
-                                  "Body force per unit mass gx,gy[,gz] (overrides field data gravity; default 0)", "",
-                                  o->gravity, &o->gravity_n, &o->gravity_set));
-  PetscCall(PetscOptionsReal("-nu", "Kinematic viscosity (overrides field data nu; default 0)", "", o->nu, &o->nu,
-                             &o->nu_set));
-  PetscCall(
-      PetscOptionsReal("-rho0", "Density (overrides field data rho0; default 1)", "", o->rho0, &o->rho0, &o->rho0_set));
-  PetscCall(PetscOptionsReal("-U",
-                             "Reference speed (overrides field data U; default: the largest particle speed or the "
-                             "free-fall speed over the fluid's height)",
-                             "", o->U, &o->U, &o->U_set));
-  PetscCall(PetscOptionsBool("-free_surface",
-                             "Free surface (overrides field data free_surface; default: on when some fluid "
-                             "particle lies on an open face of the scene)",
-                             "", o->free_surface, &o->free_surface, &o->free_surface_set));
+  PetscCall(option_string(PetscOptionsObject, "-scene_file",
+                          "VTK XML PolyData (.vtp) scene: point arrays kind (0 fluid, 1 fixed wall, 2 "
+                          "moving wall), velocity, pressure; parameters as field data. Or a YAML (.yaml, "
+                          ".yml) scene of shapes, sampled at the run's spacing",
+                          o->path, o->path, sizeof(o->path), nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-nx", "YAML scenes: particles per unit length, dx = 1/nx", o->nx, &o->nx,
+                       &o->nx_set));
+  PetscCall(option_real(PetscOptionsObject, "-scene_dx", "Particle spacing (overrides the file's field data dx)", o->dx,
+                        &o->dx, &o->dx_set));
+  PetscCall(option_reals(PetscOptionsObject, "-scene_box",
+                         "Box xmin,xmax,ymin,ymax[,zmin,zmax] (overrides field data box; default: "
+                         "the particles' bounding box grown by dx/2)",
+                         o->box, &o->box_n, &o->box_set));
+  PetscCall(option_string(PetscOptionsObject, "-scene_periodic",
+                          "Periodic axes, e.g. x or x,y, or none (overrides field data periodic)", o->periodic,
+                          o->periodic, sizeof(o->periodic), &o->periodic_set));
+  PetscCall(option_reals(PetscOptionsObject, "-gravity",
+                         "Body force per unit mass gx,gy[,gz] (overrides field data gravity; default 0)", o->gravity,
+                         &o->gravity_n, &o->gravity_set));
+  PetscCall(option_real(PetscOptionsObject, "-nu", "Kinematic viscosity (overrides field data nu; default 0)", o->nu,
+                        &o->nu, &o->nu_set));
+  PetscCall(option_real(PetscOptionsObject, "-rho0", "Density (overrides field data rho0; default 1)", o->rho0,
+                        &o->rho0, &o->rho0_set));
+  PetscCall(option_real(PetscOptionsObject, "-U",
+                        "Reference speed (overrides field data U; default: the largest particle speed or the "
+                        "free-fall speed over the fluid's height)",
+                        o->U, &o->U, &o->U_set));
+  PetscCall(option_bool(PetscOptionsObject, "-free_surface",
+                        "Free surface (overrides field data free_surface; default: on when some fluid "
+                        "particle lies on an open face of the scene)",
+                        o->free_surface, &o->free_surface, &o->free_surface_set));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 #include "src/io/csv_writer.hpp"
 #include "src/kernels/kernel.hpp"
@@ -19,17 +20,18 @@ struct RawOptions {
 PetscErrorCode read_options(RawOptions* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Sedov-Taylor blast wave, 2D (-case sedov)", "Case");
-  PetscCall(PetscOptionsInt("-nx", "Particles per side of the periodic unit box", "", o->nx, &o->nx, nullptr));
-  PetscCall(PetscOptionsReal("-gamma", "Adiabatic index", "", o->gamma, &o->gamma, nullptr));
-  PetscCall(PetscOptionsReal("-rho0", "Density of the gas at rest", "", o->rho0, &o->rho0, nullptr));
-  PetscCall(PetscOptionsReal("-energy", "Blast energy E (per unit length of the cylinder)", "", o->energy, &o->energy,
-                             nullptr));
-  PetscCall(PetscOptionsReal("-p_ambient", "Pressure of the cold gas (the exact solution has 0)", "", o->p_ambient,
-                             &o->p_ambient, nullptr));
-  PetscCall(PetscOptionsReal("-deposit_h",
-                             "Smoothing length of the cubic-spline weights that spread the energy over "
-                             "the central particles, in particle spacings (support 2 deposit_h)",
-                             "", o->deposit_h, &o->deposit_h, nullptr));
+  PetscCall(
+      option_int(PetscOptionsObject, "-nx", "Particles per side of the periodic unit box", o->nx, &o->nx, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-gamma", "Adiabatic index", o->gamma, &o->gamma, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-rho0", "Density of the gas at rest", o->rho0, &o->rho0, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-energy", "Blast energy E (per unit length of the cylinder)", o->energy,
+                        &o->energy, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-p_ambient", "Pressure of the cold gas (the exact solution has 0)",
+                        o->p_ambient, &o->p_ambient, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-deposit_h",
+                        "Smoothing length of the cubic-spline weights that spread the energy over "
+                        "the central particles, in particle spacings (support 2 deposit_h)",
+                        o->deposit_h, &o->deposit_h, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -18,22 +19,22 @@ struct RawOptions {
 PetscErrorCode read_options(RawOptions* o, int dim) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Sod shock tube (-case sod)", "Case");
-  PetscCall(PetscOptionsInt("-nx",
-                            "Particles per unit length of the left (dense) state; the 1D tube [-1,1) holds "
-                            "nx (1 + rho_right/rho_left) particles",
-                            "", o->nx, &o->nx, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-nx",
+                       "Particles per unit length of the left (dense) state; the 1D tube [-1,1) holds "
+                       "nx (1 + rho_right/rho_left) particles",
+                       o->nx, &o->nx, nullptr));
   if (dim > 1)
-    PetscCall(PetscOptionsInt("-ny", "Particle layers across the tube in the left state (2D/3D)", "", o->ny, &o->ny,
-                              nullptr));
-  PetscCall(PetscOptionsReal("-gamma", "Adiabatic index", "", o->gamma, &o->gamma, nullptr));
-  PetscCall(PetscOptionsReal("-rho_left", "Density for x < 0", "", o->rho_l, &o->rho_l, nullptr));
-  PetscCall(PetscOptionsReal("-p_left", "Pressure for x < 0", "", o->p_l, &o->p_l, nullptr));
-  PetscCall(PetscOptionsReal("-rho_right", "Density for x > 0", "", o->rho_r, &o->rho_r, nullptr));
-  PetscCall(PetscOptionsReal("-p_right", "Pressure for x > 0", "", o->p_r, &o->p_r, nullptr));
-  PetscCall(PetscOptionsReal("-plateau_margin",
-                             "Particle spacings next to the contact and the shock left out of the "
-                             "plateau errors",
-                             "", o->margin, &o->margin, nullptr));
+    PetscCall(option_int(PetscOptionsObject, "-ny", "Particle layers across the tube in the left state (2D/3D)", o->ny,
+                         &o->ny, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-gamma", "Adiabatic index", o->gamma, &o->gamma, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-rho_left", "Density for x < 0", o->rho_l, &o->rho_l, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-p_left", "Pressure for x < 0", o->p_l, &o->p_l, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-rho_right", "Density for x > 0", o->rho_r, &o->rho_r, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-p_right", "Pressure for x > 0", o->p_r, &o->p_r, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-plateau_margin",
+                        "Particle spacings next to the contact and the shock left out of the "
+                        "plateau errors",
+                        o->margin, &o->margin, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cases/common/lattice.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -11,11 +12,11 @@ namespace {
 PetscErrorCode read_options(PetscInt* nx, PetscReal* L, PetscReal* omega, PetscReal* nu, PetscReal* rho0) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Rotating square patch (-case square_patch)", "Case");
-  PetscCall(PetscOptionsInt("-nx", "Particles along a side of the square", "", *nx, nx, nullptr));
-  PetscCall(PetscOptionsReal("-side", "Side length L", "", *L, L, nullptr));
-  PetscCall(PetscOptionsReal("-omega", "Initial angular velocity", "", *omega, omega, nullptr));
-  PetscCall(PetscOptionsReal("-nu", "Kinematic viscosity (0: inviscid)", "", *nu, nu, nullptr));
-  PetscCall(PetscOptionsReal("-rho0", "Density", "", *rho0, rho0, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-nx", "Particles along a side of the square", *nx, nx, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-side", "Side length L", *L, L, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-omega", "Initial angular velocity", *omega, omega, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-nu", "Kinematic viscosity (0: inviscid)", *nu, nu, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-rho0", "Density", *rho0, rho0, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

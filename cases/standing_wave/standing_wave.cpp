@@ -4,6 +4,7 @@
 
 #include "cases/common/lattice.hpp"
 #include "cases/common/wall_options.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -14,20 +15,22 @@ PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* width, Pe
                             PetscBool* free_slip_side_walls) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Standing wave (-case standing_wave)", "Case");
-  PetscCall(PetscOptionsInt("-nx", "Particles per unit length", "", *nx, nx, nullptr));
-  PetscCall(PetscOptionsReal("-tank_width", "Tank width L (the mode's half wavelength)", "", *width, width, nullptr));
-  PetscCall(PetscOptionsReal("-depth", "Mean water depth h", "", *depth, depth, nullptr));
-  PetscCall(PetscOptionsReal("-amplitude", "The surface's initial amplitude a", "", *amplitude, amplitude, nullptr));
-  PetscCall(PetscOptionsReal("-g", "Gravity", "", *g, g, nullptr));
-  PetscCall(PetscOptionsReal("-re", "Reynolds number sqrt(g h) h / nu", "", *re, re, nullptr));
-  PetscCall(PetscOptionsBool("-side_walls",
-                             "Walls at both ends (a tank); 0: one whole wavelength 2L, periodic, a floor only (no "
-                             "contact lines, whose no-slip dissipation the linear theory leaves out)",
-                             "", *side_walls, side_walls, nullptr));
-  PetscCall(PetscOptionsBool("-free_slip_side_walls",
-                             "Side walls without shear: no Stokes layers on them and no no-slip contact lines, whose "
-                             "dissipation the linear theory leaves out (its rate is then the bulk's and the floor's)",
-                             "", *free_slip_side_walls, free_slip_side_walls, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-nx", "Particles per unit length", *nx, nx, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-tank_width", "Tank width L (the mode's half wavelength)", *width, width,
+                        nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-depth", "Mean water depth h", *depth, depth, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-amplitude", "The surface's initial amplitude a", *amplitude, amplitude,
+                        nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-g", "Gravity", *g, g, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-re", "Reynolds number sqrt(g h) h / nu", *re, re, nullptr));
+  PetscCall(option_bool(PetscOptionsObject, "-side_walls",
+                        "Walls at both ends (a tank); 0: one whole wavelength 2L, periodic, a floor only (no "
+                        "contact lines, whose no-slip dissipation the linear theory leaves out)",
+                        *side_walls, side_walls, nullptr));
+  PetscCall(option_bool(PetscOptionsObject, "-free_slip_side_walls",
+                        "Side walls without shear: no Stokes layers on them and no no-slip contact lines, whose "
+                        "dissipation the linear theory leaves out (its rate is then the bulk's and the floor's)",
+                        *free_slip_side_walls, free_slip_side_walls, nullptr));
   PetscCall(read_wall_scene_options(PetscOptionsObject, layers, rho0));
   PetscOptionsEnd();
   PetscFunctionReturn(0);

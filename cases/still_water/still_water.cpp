@@ -5,6 +5,7 @@
 
 #include "cases/common/lattice.hpp"
 #include "cases/common/wall_options.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -14,11 +15,12 @@ PetscErrorCode read_options(PetscInt* nx, PetscInt* layers, PetscReal* width, Pe
                             PetscReal* re, PetscReal* rho0) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Still water (-case still_water)", "Case");
-  PetscCall(PetscOptionsInt("-nx", "Particles per unit length", "", *nx, nx, nullptr));
-  PetscCall(PetscOptionsReal("-tank_width", "Tank width L (its depth too, in 3D)", "", *width, width, nullptr));
-  PetscCall(PetscOptionsReal("-depth", "Water depth H", "", *depth, depth, nullptr));
-  PetscCall(PetscOptionsReal("-g", "Gravity", "", *g, g, nullptr));
-  PetscCall(PetscOptionsReal("-re", "Reynolds number sqrt(g H) H / nu", "", *re, re, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-nx", "Particles per unit length", *nx, nx, nullptr));
+  PetscCall(
+      option_real(PetscOptionsObject, "-tank_width", "Tank width L (its depth too, in 3D)", *width, width, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-depth", "Water depth H", *depth, depth, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-g", "Gravity", *g, g, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-re", "Reynolds number sqrt(g H) H / nu", *re, re, nullptr));
   PetscCall(read_wall_scene_options(PetscOptionsObject, layers, rho0));
   PetscOptionsEnd();
   PetscFunctionReturn(0);

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "cases/common/exact_flow_errors.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -12,12 +13,13 @@ namespace {
 PetscErrorCode read_options(PetscInt* nx, PetscReal* re, PetscReal* U, PetscReal* rho0, PetscReal* perturbation) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Taylor-Green vortex (-case taylor_green)", "Case");
-  PetscCall(PetscOptionsInt("-nx", "Particles per side of the unit square", "", *nx, nx, nullptr));
-  PetscCall(PetscOptionsReal("-re", "Reynolds number U L / nu", "", *re, re, nullptr));
-  PetscCall(PetscOptionsReal("-U", "Initial velocity amplitude", "", *U, U, nullptr));
-  PetscCall(PetscOptionsReal("-rho0", "Density", "", *rho0, rho0, nullptr));
-  PetscCall(PetscOptionsReal("-perturbation", "Disordered start: lattice positions moved by up to this fraction of dx",
-                             "", *perturbation, perturbation, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-nx", "Particles per side of the unit square", *nx, nx, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-re", "Reynolds number U L / nu", *re, re, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-U", "Initial velocity amplitude", *U, U, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-rho0", "Density", *rho0, rho0, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-perturbation",
+                        "Disordered start: lattice positions moved by up to this fraction of dx", *perturbation,
+                        perturbation, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -11,11 +12,13 @@ namespace {
 PetscErrorCode read_options(PetscInt* n, PetscReal* gamma, PetscReal* K, PetscReal* omega, PetscReal* A0) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "1D toy star (-case toy_star)", "Case");
-  PetscCall(PetscOptionsInt("-nx", "Number of (equal-mass) particles", "", *n, n, nullptr));
-  PetscCall(PetscOptionsReal("-gamma", "Polytropic exponent", "", *gamma, gamma, nullptr));
-  PetscCall(PetscOptionsReal("-polytropic_k", "Polytropic constant K in P = K rho^gamma", "", *K, K, nullptr));
-  PetscCall(PetscOptionsReal("-omega", "Frequency of the external force -Omega^2 x", "", *omega, omega, nullptr));
-  PetscCall(PetscOptionsReal("-a0", "Initial velocity gradient A0 (v = A0 x)", "", *A0, A0, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-nx", "Number of (equal-mass) particles", *n, n, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-gamma", "Polytropic exponent", *gamma, gamma, nullptr));
+  PetscCall(
+      option_real(PetscOptionsObject, "-polytropic_k", "Polytropic constant K in P = K rho^gamma", *K, K, nullptr));
+  PetscCall(
+      option_real(PetscOptionsObject, "-omega", "Frequency of the external force -Omega^2 x", *omega, omega, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-a0", "Initial velocity gradient A0 (v = A0 x)", *A0, A0, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

@@ -1,6 +1,7 @@
 // The ISPH solver's options (-help's "ISPH projection solver" block), their checks, and its
 // description in summary.json. The step: isph_solver.cpp.
 #include "solvers/isph/isph_solver.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 #include "src/sph/step_limits.hpp"
 
@@ -20,46 +21,45 @@ struct RawOptions {
 PetscErrorCode read_options(RawOptions* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "ISPH projection solver (-solver isph)", "Solver");
-  PetscCall(PetscOptionsReal(
-      kAdvectiveCfl, "ISPH: advective Courant number, dt <= cfl h / U (the explicit schemes' is -acoustic_cfl)", "",
-      o->cfl, &o->cfl, nullptr));
-  PetscCall(PetscOptionsEList("-pressure_gradient",
-                              "Pressure gradient: corrected (Bonet & Lok), difference, symmetric (Monaghan)", "",
-                              gradient_names, 3, gradient_names[o->gradient], &o->gradient, nullptr));
-  PetscCall(PetscOptionsEList("-operators",
-                              "Viscous and PPE Laplacian, PPE divergence: consistent (exact for quadratic / linear "
-                              "fields on any particle distribution) or classic (Morris, Cummins & Rudman, plain)",
-                              "", operator_set_names, 2, operator_set_names[o->operators], &o->operators, nullptr));
-  PetscCall(PetscOptionsEList("-viscous_laplacian", viscous_laplacian_help, "", viscous_laplacian_names, 2,
-                              viscous_laplacian_names[o->viscous_laplacian], &o->viscous_laplacian, nullptr));
-  PetscCall(PetscOptionsReal("-ppe_particle_divergence_rate",
-                             "Rate, in U/h, at which the PPE removes the particle-scale divergence of the previous "
-                             "step's velocity, which the projection cannot remove (R: a fraction R U dt / (2 h) per "
-                             "step, at most all, so the default 10 removes all of it at CFL 0.2 and keeps that rate "
-                             "at smaller steps; -1: all of it every step, whatever dt; 0: never)",
-                             "", o->particle_divergence_rate, &o->particle_divergence_rate, nullptr));
-  PetscCall(PetscOptionsInt("-projection_corrections",
-                            "Passes after the projection that remove the resolved-scale divergence it leaves (its "
-                            "Laplacian is not the divergence of its gradient): each solves the same matrix again; 0: "
-                            "one projection, first order in dt",
-                            "", o->projection_corrections, &o->projection_corrections, nullptr));
-  PetscCall(PetscOptionsEList("-ppe_wall_velocity",
-                              "Wall velocity the PPE source's divergence sees: zero (walls at rest, as in WCSPH's "
-                              "continuity equation; wall particles keep their place, so every wall here is fixed or "
-                              "slides along itself) or prescribed (the walls' own: a sliding wall's velocity jump "
-                              "where it ends reads as a compression, a first-order error)",
-                              "", wall_velocity_names, 2, wall_velocity_names[o->wall_velocity], &o->wall_velocity,
-                              nullptr));
-  PetscCall(PetscOptionsBool("-ppe_wall_impact",
-                             "Walls stop the free surface that comes at them within the step: their pressure rows add "
-                             "rho u_n (r . n) / tau for a surface particle's predicted velocity u_n towards them "
-                             "(default: on in scenes with a free surface, off in closed ones)",
-                             "", o->wall_impact, &o->wall_impact, &o->wall_impact_set));
-  PetscCall(PetscOptionsEList("-free_surface_condition",
-                              "Where p = 0 holds: node (at the surface, dx/2 beyond each surface particle, which "
-                              "keeps its continuity equation) or particle (on the surface particles, Lind et al. 2012)",
-                              "", surface_condition_names, 2, surface_condition_names[o->surface_condition],
-                              &o->surface_condition, nullptr));
+  PetscCall(option_real(PetscOptionsObject, kAdvectiveCfl,
+                        "ISPH: advective Courant number, dt <= cfl h / U (the explicit schemes' is -acoustic_cfl)",
+                        o->cfl, &o->cfl, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-pressure_gradient",
+                          "Pressure gradient: corrected (Bonet & Lok), difference, symmetric (Monaghan)",
+                          gradient_names, 3, gradient_names[o->gradient], &o->gradient, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-operators",
+                          "Viscous and PPE Laplacian, PPE divergence: consistent (exact for quadratic / linear "
+                          "fields on any particle distribution) or classic (Morris, Cummins & Rudman, plain)",
+                          operator_set_names, 2, operator_set_names[o->operators], &o->operators, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-viscous_laplacian", viscous_laplacian_help, viscous_laplacian_names, 2,
+                          viscous_laplacian_names[o->viscous_laplacian], &o->viscous_laplacian, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-ppe_particle_divergence_rate",
+                        "Rate, in U/h, at which the PPE removes the particle-scale divergence of the previous "
+                        "step's velocity, which the projection cannot remove (R: a fraction R U dt / (2 h) per "
+                        "step, at most all, so the default 10 removes all of it at CFL 0.2 and keeps that rate "
+                        "at smaller steps; -1: all of it every step, whatever dt; 0: never)",
+                        o->particle_divergence_rate, &o->particle_divergence_rate, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-projection_corrections",
+                       "Passes after the projection that remove the resolved-scale divergence it leaves (its "
+                       "Laplacian is not the divergence of its gradient): each solves the same matrix again; 0: "
+                       "one projection, first order in dt",
+                       o->projection_corrections, &o->projection_corrections, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-ppe_wall_velocity",
+                          "Wall velocity the PPE source's divergence sees: zero (walls at rest, as in WCSPH's "
+                          "continuity equation; wall particles keep their place, so every wall here is fixed or "
+                          "slides along itself) or prescribed (the walls' own: a sliding wall's velocity jump "
+                          "where it ends reads as a compression, a first-order error)",
+                          wall_velocity_names, 2, wall_velocity_names[o->wall_velocity], &o->wall_velocity, nullptr));
+  PetscCall(option_bool(PetscOptionsObject, "-ppe_wall_impact",
+                        "Walls stop the free surface that comes at them within the step: their pressure rows add "
+                        "rho u_n (r . n) / tau for a surface particle's predicted velocity u_n towards them "
+                        "(default: on in scenes with a free surface, off in closed ones)",
+                        o->wall_impact, &o->wall_impact, &o->wall_impact_set));
+  PetscCall(option_choice(PetscOptionsObject, "-free_surface_condition",
+                          "Where p = 0 holds: node (at the surface, dx/2 beyond each surface particle, which "
+                          "keeps its continuity equation) or particle (on the surface particles, Lind et al. 2012)",
+                          surface_condition_names, 2, surface_condition_names[o->surface_condition],
+                          &o->surface_condition, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

@@ -8,6 +8,7 @@
 
 #include "solvers/isph/pressure_poisson.hpp"
 #include "src/core/error.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -174,19 +175,57 @@ namespace {
 PetscErrorCode read_ppe_options(PetscReal* pc_drop_tol) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Pressure Poisson equation (-solver isph)", "Solver");
-  PetscCall(PetscOptionsReal("-ppe_pc_drop_tol",
-                             "The preconditioner (BoomerAMG) is built from the pressure matrix with each off-diagonal "
-                             "entry below this fraction of its row's diagonal added to the diagonal instead; the "
-                             "Krylov method still solves the whole matrix to -ppe_ksp_rtol (0: the whole matrix; "
-                             "BoomerAMG on non-symmetric matrices only, the default solver and operators)",
-                             "", *pc_drop_tol, pc_drop_tol, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-ppe_pc_drop_tol",
+                        "The preconditioner (BoomerAMG) is built from the pressure matrix with each off-diagonal "
+                        "entry below this fraction of its row's diagonal added to the diagonal instead; the "
+                        "Krylov method still solves the whole matrix to -ppe_ksp_rtol (0: the whole matrix; "
+                        "BoomerAMG on non-symmetric matrices only, the default solver and operators)",
+                        *pc_drop_tol, pc_drop_tol, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
 }  // namespace
 
+namespace {
+// The pressure solve's PETSc options that this program names (in -help's essential section, the
+// checks above and below, the docs): the hints for a misspelt one. PETSc reads many more, found
+// when given (PetscOptionsUsed), but cannot list them without printing its help.
+const std::vector<const char*> needs_value = {"-ksp_type",
+                                              "-pc_type",
+                                              "-ksp_rtol",
+                                              "-ksp_atol",
+                                              "-ksp_divtol",
+                                              "-ksp_max_it",
+                                              "-ksp_norm_type",
+                                              "-ksp_pc_side",
+                                              "-ksp_gmres_restart",
+                                              "-pc_hypre_type",
+                                              "-pc_hypre_boomeramg_coarsen_type",
+                                              "-pc_hypre_boomeramg_interp_type",
+                                              "-pc_hypre_boomeramg_strong_threshold",
+                                              "-pc_hypre_boomeramg_agg_nl",
+                                              "-pc_hypre_boomeramg_relax_type_all",
+                                              "-pc_hypre_boomeramg_relax_type_coarse",
+                                              "-pc_hypre_boomeramg_max_iter",
+                                              "-pc_factor_mat_solver_type"};
+const std::vector<const char*> flags_and_viewers = {"-ksp_monitor",
+                                                    "-ksp_monitor_short",
+                                                    "-ksp_monitor_true_residual",
+                                                    "-ksp_converged_reason",
+                                                    "-ksp_view",
+                                                    "-ksp_view_final_residual",
+                                                    "-ksp_initial_guess_nonzero",
+                                                    "-ksp_error_if_not_converged",
+                                                    "-pc_view",
+                                                    "-pc_hypre_boomeramg_print_statistics"};
+}  // namespace
+
 template <int D> void PressurePoisson<D>::set_from_options() {
   if (ksp_) return;
+  record_option_names(options_prefix, needs_value);
+  record_option_names(options_prefix, flags_and_viewers);
+  // PETSc drops such an option given without a value and keeps its default.
+  refuse_valueless(options_prefix, needs_value);
   check_ksp_tolerances(options_prefix);
   PetscReal pc_drop_tol = pc_drop_tol_;
   SPH_PETSC(read_ppe_options(&pc_drop_tol));

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "solvers/wcsph/wcsph_solver.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 #include "src/sph/step_limits.hpp"
 
@@ -28,59 +29,63 @@ struct RawOptions {
 PetscErrorCode read_options(RawOptions* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Weakly-compressible SPH (-solver wcsph)", "Solver");
-  PetscCall(PetscOptionsReal("-c0", "Reference sound speed (0: c0_factor times the largest of the flow's speed scales)",
-                             "", o->c0, &o->c0, nullptr));
-  PetscCall(PetscOptionsReal("-c0_factor",
-                             "c0 / V when -c0 is not given, V the largest of U_ref, sqrt(|g| H) and sqrt(nu U_ref / L) "
-                             "(Morris et al. 1997; 10 keeps density variations ~1%)",
-                             "", o->c0_factor, &o->c0_factor, nullptr));
-  PetscCall(PetscOptionsReal("-tait_gamma", "Tait equation-of-state exponent", "", o->gamma, &o->gamma, nullptr));
-  PetscCall(PetscOptionsReal(
-      kAcousticCfl, "WCSPH: acoustic Courant number, dt <= acoustic_cfl h / (c0 + U_max) (ISPH's advective one is -cfl)", "",
-      o->cfl, &o->cfl, nullptr));
-  PetscCall(PetscOptionsEList("-density", "Density: continuity equation or kernel summation", "", density_names, 2,
-                              density_names[o->density], &o->density, nullptr));
-  PetscCall(PetscOptionsEList("-density_diffusion",
-                              "delta-SPH density diffusion: none, molteni (2009), antuono (2010), particle (molteni "
-                              "on the density's particle-scale part, rho minus its kernel average; scenes without "
-                              "walls or a free surface), fourtakas (molteni without the hydrostatic density "
-                              "difference, Fourtakas et al. 2019; the default under gravity, else molteni)",
-                              "", diffusion_names, 5, diffusion_names[o->diffusion], &o->diffusion, &o->diffusion_set));
-  PetscCall(PetscOptionsReal("-delta", "delta-SPH coefficient", "", o->delta, &o->delta, nullptr));
-  PetscCall(PetscOptionsBool("-density_diffusion_at_surface",
-                             "Let the density diffusion drain the free surface's layer into the fluid inside "
-                             "(default off: across the cut support it drains the layer's hydrostatic density, and "
-                             "still water sinks; diffusion into the layer, as under tension, stays on)",
-                             "", o->diffusion_at_surface, &o->diffusion_at_surface, nullptr));
-  PetscCall(PetscOptionsReal(
-      "-av_alpha",
-      "WCSPH: Monaghan artificial viscosity alpha (default 0: off; the compressible solver's default is 1)", "",
-      o->alpha, &o->alpha, nullptr));
-  PetscCall(PetscOptionsReal("-av_beta", "Monaghan artificial viscosity beta", "", o->beta, &o->beta, nullptr));
-  PetscCall(PetscOptionsReal("-av_epsilon", "Artificial viscosity singularity guard epsilon", "", o->epsilon,
-                             &o->epsilon, nullptr));
-  PetscCall(PetscOptionsEList("-operators",
-                              "Continuity divergence and viscous Laplacian: consistent (corrected divergence, "
-                              "consistent Laplacian) or classic (plain divergence, Morris)",
-                              "", operator_set_names, 2, operator_set_names[o->operators], &o->operators, nullptr));
-  PetscCall(PetscOptionsEList("-viscous_laplacian", viscous_laplacian_help, "", viscous_laplacian_names, 2,
-                              viscous_laplacian_names[o->viscous_laplacian], &o->viscous_laplacian, nullptr));
-  PetscCall(PetscOptionsEList("-pressure_gradient",
-                              "Pressure force: corrected (Bonet & Lok, p_j - p_i), symmetric (Monaghan, momentum-"
-                              "conserving), auto (symmetric with a free surface, whose zero pressure it imposes; "
-                              "else corrected)",
-                              "", gradient_names, 3, gradient_names[o->gradient], &o->gradient, nullptr));
-  PetscCall(PetscOptionsBool("-closed_volume",
-                             "Keep the fluid volume of a scene without a free surface: the net volume rate of the "
-                             "continuity equation, which a closed or periodic box does not allow, is removed "
-                             "(default: on without a free surface)",
-                             "", o->closed_volume, &o->closed_volume, &o->closed_volume_set));
-  PetscCall(PetscOptionsBool("-prepared_start",
-                             "Start on the weakly compressible flow's slow manifold: add the compressive velocity "
-                             "grad phi, lap phi = -(Dp/Dt) / (rho0 c0^2), that the case's incompressible start "
-                             "implies, so that it excites no sound of O(Mach) pressure (cases with an exact "
-                             "solution: taylor_green)",
-                             "", o->prepared_start, &o->prepared_start, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-c0",
+                        "Reference sound speed (0: c0_factor times the largest of the flow's speed scales)", o->c0,
+                        &o->c0, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-c0_factor",
+                        "c0 / V when -c0 is not given, V the largest of U_ref, sqrt(|g| H) and sqrt(nu U_ref / L) "
+                        "(Morris et al. 1997; 10 keeps density variations ~1%)",
+                        o->c0_factor, &o->c0_factor, nullptr));
+  PetscCall(
+      option_real(PetscOptionsObject, "-tait_gamma", "Tait equation-of-state exponent", o->gamma, &o->gamma, nullptr));
+  PetscCall(
+      option_real(PetscOptionsObject, kAcousticCfl,
+                  "WCSPH: acoustic Courant number, dt <= acoustic_cfl h / (c0 + U_max) (ISPH's advective one is -cfl)",
+                  o->cfl, &o->cfl, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-density", "Density: continuity equation or kernel summation",
+                          density_names, 2, density_names[o->density], &o->density, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-density_diffusion",
+                          "delta-SPH density diffusion: none, molteni (2009), antuono (2010), particle (molteni "
+                          "on the density's particle-scale part, rho minus its kernel average; scenes without "
+                          "walls or a free surface), fourtakas (molteni without the hydrostatic density "
+                          "difference, Fourtakas et al. 2019; the default under gravity, else molteni)",
+                          diffusion_names, 5, diffusion_names[o->diffusion], &o->diffusion, &o->diffusion_set));
+  PetscCall(option_real(PetscOptionsObject, "-delta", "delta-SPH coefficient", o->delta, &o->delta, nullptr));
+  PetscCall(option_bool(PetscOptionsObject, "-density_diffusion_at_surface",
+                        "Let the density diffusion drain the free surface's layer into the fluid inside "
+                        "(default off: across the cut support it drains the layer's hydrostatic density, and "
+                        "still water sinks; diffusion into the layer, as under tension, stays on)",
+                        o->diffusion_at_surface, &o->diffusion_at_surface, nullptr));
+  PetscCall(
+      option_real(PetscOptionsObject, "-av_alpha",
+                  "WCSPH: Monaghan artificial viscosity alpha (default 0: off; the compressible solver's default is 1)",
+                  o->alpha, &o->alpha, nullptr));
+  PetscCall(
+      option_real(PetscOptionsObject, "-av_beta", "Monaghan artificial viscosity beta", o->beta, &o->beta, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-av_epsilon", "Artificial viscosity singularity guard epsilon", o->epsilon,
+                        &o->epsilon, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-operators",
+                          "Continuity divergence and viscous Laplacian: consistent (corrected divergence, "
+                          "consistent Laplacian) or classic (plain divergence, Morris)",
+                          operator_set_names, 2, operator_set_names[o->operators], &o->operators, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-viscous_laplacian", viscous_laplacian_help, viscous_laplacian_names, 2,
+                          viscous_laplacian_names[o->viscous_laplacian], &o->viscous_laplacian, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-pressure_gradient",
+                          "Pressure force: corrected (Bonet & Lok, p_j - p_i), symmetric (Monaghan, momentum-"
+                          "conserving), auto (symmetric with a free surface, whose zero pressure it imposes; "
+                          "else corrected)",
+                          gradient_names, 3, gradient_names[o->gradient], &o->gradient, nullptr));
+  PetscCall(option_bool(PetscOptionsObject, "-closed_volume",
+                        "Keep the fluid volume of a scene without a free surface: the net volume rate of the "
+                        "continuity equation, which a closed or periodic box does not allow, is removed "
+                        "(default: on without a free surface)",
+                        o->closed_volume, &o->closed_volume, &o->closed_volume_set));
+  PetscCall(option_bool(PetscOptionsObject, "-prepared_start",
+                        "Start on the weakly compressible flow's slow manifold: add the compressive velocity "
+                        "grad phi, lap phi = -(Dp/Dt) / (rho0 c0^2), that the case's incompressible start "
+                        "implies, so that it excites no sound of O(Mach) pressure (cases with an exact "
+                        "solution: taylor_green)",
+                        o->prepared_start, &o->prepared_start, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

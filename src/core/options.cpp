@@ -1,17 +1,13 @@
 #include "src/core/options.hpp"
 
 #include <petscsys.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
-#include <cstdarg>
-#include <cstdio>
-#include <cstdlib>
-#include <map>
 #include <optional>
-#include <regex>
 #include <sstream>
+#include <utility>
+
+#include "src/core/option_reads.hpp"
 
 namespace sph {
 
@@ -95,83 +91,7 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
   return prev[b.size()];
 }
 
-struct Unused {
-  std::vector<std::string> names;
-};
-
-Unused unused_options() {
-  PetscInt n = 0;
-  char** names = nullptr;
-  char** values = nullptr;
-  SPH_PETSC(PetscOptionsLeftGet(nullptr, &n, &names, &values));
-  Unused u;
-  for (PetscInt k = 0; k < n; ++k) u.names.emplace_back(names[k]);
-  SPH_PETSC(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
-  return u;
-}
-
 }  // namespace
-
-namespace {
-std::string g_help_text;
-
-PetscErrorCode capture_help(MPI_Comm, const char format[], ...) {
-  char buf[4096];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buf, sizeof buf, format, args);
-  va_end(args);
-  g_help_text += buf;
-  return 0;
-}
-}  // namespace
-
-std::string options_help(const std::function<void()>& read_all) {
-  g_help_text.clear();
-  const auto saved = PetscHelpPrintf;
-  PetscHelpPrintf = capture_help;
-  // PETSc prints each options block once per run; a fresh record makes the blocks already read
-  // by this run print again.
-  PetscOptionsHelpPrinted printed = PetscOptionsHelpPrintedSingleton;
-  // Lists of types (-ksp_type ...) go straight to standard output rather than through
-  // PetscHelpPrintf: capture the file descriptor too.
-  std::FILE* type_lists = std::tmpfile();
-  std::fflush(stdout);
-  const int stdout_saved = type_lists ? dup(STDOUT_FILENO) : -1;
-  if (stdout_saved >= 0) dup2(fileno(type_lists), STDOUT_FILENO);
-  SPH_PETSC(PetscOptionsHelpPrintedCreate(&PetscOptionsHelpPrintedSingleton));
-  SPH_PETSC(PetscOptionsSetValue(nullptr, "-help", nullptr));
-  try {
-    read_all();
-  } catch (const Error&) {
-    // Reading the blocks is all that matters here; value checks may fail for other components.
-  }
-  SPH_PETSC(PetscOptionsClearValue(nullptr, "-help"));
-  SPH_PETSC(PetscOptionsHelpPrintedDestroy(&PetscOptionsHelpPrintedSingleton));
-  PetscOptionsHelpPrintedSingleton = printed;
-  PetscHelpPrintf = saved;
-  std::fflush(stdout);
-  if (stdout_saved >= 0) {
-    dup2(stdout_saved, STDOUT_FILENO);
-    close(stdout_saved);
-  }
-  if (type_lists) {
-    std::rewind(type_lists);
-    char line[4096];
-    while (std::fgets(line, sizeof line, type_lists)) g_help_text += line;
-    std::fclose(type_lists);
-  }
-  return g_help_text;
-}
-
-std::vector<std::string> documented_options(const std::function<void()>& read_all) {
-  const std::string text = options_help(read_all);
-  std::vector<std::string> names;
-  const std::regex option("\\n  -([A-Za-z0-9_]+)");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), option); it != std::sregex_iterator(); ++it)
-    names.push_back((*it)[1].str());
-  return names;
-}
 
 namespace {
 
@@ -198,14 +118,25 @@ std::string closest(const std::string& name, const std::vector<std::string>& can
   return best;
 }
 
-std::string suggestion(const std::string& name, const std::vector<OptionOwner>& owners) {
-  std::vector<std::string> candidates = petsc_late_options();
-  candidates.insert(candidates.end(), unprinted_options().begin(), unprinted_options().end());
+// Every option the owners' blocks read (each owner's read, its names recorded), PETSc's own that no
+// block reads, and those a solve reads.
+std::vector<std::string> known_options(const std::vector<OptionOwner>& owners) {
+  std::vector<std::string> known = petsc_late_options();
+  known.insert(known.end(), unprinted_options().begin(), unprinted_options().end());
+  const OptionNames recorded;
   for (const OptionOwner& o : owners) {
-    const std::vector<std::string> names = documented_options(o.read);
-    candidates.insert(candidates.end(), names.begin(), names.end());
+    try {
+      o.read();
+    } catch (const Error&) {
+      // Only the names matter here; a value check may fail for a component this run did not choose.
+    }
   }
-  const std::string best = closest(name, candidates);
+  known.insert(known.end(), recorded.names().begin(), recorded.names().end());
+  return known;
+}
+
+std::string suggestion(const std::string& name, const std::vector<OptionOwner>& owners) {
+  const std::string best = closest(name, known_options(owners));
   return (best.empty() ? std::string(".") : "; did you mean -" + best + "?") + " Run with -help to list the options";
 }
 
@@ -216,13 +147,39 @@ std::string join_labels(const std::vector<const OptionOwner*>& owners, const cha
   return s;
 }
 
-// The owners not chosen for this run that read `name`, at start-up or later.
-std::vector<const OptionOwner*> inactive_readers(const std::string& name, const std::vector<OptionOwner>& owners) {
-  std::vector<const OptionOwner*> readers;
-  for (const OptionOwner& o : owners) {
-    if (o.active) continue;
-    if ((o.reads_late && o.reads_late(name)) || in(documented_options(o.read), name)) readers.push_back(&o);
+// Whether o's options blocks (and the PETSc objects it sets up) read -name: the option is put in the
+// database afresh, with `value`, o reads its options, and PETSc says whether -name was used. A
+// temporary option (one the user did not give) is taken out again.
+bool reads(const OptionOwner& o, const std::string& name, const std::optional<std::string>& value, bool temporary) {
+  if (o.reads_late && o.reads_late(name)) return true;
+  const std::string option = "-" + name;
+  // A temporary name the user gave as well (both spellings) keeps its value.
+  const char* given = nullptr;
+  PetscBool was_given = PETSC_FALSE;
+  if (temporary) SPH_PETSC(PetscOptionsFindPair(nullptr, nullptr, option.c_str(), &given, &was_given));
+  const std::optional<std::string> kept = given ? std::optional<std::string>(given) : std::nullopt;
+  SPH_PETSC(PetscOptionsClearValue(nullptr, option.c_str()));
+  SPH_PETSC(PetscOptionsSetValue(nullptr, option.c_str(), value ? value->c_str() : nullptr));
+  try {
+    o.read();
+  } catch (const Error&) {
+    // A value check of its own failed after its blocks were read: what was read is marked used.
   }
+  PetscBool used = PETSC_FALSE;
+  SPH_PETSC(PetscOptionsUsed(nullptr, name.c_str(), &used));  // names without the dash
+  if (temporary) {
+    SPH_PETSC(PetscOptionsClearValue(nullptr, option.c_str()));
+    if (was_given) SPH_PETSC(PetscOptionsSetValue(nullptr, option.c_str(), kept ? kept->c_str() : nullptr));
+  }
+  return used;
+}
+
+// The owners not chosen for this run that read `name`, at start-up or later.
+std::vector<const OptionOwner*> inactive_readers(const std::string& name, const std::optional<std::string>& value,
+                                                 const std::vector<OptionOwner>& owners) {
+  std::vector<const OptionOwner*> readers;
+  for (const OptionOwner& o : owners)
+    if (!o.active && reads(o, name, value, false)) readers.push_back(&o);
   return readers;
 }
 
@@ -239,12 +196,13 @@ struct Rename {
   bool known = false;
 };
 
-Rename renamed(const std::string& name, const std::vector<OptionOwner>& owners) {
+Rename renamed(const std::string& name, const std::optional<std::string>& value,
+               const std::vector<OptionOwner>& owners) {
   for (const OptionOwner& o : owners) {
     if (!o.renamed) continue;
     const RenamedOption to = o.renamed(name);
     if (to.now.empty()) continue;
-    return {to, (o.reads_late && o.reads_late(to.now)) || in(documented_options(o.read), to.now)};
+    return {to, reads(o, to.now, value, true)};
   }
   return {};
 }
@@ -253,106 +211,32 @@ Rename renamed(const std::string& name, const std::vector<OptionOwner>& owners) 
 
 namespace {
 
-// What an option's -help line says of its value. PETSc prints a flag as "-name: <TRUE : TRUE>", a
-// real as "-name <0.1 : 0.1>" and an integer, a string or a choice as "-name <now 64 : formerly 64>".
-enum class ValueKind { undocumented, flag, real, other };
-
-ValueKind value_kind(const std::string& help, const std::string& name, std::string* shown) {
-  std::smatch m;
-  if (!std::regex_search(help, m, std::regex("\\n  -" + name + "(:?) <(now )?([^>:]*)")))
-    return ValueKind::undocumented;
-  *shown = m[3].str();
-  while (!shown->empty() && shown->back() == ' ') shown->pop_back();
-  if (m[1].length() > 0) return ValueKind::flag;
-  return m[2].length() > 0 ? ValueKind::other : ValueKind::real;
-}
-
-// Whether a value (a number or a comma-separated list) holds inf or nan, which PETSc parses as reals.
-bool holds_non_finite(const std::string& value) {
-  std::istringstream items(value);
-  std::string item;
-  while (std::getline(items, item, ',')) {
-    char* end = nullptr;
-    const double x = std::strtod(item.c_str(), &end);
-    if (end != item.c_str() && *end == '\0' && !std::isfinite(x)) return true;
-  }
-  return false;
-}
-
-}  // namespace
-
-namespace {
-
-// The options not yet read, with their values as given (none: given without one); before any block
-// reads them, every option the user gave.
-std::vector<std::pair<std::string, std::optional<std::string>>> given_options() {
+// The options not yet read, with their values as given (none: given without one).
+std::vector<std::pair<std::string, std::optional<std::string>>> unused_options() {
   PetscInt n = 0;
   char** names = nullptr;
   char** values = nullptr;
   SPH_PETSC(PetscOptionsLeftGet(nullptr, &n, &names, &values));
-  std::vector<std::pair<std::string, std::optional<std::string>>> given;
+  std::vector<std::pair<std::string, std::optional<std::string>>> left;
   for (PetscInt k = 0; k < n; ++k)
-    given.emplace_back(names[k], values[k] ? std::optional<std::string>(values[k]) : std::nullopt);
+    left.emplace_back(names[k], values[k] ? std::optional<std::string>(values[k]) : std::nullopt);
   SPH_PETSC(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
-  return given;
-}
-
-// Calls f(name, kind, shown default) for each of `names` that an active owner's -help documents. The
-// owners' blocks are read again to print their help: the cheapest first (run control, then solvers,
-// then cases, which may read a scene file), and only until every name is found.
-template <class F> void classify(std::vector<std::string> names, const std::vector<OptionOwner>& owners, F&& f) {
-  for (auto o = owners.rbegin(); o != owners.rend() && !names.empty(); ++o) {
-    if (!o->active) continue;
-    const std::string help = options_help(o->read);
-    for (auto it = names.begin(); it != names.end();) {
-      std::string shown;
-      const ValueKind kind = value_kind(help, *it, &shown);
-      if (kind == ValueKind::undocumented) {
-        ++it;
-        continue;
-      }
-      f(*it, kind, shown);
-      it = names.erase(it);
-    }
-  }
+  return left;
 }
 
 }  // namespace
 
-std::vector<std::string> check_finite_option_values(const std::vector<OptionOwner>& owners) {
-  std::vector<std::string> valueless, non_finite;
-  std::map<std::string, std::string> value_of;
-  for (const auto& [name, value] : given_options()) {
-    if (!value) valueless.push_back(name);
-    else if (holds_non_finite(*value)) non_finite.push_back(name), value_of[name] = *value;
-  }
-  classify(non_finite, owners, [&](const std::string& name, ValueKind kind, const std::string&) {
-    if (kind == ValueKind::real)
-      throw OptionError("option -" + name + " has the value '" + value_of[name] + "', which is not a finite number");
-  });
-  return valueless;
-}
-
-void check_valueless_options(const std::vector<std::string>& valueless, const std::vector<OptionOwner>& owners) {
-  classify(valueless, owners, [](const std::string& name, ValueKind kind, const std::string& shown) {
-    if (kind == ValueKind::real || kind == ValueKind::other)
-      throw OptionError("option -" + name + " was given without a value" +
-                        (shown.empty() ? std::string() : " (its default is " + shown + ")") +
-                        "; give it a value or leave it out");
-  });
-}
-
 void check_unused_options(const std::vector<OptionOwner>& owners) {
-  for (const std::string& name : unused_options().names) {
+  for (const auto& [name, value] : unused_options()) {
     if (in(petsc_late_options(), name)) continue;
     // Before the options read late: an old name may have been one (-mat_mumps_icntl_4).
-    const Rename rename = renamed(name, owners);
+    const Rename rename = renamed(name, value, owners);
     if (rename.known) throw OptionError("option -" + name + " is now -" + rename.to.now + ": " + rename.to.why);
     if (read_late_by_active(name, owners)) continue;
     std::vector<const OptionOwner*> chosen;
     for (const OptionOwner& o : owners)
       if (o.active) chosen.push_back(&o);
-    const std::vector<const OptionOwner*> readers = inactive_readers(name, owners);
+    const std::vector<const OptionOwner*> readers = inactive_readers(name, value, owners);
     if (!readers.empty())
       throw OptionError("option -" + name + " is read by " + join_labels(readers, ", ") + ", not by this run's " +
                         join_labels(chosen, " and ") + "; remove it or choose " +
@@ -364,7 +248,7 @@ void check_unused_options(const std::vector<OptionOwner>& owners) {
 }
 
 void check_late_options(const std::vector<OptionOwner>& owners) {
-  for (const std::string& name : unused_options().names) {
+  for (const auto& [name, value] : unused_options()) {
     if (in(petsc_late_options(), name) || !read_late_by_active(name, owners)) continue;
     throw OptionError("option -" + name + " was not used by the first step: nothing in this configuration reads it" +
                       suggestion(name, owners));
@@ -372,7 +256,8 @@ void check_late_options(const std::vector<OptionOwner>& owners) {
 }
 
 void finish_options_check() {
-  for (const std::string& name : unused_options().names) {
+  for (const auto& left : unused_options()) {
+    const std::string& name = left.first;
     if (in(petsc_late_options(), name)) continue;
     PetscFPrintf(PETSC_COMM_WORLD, stderr, "sph: warning: option -%s was never used\n", name.c_str());
   }

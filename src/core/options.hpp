@@ -1,8 +1,9 @@
 #pragma once
 // Run-time options live in PETSc's options database: components read theirs in
 // PetscOptionsBegin/End blocks (so -help documents them), -options_file loads a scene and the command
-// line overrides. This file holds what the blocks themselves do not: value checks with one-line
-// messages and the unknown-option check.
+// line overrides. The blocks read through src/core/option_reads.hpp, which refuses a missing or
+// non-finite value; this file holds the other value checks with one-line messages and the
+// unknown-option check, which asks PETSc (PetscOptionsLeft) what no one read.
 #include <functional>
 #include <string>
 #include <vector>
@@ -30,20 +31,12 @@ struct RenamedOption {
 // A component a run may read options for: a case or a solver as the user picks it ("-solver isph").
 struct OptionOwner {
   std::string label;
-  std::function<void()> read;  // reads its options blocks (with -help set they print: the documentation)
+  std::function<void()> read;  // reads its options blocks and sets up the PETSc objects that read theirs
   std::function<bool(const std::string&)> reads_late;  // options PETSc reads for it only during steps (may be empty)
   bool active = false;                                 // chosen for this run
   // The name now of an option it read under an old name, named without the dash (may be empty).
   std::function<RenamedOption(const std::string&)> renamed = {};
 };
-
-// Before the options blocks are read: a real option of an active owner given inf or nan (PETSc parses
-// them) throws OptionError naming it. Returns the options given without a value, for the next check.
-std::vector<std::string> check_finite_option_values(const std::vector<OptionOwner>& owners);
-// After the blocks are read (reading them again for their help must not take what they took, such as
-// the PPE's -mat_view): one of `valueless` that needs a value throws OptionError naming it, since PETSc
-// dropped it and kept the default. Flags may stand alone; options only PETSc reads are its own.
-void check_valueless_options(const std::vector<std::string>& valueless, const std::vector<OptionOwner>& owners);
 
 // At start-up, every option in the database must have been read by now, except the ones an active
 // owner or PETSc itself reads later (a solve's viewers, -log_view). Throws OptionError naming the
@@ -55,10 +48,5 @@ void check_unused_options(const std::vector<OptionOwner>& owners);
 void check_late_options(const std::vector<OptionOwner>& owners);
 // End of run: warns about options still unused (those only PETSc's finalisation reads are exempt).
 void finish_options_check();
-
-// The -help text a call of `read_all` prints, captured instead of printed.
-std::string options_help(const std::function<void()>& read_all);
-// The option names that text documents.
-std::vector<std::string> documented_options(const std::function<void()>& read_all);
 
 }  // namespace sph

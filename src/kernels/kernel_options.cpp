@@ -3,6 +3,7 @@
 #include <petscsys.h>
 
 #include "src/core/error.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 
 namespace sph {
@@ -13,10 +14,11 @@ PetscErrorCode read_options(PetscInt* kernel, PetscReal* h_over_dx) {
   std::vector<const char*> kernels;
   for (const auto& k : kernel_names()) kernels.push_back(k.c_str());
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Smoothing kernel", "sph");
-  PetscCall(PetscOptionsEList("-kernel", "Smoothing kernel", "", kernels.data(), static_cast<PetscInt>(kernels.size()),
-                              kernels[*kernel], kernel, nullptr));
-  PetscCall(PetscOptionsReal("-h_over_dx", "Smoothing length over particle spacing (-1: support radius 3 dx)", "",
-                             *h_over_dx, h_over_dx, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-kernel", "Smoothing kernel", kernels.data(),
+                          static_cast<PetscInt>(kernels.size()), kernels[*kernel], kernel, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-h_over_dx",
+                        "Smoothing length over particle spacing (-1: support radius 3 dx)", *h_over_dx, h_over_dx,
+                        nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

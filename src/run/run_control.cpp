@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "src/core/error.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 #include "src/run/threads.hpp"
 
@@ -15,75 +16,76 @@ const char* const body_pressure_force_names[] = {"surface", "pairs"};
 PetscErrorCode read_options(RunControl* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Run control and output", "sph");
-  PetscCall(PetscOptionsReal("-t_end", "End time", "", o->t_end, &o->t_end, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-t_end", "End time", o->t_end, &o->t_end, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-dt", "Fixed time step (0: from the solver's stability limits)", o->dt,
+                        &o->dt, nullptr));
+  PetscCall(option_bool(PetscOptionsObject, "-dt_force",
+                        "Run a -dt above the stability limit instead of refusing it (recorded in summary.json)",
+                        o->dt_force, &o->dt_force, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-max_steps", "Stop after this many steps (-1: no limit)", o->max_steps,
+                       &o->max_steps, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-output_interval",
+                        "Time between VTK frames (-1: t_end/20, 0: first and last only)", o->output_interval,
+                        &o->output_interval, nullptr));
+  PetscCall(option_string(PetscOptionsObject, "-output_dir",
+                          "Output directory (default out/<case>-<solver>-<nx>; with -restart, the checkpoint's folder)",
+                          o->output_dir, o->output_dir, sizeof(o->output_dir), nullptr));
+  PetscCall(option_string(PetscOptionsObject, "-output_fields",
+                          "Extra point arrays in the VTK frames: vorticity (the solver's own fields, e.g. ISPH's "
+                          "free_surface, are always written)",
+                          o->output_fields, o->output_fields, sizeof(o->output_fields), nullptr));
+  PetscCall(option_bool(PetscOptionsObject, "-wall_forces",
+                        "Write the force and moment on every body and on the walls to timeseries.csv each step "
+                        "(force_<body>_x, ..., moment_<body>; pressure and viscous parts)",
+                        o->wall_forces, &o->wall_forces, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-body_pressure_force",
+                          "A body's pressure force: surface (the pressure fitted at its surface's faces and "
+                          "integrated over them, so a uniform pressure gives none; bodies of YAML scenes with a "
+                          "closed surface) or pairs (summed over the wall-fluid pairs, as for the walls, plates "
+                          "and bodies of .vtp scenes)",
+                          body_pressure_force_names, 2, body_pressure_force_names[o->body_pressure_force],
+                          &o->body_pressure_force, nullptr));
+  PetscCall(option_bool(PetscOptionsObject, "-overwrite",
+                        "Replace the run already in -output_dir (its frames, tables, summary, checkpoint)",
+                        o->overwrite, &o->overwrite, nullptr));
   PetscCall(
-      PetscOptionsReal("-dt", "Fixed time step (0: from the solver's stability limits)", "", o->dt, &o->dt, nullptr));
-  PetscCall(PetscOptionsBool("-dt_force",
-                             "Run a -dt above the stability limit instead of refusing it (recorded in summary.json)",
-                             "", o->dt_force, &o->dt_force, nullptr));
-  PetscCall(PetscOptionsInt("-max_steps", "Stop after this many steps (-1: no limit)", "", o->max_steps, &o->max_steps,
-                            nullptr));
-  PetscCall(PetscOptionsReal("-output_interval", "Time between VTK frames (-1: t_end/20, 0: first and last only)", "",
-                             o->output_interval, &o->output_interval, nullptr));
-  PetscCall(PetscOptionsString(
-      "-output_dir", "Output directory (default out/<case>-<solver>-<nx>; with -restart, the checkpoint's folder)", "",
-      o->output_dir, o->output_dir, sizeof(o->output_dir), nullptr));
-  PetscCall(PetscOptionsString("-output_fields",
-                               "Extra point arrays in the VTK frames: vorticity (the solver's own fields, e.g. ISPH's "
-                               "free_surface, are always written)",
-                               "", o->output_fields, o->output_fields, sizeof(o->output_fields), nullptr));
-  PetscCall(PetscOptionsBool("-wall_forces",
-                             "Write the force and moment on every body and on the walls to timeseries.csv each step "
-                             "(force_<body>_x, ..., moment_<body>; pressure and viscous parts)",
-                             "", o->wall_forces, &o->wall_forces, nullptr));
-  PetscCall(PetscOptionsEList("-body_pressure_force",
-                              "A body's pressure force: surface (the pressure fitted at its surface's faces and "
-                              "integrated over them, so a uniform pressure gives none; bodies of YAML scenes with a "
-                              "closed surface) or pairs (summed over the wall-fluid pairs, as for the walls, plates "
-                              "and bodies of .vtp scenes)",
-                              "", body_pressure_force_names, 2, body_pressure_force_names[o->body_pressure_force],
-                              &o->body_pressure_force, nullptr));
-  PetscCall(PetscOptionsBool("-overwrite",
-                             "Replace the run already in -output_dir (its frames, tables, summary, checkpoint)", "",
-                             o->overwrite, &o->overwrite, nullptr));
-  PetscCall(
-      PetscOptionsReal("-neighbour_skin",
-                       "Verlet-list skin as a fraction of the kernel support (-1: the solver's, 0.1 for ISPH, "
-                       "0.2 for the explicit schemes; a wider skin rebuilds the lists less often and holds more pairs)",
-                       "", o->skin, &o->skin, nullptr));
-  PetscCall(PetscOptionsReal("-steady_tol",
-                             "Stop when |dKE/dt| / KE over the last time unit falls below this (0: run to t_end; "
-                             "-1: the case's default)",
-                             "", o->steady_tol, &o->steady_tol, nullptr));
-  PetscCall(PetscOptionsReal("-checkpoint_interval",
-                             "Time between checkpoints (<output_dir>/checkpoint.bin; -1: with every frame, 0: never)",
-                             "", o->checkpoint_interval, &o->checkpoint_interval, nullptr));
-  PetscCall(PetscOptionsInt("-checkpoints_kept",
-                            "Checkpoints kept: the newest is checkpoint.bin, the one before it checkpoint.bin.1, and "
-                            "so on (to go back to before a blow-up)",
-                            "", o->checkpoints_kept, &o->checkpoints_kept, nullptr));
-  PetscCall(PetscOptionsInt("-partition_interval",
-                            "Steps between re-orderings of the particles along a space-filling curve, which also "
-                            "re-balances them over MPI ranks (0: only at start-up and at checkpoints)",
-                            "", o->partition_interval, &o->partition_interval, nullptr));
-  PetscCall(PetscOptionsInt("-threads",
-                            "OpenMP threads per MPI rank for the pair loops, neighbour search and PPE assembly (0: "
-                            "OMP_NUM_THREADS if set, else this rank's cores shared with the other ranks on the node)",
-                            "", o->threads, &o->threads, nullptr));
-  PetscCall(PetscOptionsString("-restart", "Resume from this checkpoint (same case, solver and options)", "",
-                               o->restart, o->restart, sizeof(o->restart), nullptr));
-  PetscCall(PetscOptionsBool("-progress", "Print a progress line on stderr about once a second", "", o->progress,
-                             &o->progress, nullptr));
-  PetscCall(PetscOptionsEList("-box_exit",
-                              "Fluid beyond a side of the box that is not periodic: stop (the run stops and names the "
-                              "particle: it went through a wall or over an open top) or remove (taken out of the "
-                              "run and counted in timeseries.csv's removed_fluid: splashes thrown out of an open "
-                              "tank)",
-                              "", box_exit_names, 2, box_exit_names[o->box_exit], &o->box_exit, nullptr));
-  PetscCall(PetscOptionsBool("-check_ghosts",
-                             "Check before every pair loop that the ghost copies hold their owners' values, and stop "
-                             "at a stale one (an internal error: for developers and bug reports; on in debug builds)",
-                             "", o->check_ghosts, &o->check_ghosts, nullptr));
+      option_real(PetscOptionsObject, "-neighbour_skin",
+                  "Verlet-list skin as a fraction of the kernel support (-1: the solver's, 0.1 for ISPH, "
+                  "0.2 for the explicit schemes; a wider skin rebuilds the lists less often and holds more pairs)",
+                  o->skin, &o->skin, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-steady_tol",
+                        "Stop when |dKE/dt| / KE over the last time unit falls below this (0: run to t_end; "
+                        "-1: the case's default)",
+                        o->steady_tol, &o->steady_tol, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-checkpoint_interval",
+                        "Time between checkpoints (<output_dir>/checkpoint.bin; -1: with every frame, 0: never)",
+                        o->checkpoint_interval, &o->checkpoint_interval, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-checkpoints_kept",
+                       "Checkpoints kept: the newest is checkpoint.bin, the one before it checkpoint.bin.1, and "
+                       "so on (to go back to before a blow-up)",
+                       o->checkpoints_kept, &o->checkpoints_kept, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-partition_interval",
+                       "Steps between re-orderings of the particles along a space-filling curve, which also "
+                       "re-balances them over MPI ranks (0: only at start-up and at checkpoints)",
+                       o->partition_interval, &o->partition_interval, nullptr));
+  PetscCall(option_int(PetscOptionsObject, "-threads",
+                       "OpenMP threads per MPI rank for the pair loops, neighbour search and PPE assembly (0: "
+                       "OMP_NUM_THREADS if set, else this rank's cores shared with the other ranks on the node)",
+                       o->threads, &o->threads, nullptr));
+  PetscCall(option_string(PetscOptionsObject, "-restart", "Resume from this checkpoint (same case, solver and options)",
+                          o->restart, o->restart, sizeof(o->restart), nullptr));
+  PetscCall(option_bool(PetscOptionsObject, "-progress", "Print a progress line on stderr about once a second",
+                        o->progress, &o->progress, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-box_exit",
+                          "Fluid beyond a side of the box that is not periodic: stop (the run stops and names the "
+                          "particle: it went through a wall or over an open top) or remove (taken out of the "
+                          "run and counted in timeseries.csv's removed_fluid: splashes thrown out of an open "
+                          "tank)",
+                          box_exit_names, 2, box_exit_names[o->box_exit], &o->box_exit, nullptr));
+  PetscCall(option_bool(PetscOptionsObject, "-check_ghosts",
+                        "Check before every pair loop that the ghost copies hold their owners' values, and stop "
+                        "at a stale one (an internal error: for developers and bug reports; on in debug builds)",
+                        o->check_ghosts, &o->check_ghosts, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/sph/free_surface_marrone.hpp"
@@ -136,20 +137,20 @@ namespace detail {
 inline PetscErrorCode read_free_surface_options(PetscInt* detection, PetscReal* threshold, PetscReal* exit_threshold) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Free surface (scenes with one; every scheme)", "FreeSurface");
-  PetscCall(PetscOptionsEList(
-      "-free_surface_detection",
+  PetscCall(option_choice(
+      PetscOptionsObject, "-free_surface_detection",
       "Free-surface particles: div_r (div r below -free_surface_threshold, with hysteresis; "
       "Lind et al. 2012) or marrone (the moment matrix's smallest eigenvalue, then a scan "
       "beyond the particle; Marrone et al. 2010; ISPH fails three of the violent free-surface scenes with "
       "it: docs/verification/free_surface.md)",
-      "", surface_detection_names, 2, surface_detection_names[*detection], detection, nullptr));
-  PetscCall(PetscOptionsReal("-free_surface_threshold",
-                             "Free-surface particles: div r below this (0: 1.5 in 2D, 2.4 in 3D; Lind et al. 2012)", "",
-                             *threshold, threshold, nullptr));
-  PetscCall(PetscOptionsReal("-free_surface_exit_threshold",
-                             "A surface particle stays on the surface until div r exceeds this (0: the threshold plus "
-                             "0.4 of its distance to the dimension, 1.7 in 2D)",
-                             "", *exit_threshold, exit_threshold, nullptr));
+      surface_detection_names, 2, surface_detection_names[*detection], detection, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-free_surface_threshold",
+                        "Free-surface particles: div r below this (0: 1.5 in 2D, 2.4 in 3D; Lind et al. 2012)",
+                        *threshold, threshold, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-free_surface_exit_threshold",
+                        "A surface particle stays on the surface until div r exceeds this (0: the threshold plus "
+                        "0.4 of its distance to the dimension, 1.7 in 2D)",
+                        *exit_threshold, exit_threshold, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

@@ -18,6 +18,7 @@
 
 #include "src/core/integer_power.hpp"
 #include "src/core/log_events.hpp"
+#include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/sph/free_surface.hpp"
@@ -104,15 +105,15 @@ namespace detail {
 inline PetscErrorCode read_shifting_options(PetscBool* enabled, PetscInt* rate, PetscReal* A, PetscInt* scales) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Particle shifting (ISPH and WCSPH)", "Shifting");
-  PetscCall(PetscOptionsBool("-shifting",
-                             "Particle shifting (Lind et al. 2012), the particles' fields Taylor-corrected to their "
-                             "new positions",
-                             "", *enabled, enabled, nullptr));
-  PetscCall(PetscOptionsEList("-shift_rate", shift_rate_help, "", shift_rate_names, 2, shift_rate_names[*rate], rate,
-                              nullptr));
-  PetscCall(PetscOptionsReal("-shift_coefficient", shift_coefficient_help, "", *A, A, nullptr));
-  PetscCall(PetscOptionsEList("-shift_scales", shift_scales_help, "", shift_scales_names, 2,
-                              shift_scales_names[*scales], scales, nullptr));
+  PetscCall(option_bool(PetscOptionsObject, "-shifting",
+                        "Particle shifting (Lind et al. 2012), the particles' fields Taylor-corrected to their "
+                        "new positions",
+                        *enabled, enabled, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-shift_rate", shift_rate_help, shift_rate_names, 2,
+                          shift_rate_names[*rate], rate, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-shift_coefficient", shift_coefficient_help, *A, A, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-shift_scales", shift_scales_help, shift_scales_names, 2,
+                          shift_scales_names[*scales], scales, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

@@ -28,6 +28,8 @@ expect_error "option -ppe_ksp_converged_reason is read by -solver isph" $small -
 # one is suggested the new spelling.
 expect_error "^sph: error: option -ksp_rtol is now -ppe_ksp_rtol: the pressure solve's options carry the prefix ppe_$" $small -ksp_rtol 1e-6 -output_dir "$tmp/old"
 [ -e "$tmp/old" ] && { echo "FAIL: a run given an old spelling started"; fail=1; }
+# Given both ways, the old name is still refused, and the new one's value is kept for the check.
+expect_error "option -ksp_rtol is now -ppe_ksp_rtol" $small -ksp_rtol 1e-6 -ppe_ksp_rtol 1e-7
 expect_error "option -pc_type is now -ppe_pc_type: the pressure solve's options carry the prefix ppe_" $small -pc_type gamg
 expect_error "option -pc_hypre_boomeramg_strong_threshold is now -ppe_pc_hypre_boomeramg_strong_threshold" $small -pc_hypre_boomeramg_strong_threshold 0.5
 expect_error "option -ksp_converged_reason is now -ppe_ksp_converged_reason" $small -ksp_converged_reason
@@ -70,6 +72,9 @@ expect_ok $bare -nx 8 -shifting
 expect_error "option -t_end has the value 'inf', which is not a finite number" $bare -nx 8 -t_end inf
 expect_error "option -cfl has the value 'nan', which is not a finite number" $bare -nx 8 -cfl nan
 expect_error "option -dt has the value 'inf'" $bare -nx 8 -dt inf -dt_force 1
+scene="-case scene -scene_file $src/cases/scenes/submerged_cylinder.yaml -nx 10 -t_end 0.01 -progress 0 -output_dir $tmp/out -overwrite"
+expect_error "option -gravity has the value '0,inf', which is not a finite number" $scene -gravity 0,inf
+expect_error "option -gravity was given without a value" $scene -gravity
 # Options files PETSc would refuse with a traceback, or recurse into until it crashes.
 printf -- '-nx 8\n-options_file %s\n' "$tmp/self.opts" > "$tmp/self.opts"
 expect_error "options file '.*self.opts' includes itself" -options_file "$tmp/self.opts"

@@ -1,0 +1,130 @@
+#include "src/core/option_reads.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "src/core/options.hpp"
+
+namespace sph {
+
+namespace {
+
+OptionNames* g_open = nullptr;
+
+void record(const char* name) {
+  if (g_open && name[0] == '-') g_open->record(name + 1);
+}
+
+// PETSc drops an option given without a value and keeps the default: the run would not be the one
+// asked for. `shown` is the default the message names (may be empty).
+PetscErrorCode refuse_missing_value(PetscOptionItems* block, const char* name, const std::string& shown) {
+  PetscFunctionBeginUser;
+  const char* value = nullptr;
+  PetscBool found = PETSC_FALSE;
+  PetscCall(PetscOptionsFindPair(block->options, block->prefix, name, &value, &found));
+  const std::string dflt = shown.empty() ? std::string() : " (its default is " + shown + ")";
+  PetscCheck(!found || value, block->comm, PETSC_ERR_USER_INPUT,
+             "option %s was given without a value%s; give it a value or leave it out", name, dflt.c_str());
+  PetscFunctionReturn(0);
+}
+
+// PETSc reads inf and nan as reals; no option of this program takes them.
+PetscErrorCode refuse_non_finite(PetscOptionItems* block, const char* name, const PetscReal* values, PetscInt n) {
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < n; ++k) {
+    if (std::isfinite(values[k])) continue;
+    const char* given = nullptr;
+    PetscCall(PetscOptionsFindPair(block->options, block->prefix, name, &given, nullptr));
+    SETERRQ(block->comm, PETSC_ERR_USER_INPUT, "option %s has the value '%s', which is not a finite number", name,
+            given ? given : "");
+  }
+  PetscFunctionReturn(0);
+}
+
+template <class T> std::string shown(T value) {
+  std::ostringstream s;
+  s << value;
+  return s.str();
+}
+
+}  // namespace
+
+OptionNames::OptionNames() : outer_(g_open) { g_open = this; }
+OptionNames::~OptionNames() { g_open = outer_; }
+
+void record_option_names(const std::string& prefix, const std::vector<const char*>& names) {
+  if (!g_open) return;
+  for (const char* name : names) g_open->record(prefix + (name[0] == '-' ? name + 1 : name));
+}
+
+void refuse_valueless(const char* prefix, const std::vector<const char*>& names) {
+  for (const char* name : names) {
+    const char* value = nullptr;
+    PetscBool found = PETSC_FALSE;
+    SPH_PETSC(PetscOptionsFindPair(nullptr, prefix, name, &value, &found));
+    if (found && !value)
+      throw OptionError("option -" + std::string(prefix ? prefix : "") + (name + 1) +
+                        " was given without a value; give it a value or leave it out");
+  }
+}
+
+PetscErrorCode option_real(PetscOptionItems* block, const char* name, const char* help, PetscReal current,
+                           PetscReal* value, PetscBool* set) {
+  PetscFunctionBeginUser;
+  record(name);
+  PetscCall(refuse_missing_value(block, name, shown(current)));
+  PetscBool given = PETSC_FALSE;
+  PetscCall(PetscOptionsReal_Private(block, name, help, "", current, value, &given));
+  if (given) PetscCall(refuse_non_finite(block, name, value, 1));
+  if (set) *set = given;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode option_int(PetscOptionItems* block, const char* name, const char* help, PetscInt current,
+                          PetscInt* value, PetscBool* set) {
+  PetscFunctionBeginUser;
+  record(name);
+  PetscCall(refuse_missing_value(block, name, shown(current)));
+  PetscCall(PetscOptionsInt_Private(block, name, help, "", current, value, set, PETSC_MIN_INT, PETSC_MAX_INT));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode option_bool(PetscOptionItems* block, const char* name, const char* help, PetscBool current,
+                           PetscBool* value, PetscBool* set) {
+  PetscFunctionBeginUser;
+  record(name);
+  PetscCall(PetscOptionsBool_Private(block, name, help, "", current, value, set));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode option_choice(PetscOptionItems* block, const char* name, const char* help, const char* const* choices,
+                             PetscInt n, const char* current, PetscInt* value, PetscBool* set) {
+  PetscFunctionBeginUser;
+  record(name);
+  PetscCall(refuse_missing_value(block, name, current ? current : ""));
+  PetscCall(PetscOptionsEList_Private(block, name, help, "", choices, n, current, value, set));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode option_string(PetscOptionItems* block, const char* name, const char* help, const char* current,
+                             char* value, size_t length, PetscBool* set) {
+  PetscFunctionBeginUser;
+  record(name);
+  PetscCall(refuse_missing_value(block, name, current ? current : ""));
+  PetscCall(PetscOptionsString_Private(block, name, help, "", current, value, length, set));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode option_reals(PetscOptionItems* block, const char* name, const char* help, PetscReal* values, PetscInt* n,
+                            PetscBool* set) {
+  PetscFunctionBeginUser;
+  record(name);
+  PetscCall(refuse_missing_value(block, name, ""));
+  PetscBool given = PETSC_FALSE;
+  PetscCall(PetscOptionsRealArray_Private(block, name, help, "", values, n, &given));
+  if (given) PetscCall(refuse_non_finite(block, name, values, *n));
+  if (set) *set = given;
+  PetscFunctionReturn(0);
+}
+
+}  // namespace sph
