@@ -26,7 +26,8 @@ namespace {
 // its default): the options most runs need. cli.options checks that each one exists.
 const char kEssentialHelp[] =
     "sph: ISPH and WCSPH smoothed particle hydrodynamics. Essential options (every option is listed\n"
-    "below with its default, and in docs/options.md):\n"
+    "below with its default, and in docs/options.md; \"(expert)\" marks the numerical method's settings\n"
+    "that few runs change):\n"
     "  -case NAME             the scene: taylor_green, lid_driven_cavity, dam_break, still_water, ...,\n"
     "                         or scene with -scene_file FILE (a YAML scene of shapes or a .vtp)\n"
     "  -solver NAME           isph (the default), wcsph or compressible\n"

@@ -30,12 +30,12 @@ PetscErrorCode read_options(RawOptions* o) {
                         "Compressible: Courant number on the signal velocity, dt <= acoustic_cfl h_i / v_sig,i", o->cfl,
                         &o->cfl, nullptr));
   PetscCall(option_real(PetscOptionsObject, "-cfl_force", "Force criterion: dt <= cfl_force sqrt(h_i / |a_i|)",
-                        o->cfl_force, &o->cfl_force, nullptr));
+                        o->cfl_force, &o->cfl_force, nullptr, OptionLevel::expert));
   PetscCall(option_real(PetscOptionsObject, "-eta",
                         "Smoothing length h_i = eta (m_i/rho_i)^(1/D) (0: the kernel's default)", o->eta, &o->eta,
-                        nullptr));
+                        nullptr, OptionLevel::expert));
   PetscCall(option_real(PetscOptionsObject, "-h_tolerance", "Relative tolerance of the Newton-Raphson iteration for h",
-                        o->h_tol, &o->h_tol, nullptr));
+                        o->h_tol, &o->h_tol, nullptr, OptionLevel::expert));
   PetscCall(option_choice(PetscOptionsObject, "-av",
                           "Artificial viscosity: none, signal_velocity (Monaghan 1997), monaghan (1992)",
                           viscosity_names, 3, viscosity_names[o->viscosity], &o->viscosity, nullptr));
@@ -47,21 +47,21 @@ PetscErrorCode read_options(RawOptions* o) {
                         "Artificial viscosity beta (-1: 3 for signal_velocity, 2 for monaghan)", o->beta, &o->beta,
                         nullptr));
   PetscCall(option_real(PetscOptionsObject, "-av_epsilon", "Singularity guard of the monaghan viscosity", o->epsilon,
-                        &o->epsilon, nullptr));
+                        &o->epsilon, nullptr, OptionLevel::expert));
   PetscCall(option_choice(PetscOptionsObject, "-av_switch", "Time-dependent alpha: none, morris_monaghan (1997)",
                           switch_names, 2, switch_names[o->av_switch], &o->av_switch, nullptr));
   PetscCall(option_real(PetscOptionsObject, "-av_alpha_min", "Morris-Monaghan: alpha far from shocks", o->alpha_min,
-                        &o->alpha_min, nullptr));
+                        &o->alpha_min, nullptr, OptionLevel::expert));
   PetscCall(option_real(PetscOptionsObject, "-av_alpha_max", "Morris-Monaghan: largest alpha", o->alpha_max,
-                        &o->alpha_max, nullptr));
+                        &o->alpha_max, nullptr, OptionLevel::expert));
   PetscCall(option_real(PetscOptionsObject, "-av_decay", "Morris-Monaghan: decay rate sigma, tau = h / (sigma c)",
-                        o->sigma, &o->sigma, nullptr));
+                        o->sigma, &o->sigma, nullptr, OptionLevel::expert));
   PetscCall(option_bool(PetscOptionsObject, "-balsara", "Balsara (1995) switch on the artificial viscosity", o->balsara,
                         &o->balsara, nullptr));
   PetscCall(option_bool(PetscOptionsObject, "-conductivity", "Artificial thermal conductivity (Price 2008)",
                         o->conductivity, &o->conductivity, nullptr));
   PetscCall(option_real(PetscOptionsObject, "-conductivity_alpha", "Artificial conductivity coefficient alpha_u",
-                        o->alpha_u, &o->alpha_u, nullptr));
+                        o->alpha_u, &o->alpha_u, nullptr, OptionLevel::expert));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

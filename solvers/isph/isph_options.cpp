@@ -32,34 +32,36 @@ PetscErrorCode read_options(RawOptions* o) {
                           "fields on any particle distribution) or classic (Morris, Cummins & Rudman, plain)",
                           operator_set_names, 2, operator_set_names[o->operators], &o->operators, nullptr));
   PetscCall(option_choice(PetscOptionsObject, "-viscous_laplacian", viscous_laplacian_help, viscous_laplacian_names, 2,
-                          viscous_laplacian_names[o->viscous_laplacian], &o->viscous_laplacian, nullptr));
+                          viscous_laplacian_names[o->viscous_laplacian], &o->viscous_laplacian, nullptr,
+                          OptionLevel::expert));
   PetscCall(option_real(PetscOptionsObject, "-ppe_particle_divergence_rate",
                         "Rate, in U/h, at which the PPE removes the particle-scale divergence of the previous "
                         "step's velocity, which the projection cannot remove (R: a fraction R U dt / (2 h) per "
                         "step, at most all, so the default 10 removes all of it at CFL 0.2 and keeps that rate "
                         "at smaller steps; -1: all of it every step, whatever dt; 0: never)",
-                        o->particle_divergence_rate, &o->particle_divergence_rate, nullptr));
+                        o->particle_divergence_rate, &o->particle_divergence_rate, nullptr, OptionLevel::expert));
   PetscCall(option_int(PetscOptionsObject, "-projection_corrections",
                        "Passes after the projection that remove the resolved-scale divergence it leaves (its "
                        "Laplacian is not the divergence of its gradient): each solves the same matrix again; 0: "
                        "one projection, first order in dt",
-                       o->projection_corrections, &o->projection_corrections, nullptr));
+                       o->projection_corrections, &o->projection_corrections, nullptr, OptionLevel::expert));
   PetscCall(option_choice(PetscOptionsObject, "-ppe_wall_velocity",
                           "Wall velocity the PPE source's divergence sees: zero (walls at rest, as in WCSPH's "
                           "continuity equation; wall particles keep their place, so every wall here is fixed or "
                           "slides along itself) or prescribed (the walls' own: a sliding wall's velocity jump "
                           "where it ends reads as a compression, a first-order error)",
-                          wall_velocity_names, 2, wall_velocity_names[o->wall_velocity], &o->wall_velocity, nullptr));
+                          wall_velocity_names, 2, wall_velocity_names[o->wall_velocity], &o->wall_velocity, nullptr,
+                          OptionLevel::expert));
   PetscCall(option_bool(PetscOptionsObject, "-ppe_wall_impact",
                         "Walls stop the free surface that comes at them within the step: their pressure rows add "
                         "rho u_n (r . n) / tau for a surface particle's predicted velocity u_n towards them "
                         "(default: on in scenes with a free surface, off in closed ones)",
-                        o->wall_impact, &o->wall_impact, &o->wall_impact_set));
+                        o->wall_impact, &o->wall_impact, &o->wall_impact_set, OptionLevel::expert));
   PetscCall(option_choice(PetscOptionsObject, "-free_surface_condition",
                           "Where p = 0 holds: node (at the surface, dx/2 beyond each surface particle, which "
                           "keeps its continuity equation) or particle (on the surface particles, Lind et al. 2012)",
                           surface_condition_names, 2, surface_condition_names[o->surface_condition],
-                          &o->surface_condition, nullptr));
+                          &o->surface_condition, nullptr, OptionLevel::expert));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

@@ -180,7 +180,7 @@ PetscErrorCode read_ppe_options(PetscReal* pc_drop_tol) {
                         "entry below this fraction of its row's diagonal added to the diagonal instead; the "
                         "Krylov method still solves the whole matrix to -ppe_ksp_rtol (0: the whole matrix; "
                         "BoomerAMG on non-symmetric matrices only, the default solver and operators)",
-                        *pc_drop_tol, pc_drop_tol, nullptr));
+                        *pc_drop_tol, pc_drop_tol, nullptr, OptionLevel::expert));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

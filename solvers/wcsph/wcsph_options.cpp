@@ -55,7 +55,7 @@ PetscErrorCode read_options(RawOptions* o) {
                         "Let the density diffusion drain the free surface's layer into the fluid inside "
                         "(default off: across the cut support it drains the layer's hydrostatic density, and "
                         "still water sinks; diffusion into the layer, as under tension, stays on)",
-                        o->diffusion_at_surface, &o->diffusion_at_surface, nullptr));
+                        o->diffusion_at_surface, &o->diffusion_at_surface, nullptr, OptionLevel::expert));
   PetscCall(
       option_real(PetscOptionsObject, "-av_alpha",
                   "WCSPH: Monaghan artificial viscosity alpha (default 0: off; the compressible solver's default is 1)",
@@ -63,13 +63,14 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscCall(
       option_real(PetscOptionsObject, "-av_beta", "Monaghan artificial viscosity beta", o->beta, &o->beta, nullptr));
   PetscCall(option_real(PetscOptionsObject, "-av_epsilon", "Artificial viscosity singularity guard epsilon", o->epsilon,
-                        &o->epsilon, nullptr));
+                        &o->epsilon, nullptr, OptionLevel::expert));
   PetscCall(option_choice(PetscOptionsObject, "-operators",
                           "Continuity divergence and viscous Laplacian: consistent (corrected divergence, "
                           "consistent Laplacian) or classic (plain divergence, Morris)",
                           operator_set_names, 2, operator_set_names[o->operators], &o->operators, nullptr));
   PetscCall(option_choice(PetscOptionsObject, "-viscous_laplacian", viscous_laplacian_help, viscous_laplacian_names, 2,
-                          viscous_laplacian_names[o->viscous_laplacian], &o->viscous_laplacian, nullptr));
+                          viscous_laplacian_names[o->viscous_laplacian], &o->viscous_laplacian, nullptr,
+                          OptionLevel::expert));
   PetscCall(option_choice(PetscOptionsObject, "-pressure_gradient",
                           "Pressure force: corrected (Bonet & Lok, p_j - p_i), symmetric (Monaghan, momentum-"
                           "conserving), auto (symmetric with a free surface, whose zero pressure it imposes; "

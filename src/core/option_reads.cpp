@@ -41,6 +41,11 @@ PetscErrorCode refuse_non_finite(PetscOptionItems* block, const char* name, cons
   PetscFunctionReturn(0);
 }
 
+// The help line as -help prints it.
+std::string text(const char* help, OptionLevel level) {
+  return level == OptionLevel::expert ? std::string("(expert) ") + help : std::string(help);
+}
+
 template <class T> std::string shown(T value) {
   std::ostringstream s;
   s << value;
@@ -69,59 +74,60 @@ void refuse_valueless(const char* prefix, const std::vector<const char*>& names)
 }
 
 PetscErrorCode option_real(PetscOptionItems* block, const char* name, const char* help, PetscReal current,
-                           PetscReal* value, PetscBool* set) {
+                           PetscReal* value, PetscBool* set, OptionLevel level) {
   PetscFunctionBeginUser;
   record(name);
   PetscCall(refuse_missing_value(block, name, shown(current)));
   PetscBool given = PETSC_FALSE;
-  PetscCall(PetscOptionsReal_Private(block, name, help, "", current, value, &given));
+  PetscCall(PetscOptionsReal_Private(block, name, text(help, level).c_str(), "", current, value, &given));
   if (given) PetscCall(refuse_non_finite(block, name, value, 1));
   if (set) *set = given;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode option_int(PetscOptionItems* block, const char* name, const char* help, PetscInt current,
-                          PetscInt* value, PetscBool* set) {
+                          PetscInt* value, PetscBool* set, OptionLevel level) {
   PetscFunctionBeginUser;
   record(name);
   PetscCall(refuse_missing_value(block, name, shown(current)));
-  PetscCall(PetscOptionsInt_Private(block, name, help, "", current, value, set, PETSC_MIN_INT, PETSC_MAX_INT));
+  PetscCall(PetscOptionsInt_Private(block, name, text(help, level).c_str(), "", current, value, set, PETSC_MIN_INT,
+                                    PETSC_MAX_INT));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode option_bool(PetscOptionItems* block, const char* name, const char* help, PetscBool current,
-                           PetscBool* value, PetscBool* set) {
+                           PetscBool* value, PetscBool* set, OptionLevel level) {
   PetscFunctionBeginUser;
   record(name);
-  PetscCall(PetscOptionsBool_Private(block, name, help, "", current, value, set));
+  PetscCall(PetscOptionsBool_Private(block, name, text(help, level).c_str(), "", current, value, set));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode option_choice(PetscOptionItems* block, const char* name, const char* help, const char* const* choices,
-                             PetscInt n, const char* current, PetscInt* value, PetscBool* set) {
+                             PetscInt n, const char* current, PetscInt* value, PetscBool* set, OptionLevel level) {
   PetscFunctionBeginUser;
   record(name);
   PetscCall(refuse_missing_value(block, name, current ? current : ""));
-  PetscCall(PetscOptionsEList_Private(block, name, help, "", choices, n, current, value, set));
+  PetscCall(PetscOptionsEList_Private(block, name, text(help, level).c_str(), "", choices, n, current, value, set));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode option_string(PetscOptionItems* block, const char* name, const char* help, const char* current,
-                             char* value, size_t length, PetscBool* set) {
+                             char* value, size_t length, PetscBool* set, OptionLevel level) {
   PetscFunctionBeginUser;
   record(name);
   PetscCall(refuse_missing_value(block, name, current ? current : ""));
-  PetscCall(PetscOptionsString_Private(block, name, help, "", current, value, length, set));
+  PetscCall(PetscOptionsString_Private(block, name, text(help, level).c_str(), "", current, value, length, set));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode option_reals(PetscOptionItems* block, const char* name, const char* help, PetscReal* values, PetscInt* n,
-                            PetscBool* set) {
+                            PetscBool* set, OptionLevel level) {
   PetscFunctionBeginUser;
   record(name);
   PetscCall(refuse_missing_value(block, name, ""));
   PetscBool given = PETSC_FALSE;
-  PetscCall(PetscOptionsRealArray_Private(block, name, help, "", values, n, &given));
+  PetscCall(PetscOptionsRealArray_Private(block, name, text(help, level).c_str(), "", values, n, &given));
   if (given) PetscCall(refuse_non_finite(block, name, values, *n));
   if (set) *set = given;
   PetscFunctionReturn(0);

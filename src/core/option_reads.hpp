@@ -12,21 +12,27 @@
 
 namespace sph {
 
+// How much a run needs an option. -help lists the essential ones first, in a section of their own
+// (app/sph.cpp); an expert one, a setting of the numerical method whose default the verification pages
+// justify and few runs change, starts its -help line with "(expert)"; the rest are standard.
+enum class OptionLevel { standard, expert };
+
 PetscErrorCode option_real(PetscOptionItems* block, const char* name, const char* help, PetscReal current,
-                           PetscReal* value, PetscBool* set);
+                           PetscReal* value, PetscBool* set, OptionLevel level = OptionLevel::standard);
 PetscErrorCode option_int(PetscOptionItems* block, const char* name, const char* help, PetscInt current,
-                          PetscInt* value, PetscBool* set);
+                          PetscInt* value, PetscBool* set, OptionLevel level = OptionLevel::standard);
 // A flag: given alone it is true.
 PetscErrorCode option_bool(PetscOptionItems* block, const char* name, const char* help, PetscBool current,
-                           PetscBool* value, PetscBool* set);
+                           PetscBool* value, PetscBool* set, OptionLevel level = OptionLevel::standard);
 // One of `choices` (n of them); *value is the index of the one given.
 PetscErrorCode option_choice(PetscOptionItems* block, const char* name, const char* help, const char* const* choices,
-                             PetscInt n, const char* current, PetscInt* value, PetscBool* set);
+                             PetscInt n, const char* current, PetscInt* value, PetscBool* set,
+                             OptionLevel level = OptionLevel::standard);
 PetscErrorCode option_string(PetscOptionItems* block, const char* name, const char* help, const char* current,
-                             char* value, size_t length, PetscBool* set);
+                             char* value, size_t length, PetscBool* set, OptionLevel level = OptionLevel::standard);
 // Up to *n comma-separated reals; *n becomes the number given.
 PetscErrorCode option_reals(PetscOptionItems* block, const char* name, const char* help, PetscReal* values, PetscInt* n,
-                            PetscBool* set);
+                            PetscBool* set, OptionLevel level = OptionLevel::standard);
 
 // Records the names (without the dash) of the options read while it is open, by the functions above
 // and by record_option_names. One at a time; options are read by one thread.

@@ -52,7 +52,7 @@ PetscErrorCode read_options(RunControl* o) {
       option_real(PetscOptionsObject, "-neighbour_skin",
                   "Verlet-list skin as a fraction of the kernel support (-1: the solver's, 0.1 for ISPH, "
                   "0.2 for the explicit schemes; a wider skin rebuilds the lists less often and holds more pairs)",
-                  o->skin, &o->skin, nullptr));
+                  o->skin, &o->skin, nullptr, OptionLevel::expert));
   PetscCall(option_real(PetscOptionsObject, "-steady_tol",
                         "Stop when |dKE/dt| / KE over the last time unit falls below this (0: run to t_end; "
                         "-1: the case's default)",
@@ -63,11 +63,11 @@ PetscErrorCode read_options(RunControl* o) {
   PetscCall(option_int(PetscOptionsObject, "-checkpoints_kept",
                        "Checkpoints kept: the newest is checkpoint.bin, the one before it checkpoint.bin.1, and "
                        "so on (to go back to before a blow-up)",
-                       o->checkpoints_kept, &o->checkpoints_kept, nullptr));
+                       o->checkpoints_kept, &o->checkpoints_kept, nullptr, OptionLevel::expert));
   PetscCall(option_int(PetscOptionsObject, "-partition_interval",
                        "Steps between re-orderings of the particles along a space-filling curve, which also "
                        "re-balances them over MPI ranks (0: only at start-up and at checkpoints)",
-                       o->partition_interval, &o->partition_interval, nullptr));
+                       o->partition_interval, &o->partition_interval, nullptr, OptionLevel::expert));
   PetscCall(option_int(PetscOptionsObject, "-threads",
                        "OpenMP threads per MPI rank for the pair loops, neighbour search and PPE assembly (0: "
                        "OMP_NUM_THREADS if set, else this rank's cores shared with the other ranks on the node)",
@@ -85,7 +85,7 @@ PetscErrorCode read_options(RunControl* o) {
   PetscCall(option_bool(PetscOptionsObject, "-check_ghosts",
                         "Check before every pair loop that the ghost copies hold their owners' values, and stop "
                         "at a stale one (an internal error: for developers and bug reports; on in debug builds)",
-                        o->check_ghosts, &o->check_ghosts, nullptr));
+                        o->check_ghosts, &o->check_ghosts, nullptr, OptionLevel::expert));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

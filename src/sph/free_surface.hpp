@@ -150,7 +150,7 @@ inline PetscErrorCode read_free_surface_options(PetscInt* detection, PetscReal* 
   PetscCall(option_real(PetscOptionsObject, "-free_surface_exit_threshold",
                         "A surface particle stays on the surface until div r exceeds this (0: the threshold plus "
                         "0.4 of its distance to the dimension, 1.7 in 2D)",
-                        *exit_threshold, exit_threshold, nullptr));
+                        *exit_threshold, exit_threshold, nullptr, OptionLevel::expert));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

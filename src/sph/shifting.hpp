@@ -111,9 +111,10 @@ inline PetscErrorCode read_shifting_options(PetscBool* enabled, PetscInt* rate, 
                         *enabled, enabled, nullptr));
   PetscCall(option_choice(PetscOptionsObject, "-shift_rate", shift_rate_help, shift_rate_names, 2,
                           shift_rate_names[*rate], rate, nullptr));
-  PetscCall(option_real(PetscOptionsObject, "-shift_coefficient", shift_coefficient_help, *A, A, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-shift_coefficient", shift_coefficient_help, *A, A, nullptr,
+                        OptionLevel::expert));
   PetscCall(option_choice(PetscOptionsObject, "-shift_scales", shift_scales_help, shift_scales_names, 2,
-                          shift_scales_names[*scales], scales, nullptr));
+                          shift_scales_names[*scales], scales, nullptr, OptionLevel::expert));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

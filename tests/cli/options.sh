@@ -138,6 +138,13 @@ for opt in $essential; do
   [ "$opt" = -options_file ] && continue
   grep -qE -- "^  $opt <" "$tmp/help" || { echo "FAIL: essential option $opt is not documented by any options block"; fail=1; }
 done
+# The other options are standard, or expert ("(expert)" opens the help line): none is both essential
+# and expert.
+for opt in $essential; do
+  grep -E -- "^  $opt[ :]" "$tmp/help" | grep -q "(expert)" && { echo "FAIL: essential option $opt is marked expert"; fail=1; }
+done
+grep -qE -- "^  -projection_corrections <.*>: \(expert\) " "$tmp/help" \
+  || { echo "FAIL: -projection_corrections is not marked expert"; fail=1; }
 
 # A case file loads and the command line overrides it.
 "$sph" -options_file "$src/cases/taylor_green.opts" -nx 8 -t_end 0.01 -progress 0 -output_dir "$tmp/tg" \
