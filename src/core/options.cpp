@@ -61,9 +61,9 @@ const std::vector<std::string>& petsc_late_options() {
   return names;
 }
 
-// Names to suggest that no options block prints at start-up: PETSc's initialisation options, and those
+// Names to suggest that no options block records: PETSc's initialisation options, and those
 // a solve reads.
-const std::vector<std::string>& unprinted_options() {
+const std::vector<std::string>& unrecorded_options() {
   static const std::vector<std::string> names = {
       "options_file", "options_file_yaml", "options_string_yaml",     "help",
       "version",      "start_in_debugger", "stop_for_debugger",       "mat_type",
@@ -90,10 +90,6 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
   }
   return prev[b.size()];
 }
-
-}  // namespace
-
-namespace {
 
 // The closest candidate within two edits, also after a sub-solver prefix ("sub_pc_typ" -> "sub_pc_type"),
 // which follows the solver's own ("ppe_sub_pc_typ" -> "ppe_sub_pc_type", from "ppe_pc_type").
@@ -122,7 +118,7 @@ std::string closest(const std::string& name, const std::vector<std::string>& can
 // block reads, and those a solve reads.
 std::vector<std::string> known_options(const std::vector<OptionOwner>& owners) {
   std::vector<std::string> known = petsc_late_options();
-  known.insert(known.end(), unprinted_options().begin(), unprinted_options().end());
+  known.insert(known.end(), unrecorded_options().begin(), unrecorded_options().end());
   const OptionNames recorded;
   for (const OptionOwner& o : owners) {
     try {
@@ -206,10 +202,6 @@ Rename renamed(const std::string& name, const std::optional<std::string>& value,
   }
   return {};
 }
-
-}  // namespace
-
-namespace {
 
 // The options not yet read, with their values as given (none: given without one).
 std::vector<std::pair<std::string, std::optional<std::string>>> unused_options() {
