@@ -351,7 +351,7 @@ template <int D> void WcsphSolver<D>::shift(double dt) {
   Particles<D>& P = disc_->particles;
   Neighbourhood<D>& nh = disc_->neighbourhood;
   nh.update(P);
-  // At a free surface particles shift only along it (Lind et al. 2012), beside it never outwards. The
+  // Free-surface particles stay put, beside them shifts are never outwards (src/sph/shifting.hpp). The
   // surface is the rates' one: the particles have not moved since.
   ShiftBoundary<D> boundary;
   if (disc_->physics.free_surface) boundary = free_surface_.shift_boundary(P, nh, disc_->kernel, surface_);

@@ -93,8 +93,8 @@ std::vector<char> isolated_fluid_particles(const Particles<D>& P, const Neighbou
   return isolated;
 }
 
-// Where shifting meets a free surface (src/sph/shifting.hpp): kind 1 on the surface (shift along it
-// only), 2 beside it (never outwards, along `normal`, the kernel-weighted mean of the surface
+// Where shifting meets a free surface (src/sph/shifting.hpp): kind 1 on the surface (not shifted),
+// 2 beside it (never outwards, along `normal`, the kernel-weighted mean of the surface
 // neighbours' normals); 0 elsewhere. Owned particles.
 template <int D> struct ShiftBoundary {
   std::vector<char> kind;

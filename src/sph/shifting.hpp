@@ -141,8 +141,7 @@ template <int D> void remove_kernel_average(const Particles<D>& P, Neighbourhood
 }
 
 // Shifts the owned particles by -D grad C, D = model.coefficient(h, U, dt) (with a free surface, as
-// `surface` says: on it only along it, the normal part, n = -grad C / |grad C|, removed, Lind et al.
-// 2012; beside it never outwards) and Taylor-corrects the velocity,
+// `surface` says: not on it, and beside it never outwards) and Taylor-corrects the velocity,
 // u + (dr . grad) u with the corrected gradient, and the listed scalar fields likewise. Positions must
 // be current in `nh`.
 //
@@ -187,15 +186,9 @@ template <int D> void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, con
         for (std::size_t k = 0; k < ns; ++k) grad_f[k][i] = grad_f_i[k];
       },
       Rows::Fluid);  // walls do not shift
-  // A free-surface particle's outward normal is along grad C itself, before any filtering.
-  std::vector<Vector<D>> normal;
   std::vector<char> on_surface;
   if (surface)
-    for (std::size_t i = 0; i < n; ++i) {
-      const char kind = surface->kind[i];
-      normal.push_back(kind == 2 ? surface->normal[i] : kind == 1 ? Vector<D>(-dr[i].normalized()) : Vector<D>::Zero());
-      on_surface.push_back(kind == 1);
-    }
+    for (std::size_t i = 0; i < n; ++i) on_surface.push_back(surface->kind[i] == 1);
   if (model.scales == ShiftScales::Particle) remove_kernel_average(P, nh, K, dr, surface ? &on_surface : nullptr);
   const double Dcoef = model.coefficient(K.h(), U, dt);
   for (std::size_t i = 0; i < n; ++i) {
@@ -209,13 +202,16 @@ template <int D> void shift_particles(Particles<D>& P, Neighbourhood<D>& nh, con
       dr[i] *= -model.coefficient(K.h(), U, dt, (0.5 * (G + G.transpose())).norm());
     }
   }
-  // On the surface particles shift along it only (Lind et al. 2012); beside it never outwards: there
+  // The surface particles stay put. Along the surface (Lind et al. 2012's tangential shift) they
+  // would leave the drop's tips, where the flow crowds them, and a WCSPH splash blew up with it
+  // (docs/verification/free_surface.md, "Elliptical drop"). Beside the surface never outwards: there
   // the cut support's grad C points into the fluid as well, and shifting would move the layer below the
   // surface into it, lifting a fluid at rest (docs/verification/free_surface.md, "Design measurements").
   if (surface)
     for (std::size_t i = 0; i < n; ++i) {
-      const double outward = normal[i].dot(dr[i]);
-      if (surface->kind[i] == 1 || (surface->kind[i] == 2 && outward > 0.0)) dr[i] -= outward * normal[i];
+      if (surface->kind[i] == 1) dr[i].setZero();
+      const double outward = surface->normal[i].dot(dr[i]);
+      if (surface->kind[i] == 2 && outward > 0.0) dr[i] -= outward * surface->normal[i];
     }
   // Only fluid particles move; walls keep their place.
   for (std::size_t k = 0; k < scalars.size(); ++k)
