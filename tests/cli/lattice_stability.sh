@@ -3,7 +3,8 @@
 # its linearised dynamical matrix D(k) against the pair forces of a displaced square lattice summed
 # directly (central differences in the displacement; only the first derivative of the kernel), and the signs the page relies on: a growing
 # mode at a support of 3 dx in 2D and 3D, none at 2.77 dx in 2D and 2.84 dx in 3D; on the hexagonal
-# lattice none with Wendland C4 at 3 dx, one with Wendland C2.
+# lattice none with Wendland C4 at 3 dx, one with Wendland C2; the quintic spline holds the square and
+# simple cubic lattices at 2.79 dx, not at 3.
 #   usage: lattice_stability.sh <sph executable (unused)> <source dir>
 set -u
 src="$2"
@@ -61,5 +62,13 @@ for kernel, want_stable in [("wendland_c4", True), ("wendland_c2", False)]:
     ok = (lam >= 0.0) if want_stable else (lam < -1e-3)
     fail |= not ok
     print(("ok" if ok else "FAIL") + f": hexagonal lattice, {kernel}, 3 dx: smallest eigenvalue {lam:+.4f}")
+
+# The quintic spline's stable window: at 2.79 dx (h = 0.93 dx) it holds the square and simple cubic
+# lattices, at 3 dx (h = 1) it does not (docs/verification/free_surface.md).
+for dim, support, want_stable in [(2, 2.79, True), (3, 2.79, True), (2, 3.0, False)]:
+    lam = ls.smallest_eigenvalue(ls.neighbours(support, dim, "quintic_spline"), dim, 48 if dim == 2 else 13)
+    ok = (lam >= 0.0) if want_stable else (lam < -1e-3)
+    fail |= not ok
+    print(("ok" if ok else "FAIL") + f": square lattice, quintic_spline, {dim}D, {support} dx: smallest eigenvalue {lam:+.4f}")
 sys.exit(1 if fail else 0)
 PY
