@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "src/boundary/adami_wall.hpp"
+#include "src/boundary/wall_bounding.hpp"
 #include "src/core/log_events.hpp"
 #include "src/core/options.hpp"
 #include "src/sph/consistent_laplacian.hpp"
@@ -318,6 +319,10 @@ template <int D> double WcsphSolver<D>::stable_dt() const {
 template <int D> StepReport WcsphSolver<D>::step(double dt) {
   kick_drift_rates_kick(dt);
   if (shifting_model_.enabled) shift(dt);
+  if (wall_bounding_ && walls_) {
+    disc_->neighbourhood.update(disc_->particles);
+    bounded_ += bound_to_walls(disc_->particles, disc_->neighbourhood, disc_->kernel, disc_->dx);
+  }
   const LogEventScope log_density(LogEvent::Density);
   update_pressure();
   return {};

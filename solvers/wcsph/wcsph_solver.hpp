@@ -77,6 +77,8 @@ template <int D> class WcsphSolver : public Solver<D> {
   int closed_volume_option_ = -1;      // -closed_volume: -1 unset (on without a free surface), 0 off, 1 on
   bool prepared_start_ = false;        // -prepared_start: the case's slow-manifold velocity added at set-up
   bool diffusion_at_surface_ = false;  // -density_diffusion_at_surface
+  bool wall_bounding_ = false;         // -wall_bounding (src/boundary/wall_bounding.hpp)
+  long bounded_ = 0;                   // fluid particles put back on a wall's face, summed over the steps
   // This step's free-surface particles (owned), found once at the rates' positions and used again by
   // the shift, which comes at the same positions; and as flags on owned and ghost particles.
   std::vector<char> surface_;
