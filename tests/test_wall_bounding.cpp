@@ -57,7 +57,7 @@ struct CornerWithStep {
   long bound() {
     nh = std::make_unique<Neighbourhood<2>>(domain, K.support_radius(), 0.0);
     nh->update(P, true);
-    return bound_to_walls(P, *nh, K, kDx);
+    return WallBounding<2>().apply(P, *nh, K, kDx, false);
   }
 };
 
@@ -103,6 +103,17 @@ TEST_P(WallBounding, PutsFluidBehindAFaceBackOnIt) {
     EXPECT_NEAR((t.P.x[i] - c.on_face).norm(), 0.0, 1e-12) << c.x.transpose() << " -> " << t.P.x[i].transpose();
     EXPECT_NEAR((t.P.v[i] - c.v_after).norm(), 0.0, 1e-12) << c.x.transpose() << " -> " << t.P.v[i].transpose();
   }
+}
+
+// Inside the convex corner's cell, nearer than dx/2 to the corner particle, where the walls hold less
+// than half of the kernel sum: moved out along the corner's normal to dx/2 from that particle.
+TEST_P(WallBounding, PutsFluidOutOfAConvexCornersCell) {
+  CornerWithStep s(GetParam().first, GetParam().second);
+  const V2 corner = site(kStepFrom, kStepRows - 1);
+  const std::size_t i = s.add(corner + V2(-0.3 * kDx, 0.3 * kDx), V2(1.0, -1.0));
+  EXPECT_EQ(s.bound(), 1);
+  EXPECT_NEAR((s.P.x[i] - corner).norm(), 0.5 * kDx, 0.05 * kDx);
+  EXPECT_LT(s.P.v[i].norm(), 0.1);  // it moved straight at the corner: nearly all of it into the wall
 }
 
 INSTANTIATE_TEST_SUITE_P(Kernels, WallBounding,

@@ -117,7 +117,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
                PETSC_FALSE,
                prepared_start_ ? PETSC_TRUE : PETSC_FALSE,
                diffusion_at_surface_ ? PETSC_TRUE : PETSC_FALSE,
-               wall_bounding_ ? PETSC_TRUE : PETSC_FALSE};
+               bound_to_walls_ ? PETSC_TRUE : PETSC_FALSE};
   SPH_PETSC(read_options(&o));
   require(o.c0 >= 0, "-c0", "non-negative", o.c0);
   require(o.c0_factor > 0, "-c0_factor", "positive", o.c0_factor);
@@ -130,7 +130,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   if (o.closed_volume_set) closed_volume_option_ = o.closed_volume ? 1 : 0;
   prepared_start_ = o.prepared_start;
   diffusion_at_surface_ = o.diffusion_at_surface;
-  wall_bounding_ = o.wall_bounding;
+  bound_to_walls_ = o.wall_bounding;
   c0_ = o.c0, c0_factor_ = o.c0_factor, eos_.gamma = o.gamma, cfl_ = o.cfl, delta_ = o.delta;
   av_.alpha = o.alpha, av_.beta = o.beta, av_.epsilon = o.epsilon;
   density_ = static_cast<DensityMethod>(o.density);
@@ -166,7 +166,7 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
                                      viscous_laplacian_ == ViscousLaplacian::Fourth && !phys.free_surface)}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
   if (walls_) models["walls"] = {{"model", "AdamiWall"}};
-  if (walls_ && wall_bounding_) models["walls"]["bounding"] = {{"moves", bounded_}};  // particle-steps
+  if (walls_ && bound_to_walls_) models["walls"]["bounding"] = {{"moves", bounded_}};  // particle-steps
   models["operators"] = operator_set_names[static_cast<int>(operators_)];
   models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
   if (shifting_model_.enabled) models["shifting"] = shifting_model_.describe();

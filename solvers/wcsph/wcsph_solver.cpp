@@ -4,7 +4,6 @@
 #include <sstream>
 
 #include "src/boundary/adami_wall.hpp"
-#include "src/boundary/wall_bounding.hpp"
 #include "src/core/log_events.hpp"
 #include "src/core/options.hpp"
 #include "src/sph/consistent_laplacian.hpp"
@@ -315,13 +314,14 @@ template <int D> double WcsphSolver<D>::stable_dt() const {
 }
 
 // A step as its phases: kick, drift, the rates at the new positions and kick (leapfrog), the shift,
-// and the pressures of the new densities.
+// the wall bounding (-wall_bounding), and the pressures of the new densities.
 template <int D> StepReport WcsphSolver<D>::step(double dt) {
   kick_drift_rates_kick(dt);
   if (shifting_model_.enabled) shift(dt);
-  if (wall_bounding_ && walls_) {
+  if (bound_to_walls_ && walls_) {
     disc_->neighbourhood.update(disc_->particles);
-    bounded_ += bound_to_walls(disc_->particles, disc_->neighbourhood, disc_->kernel, disc_->dx);
+    bounded_ +=
+        wall_bounding_.apply(disc_->particles, disc_->neighbourhood, disc_->kernel, disc_->dx, disc_->bodies.any());
   }
   const LogEventScope log_density(LogEvent::Density);
   update_pressure();

@@ -6,6 +6,7 @@
 // Monaghan (1992) artificial viscosity, Morris et al. (1997) laminar viscosity; kick-drift-kick
 // leapfrog (Monaghan 2005, sec. 5.3); dt from the acoustic CFL, viscous and force limits.
 #include "solvers/wcsph/wcsph_iact.hpp"
+#include "src/boundary/wall_bounding.hpp"
 #include "src/run/solver.hpp"
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/free_surface.hpp"
@@ -77,7 +78,8 @@ template <int D> class WcsphSolver : public Solver<D> {
   int closed_volume_option_ = -1;      // -closed_volume: -1 unset (on without a free surface), 0 off, 1 on
   bool prepared_start_ = false;        // -prepared_start: the case's slow-manifold velocity added at set-up
   bool diffusion_at_surface_ = false;  // -density_diffusion_at_surface
-  bool wall_bounding_ = false;         // -wall_bounding (src/boundary/wall_bounding.hpp)
+  bool bound_to_walls_ = false;        // -wall_bounding
+  WallBounding<D> wall_bounding_;
   long bounded_ = 0;                   // fluid particles put back on a wall's face, summed over the steps
   // This step's free-surface particles (owned), found once at the rates' positions and used again by
   // the shift, which comes at the same positions; and as flags on owned and ghost particles.

@@ -55,25 +55,33 @@ template <int D> struct AdamiWall {
     return s;
   }
 
-  // The walls' unit normals, into the fluid: -grad of the walls' own kernel sum, sum over wall
-  // neighbours j of V_j grad_w W_wj, which points into the wall body on its first layers (the layers
-  // that fluid particles reach); where that sum vanishes (the middle of a thin wall), the direction from
-  // the wall particle to the Shepard centroid of its fluid neighbours. Zero for walls with no fluid
-  // neighbour. Owned particles.
-  static std::vector<Vector<D>> normals(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                        const Stencil& s) {
-    const std::vector<Vector<D>> g = sum_over_pairs(
+  // The walls' unit normals, into the fluid, from the walls alone: -grad of the walls' own kernel sum,
+  // sum over wall neighbours j of V_j grad_w W_wj, which points into the wall body on its first layers
+  // (the layers that fluid particles reach). Zero where that sum vanishes (the middle of a thin wall)
+  // and on fluid particles. Owned particles.
+  static std::vector<Vector<D>> face_normals(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) {
+    std::vector<Vector<D>> n = sum_over_pairs(
         P, nl, K, Vector<D>(Vector<D>::Zero()),
         [&](Vector<D>& sum, int, int j, const PairGeometry<D>& pg) {
           if (P.kind[j] != kFluid) sum += (P.m[j] / P.rho[j]) * pg.gradW;
         },
         Rows::Walls);
+    const double scale = 1e-3 / K.h();  // |grad| of an exposed wall face is O(1/h)
+    for (Vector<D>& g : n) g = g.norm() > scale ? Vector<D>(-g.normalized()) : Vector<D>(Vector<D>::Zero());
+    return n;
+  }
+
+  // The face normals, and where they vanish (the middle of a thin wall) the direction from the wall
+  // particle to the Shepard centroid of its fluid neighbours. Zero for walls with no fluid neighbour.
+  // Owned particles.
+  static std::vector<Vector<D>> normals(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                        const Stencil& s) {
+    const std::vector<Vector<D>> face = face_normals(P, nl, K);
     std::vector<Vector<D>> n(P.n_owned, Vector<D>::Zero());
-    const double scale = 1e-3 / K.h();  // |g| of an exposed wall face is O(1/h)
     for (std::size_t w = 0; w < P.n_owned; ++w) {
       if (P.kind[w] != kWall || s.offset[w] == s.offset[w + 1]) continue;
-      if (g[w].norm() > scale) {
-        n[w] = -g[w].normalized();
+      if (face[w].squaredNorm() > 0.0) {
+        n[w] = face[w];
       } else {
         Vector<D> towards = Vector<D>::Zero();
         for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) towards -= s.weight[k] * s.r_wf[k];
