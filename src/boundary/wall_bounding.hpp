@@ -29,9 +29,9 @@
 namespace sph {
 
 // Puts the owned fluid particles found behind a wall's face back on it (positions and velocities),
-// with the walls' face normals kept from one neighbour-list rebuild to the next: fixed walls keep
-// theirs, and recomputing them every step, a pass over the walls' pairs, made a tank's step half as
-// dear again (docs/verification/free_surface.md, "A wall that holds without the ripple").
+// with the walls' face normals kept from one neighbour-list rebuild to the next (fixed walls keep
+// theirs), so that a step costs one pass over the fluid's pairs and not another over the walls'
+// (docs/verification/free_surface.md, "A wall that holds without the ripple").
 template <int D> class WallBounding {
  public:
   // Needs current ghosts (positions, masses, densities, velocities). walls_moved: moving bodies, whose
