@@ -8,6 +8,7 @@ foreach(name
     Convergence.IsphErrorApproachesALimitAsDtFalls Walls.WcsphCavityRe100MatchesGhiaAndKeepsItsVolume
     Scene.CylinderArrayDragMatchesSanganiAcrivos Walls.IsphCavityRe100MatchesGhia
     Restart.Isph3DFreeSurfaceMatchesUninterruptedRunExactly MovingBodies.IsphCouetteTorqueMatchesTheory
-    MovingBodies.IsphViscousAddedMassAndDampingMatchUnsteadyStokes)
+    MovingBodies.IsphViscousAddedMassAndDampingMatchUnsteadyStokes
+    Restart.WcsphWallBoundingMatchesUninterruptedRunExactly)
   set_tests_properties(${name} PROPERTIES LABELS "case;long")
 endforeach()

@@ -57,7 +57,7 @@ struct CornerWithStep {
   long bound() {
     nh = std::make_unique<Neighbourhood<2>>(domain, K.support_radius(), 0.0);
     nh->update(P, true);
-    return WallBounding<2>().apply(P, *nh, K, kDx, false);
+    return WallBounding<2>().apply(P, *nh, K, kDx, 1.0, false);
   }
 };
 

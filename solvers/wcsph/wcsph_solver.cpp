@@ -320,8 +320,8 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
   if (shifting_model_.enabled) shift(dt);
   if (bound_to_walls_ && walls_) {
     disc_->neighbourhood.update(disc_->particles);
-    bounded_ +=
-        wall_bounding_.apply(disc_->particles, disc_->neighbourhood, disc_->kernel, disc_->dx, disc_->bodies.any());
+    bounded_ += wall_bounding_.apply(disc_->particles, disc_->neighbourhood, disc_->kernel, disc_->dx, eos_.rho0,
+                                     disc_->bodies.any());
   }
   const LogEventScope log_density(LogEvent::Density);
   update_pressure();

@@ -56,14 +56,15 @@ template <int D> struct AdamiWall {
   }
 
   // The walls' unit normals, into the fluid, from the walls alone: -grad of the walls' own kernel sum,
-  // sum over wall neighbours j of V_j grad_w W_wj, which points into the wall body on its first layers
-  // (the layers that fluid particles reach). Zero where that sum vanishes (the middle of a thin wall)
-  // and on fluid particles. Owned particles.
-  static std::vector<Vector<D>> face_normals(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) {
+  // sum over wall neighbours j of V_j grad_w W_wj (volume(j) = V_j), which points into the wall body on
+  // its first layers (the layers that fluid particles reach). Zero where that sum vanishes (the middle
+  // of a thin wall) and on fluid particles. Owned particles.
+  template <class Volume> static std::vector<Vector<D>> face_normals(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                                     const Kernel<D>& K, Volume&& volume) {
     std::vector<Vector<D>> n = sum_over_pairs(
         P, nl, K, Vector<D>(Vector<D>::Zero()),
         [&](Vector<D>& sum, int, int j, const PairGeometry<D>& pg) {
-          if (P.kind[j] != kFluid) sum += (P.m[j] / P.rho[j]) * pg.gradW;
+          if (P.kind[j] != kFluid) sum += volume(j) * pg.gradW;
         },
         Rows::Walls);
     const double scale = 1e-3 / K.h();  // |grad| of an exposed wall face is O(1/h)
@@ -76,7 +77,7 @@ template <int D> struct AdamiWall {
   // Owned particles.
   static std::vector<Vector<D>> normals(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                                         const Stencil& s) {
-    const std::vector<Vector<D>> face = face_normals(P, nl, K);
+    const std::vector<Vector<D>> face = face_normals(P, nl, K, [&](int j) { return P.m[j] / P.rho[j]; });
     std::vector<Vector<D>> n(P.n_owned, Vector<D>::Zero());
     for (std::size_t w = 0; w < P.n_owned; ++w) {
       if (P.kind[w] != kWall || s.offset[w] == s.offset[w + 1]) continue;

@@ -31,14 +31,16 @@ namespace sph {
 // Puts the owned fluid particles found behind a wall's face back on it (positions and velocities),
 // with the walls' face normals kept from one neighbour-list rebuild to the next (fixed walls keep
 // theirs), so that a step costs one pass over the fluid's pairs and not another over the walls'
-// (docs/verification/free_surface.md, "A wall that holds without the ripple").
+// (docs/verification/free_surface.md, "A wall that holds without the ripple"). The normals weigh the
+// walls by their mass over rho0, not by their current density: they depend on the walls' places alone,
+// whenever they are taken, and a restart, which rebuilds the lists, resumes bit for bit.
 template <int D> class WallBounding {
  public:
   // Needs current ghosts (positions, masses, densities, velocities). walls_moved: moving bodies, whose
   // normals turn with them. Returns how many particles were moved, over all ranks.
-  long apply(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, double dx, bool walls_moved) {
+  long apply(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, double dx, double rho0, bool walls_moved) {
     if (walls_moved || nh.rebuilds() != built_) {
-      normal_ = AdamiWall<D>::face_normals(P, nh.list(), K);
+      normal_ = AdamiWall<D>::face_normals(P, nh.list(), K, [&](int j) { return P.m[j] / rho0; });
       nh.halo().update(normal_);
       built_ = nh.rebuilds();
     }
