@@ -36,15 +36,17 @@ namespace sph {
 // whenever they are taken, and a restart, which rebuilds the lists, resumes bit for bit.
 template <int D> class WallBounding {
  public:
-  // Needs current ghosts (positions, masses, densities, velocities). walls_moved: moving bodies, whose
-  // normals turn with them. Returns how many particles were moved, over all ranks.
+  // Needs current ghosts (positions, masses, densities, velocities) and leaves them current. walls_moved:
+  // moving bodies, whose normals turn with them. Returns how many particles were moved, over all ranks.
   long apply(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, double dx, double rho0, bool walls_moved) {
     if (walls_moved || nh.rebuilds() != built_) {
       normal_ = AdamiWall<D>::face_normals(P, nh.list(), K, [&](int j) { return P.m[j] / rho0; });
       nh.halo().update(normal_);
       built_ = nh.rebuilds();
     }
-    return bound(P, nh.list(), K, dx);
+    const long moved = bound(P, nh.list(), K, dx);
+    if (moved > 0) nh.update(P);  // the ghosts of the particles moved, for what reads them next (the walls' pressure)
+    return moved;
   }
 
  private:
