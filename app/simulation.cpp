@@ -25,7 +25,7 @@ template <int D> void run_in_dim(const RunOptions& names) {
   RunControl control;
   control.t_end = run_case->default_t_end();
   read_run_control(control, run_case->steady_tolerance(), D);
-  const KernelChoice kernel = read_kernel_options();
+  const KernelChoice kernel = read_kernel_options(solver->default_kernel(run_case->physics()));
   // A restart continues its run where the checkpoint is, unless -output_dir says otherwise.
   const std::string checkpoint_folder = std::filesystem::path(control.restart).parent_path().string();
   const std::string output_dir =

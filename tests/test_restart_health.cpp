@@ -60,13 +60,12 @@ TEST(Restart, Isph3DFreeSurfaceMatchesUninterruptedRunExactly) {
   expect_restart_is_exact("isph", 0.01, "dam_break -dim 3 -nx 6");
 }
 
-// The wall bounding (-wall_bounding) resumes as it was: its walls' normals, taken again after the
-// restart, are those of the uninterrupted run. The falling block with the quintic spline's window, to
-// t = 1.6: its first moves come after the checkpoint at t = 0.8 (40 at nx 20).
+// The wall bounding (WCSPH's default at a free surface) resumes as it was: its walls' normals, taken
+// again after the restart, are those of the uninterrupted run. The falling block at its defaults (the
+// quintic spline at 2.79 dx), to t = 1.6: its first moves come after the checkpoint at t = 0.8 (40 at nx 20).
 TEST(Restart, WcsphWallBoundingMatchesUninterruptedRunExactly) {
-  const std::string scene = "scene -scene_file " + std::string(SPH_SOURCE_DIR) +
-                            "/cases/scenes/falling_block.yaml -nx 20 -kernel quintic_spline -h_over_dx 0.93 "
-                            "-wall_bounding -threads 1";
+  const std::string scene =
+      "scene -scene_file " + std::string(SPH_SOURCE_DIR) + "/cases/scenes/falling_block.yaml -nx 20 -threads 1";
   const nlohmann::json resumed = expect_restart_is_exact("wcsph", 0.0005, scene, 3200);
   ASSERT_FALSE(resumed.is_null());
   EXPECT_GT(resumed["models"]["walls"]["bounding"]["moves"].get<long>(), 0);

@@ -24,7 +24,7 @@ struct RawOptions {
   PetscBool diffusion_set;
   PetscBool prepared_start;
   PetscBool diffusion_at_surface;
-  PetscBool wall_bounding;
+  PetscBool wall_bounding, wall_bounding_set;
 };
 
 PetscErrorCode read_options(RawOptions* o) {
@@ -91,8 +91,9 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscCall(option_bool(PetscOptionsObject, "-wall_bounding",
                         "Put fluid particles found behind a wall's face back on it, their velocity into the "
                         "wall removed: walls that hold without the ripple of the kernel sum over their "
-                        "particles (a flat one, as the quintic spline's at -h_over_dx 0.93, lets fluid through)",
-                        o->wall_bounding, &o->wall_bounding, nullptr));
+                        "particles (a flat one, as the quintic spline's at -h_over_dx 0.93, lets fluid through; "
+                        "default: on with a free surface)",
+                        o->wall_bounding, &o->wall_bounding, &o->wall_bounding_set));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -117,7 +118,8 @@ template <int D> void WcsphSolver<D>::set_from_options() {
                PETSC_FALSE,
                prepared_start_ ? PETSC_TRUE : PETSC_FALSE,
                diffusion_at_surface_ ? PETSC_TRUE : PETSC_FALSE,
-               bound_to_walls_ ? PETSC_TRUE : PETSC_FALSE};
+               wall_bounding_option_ > 0 ? PETSC_TRUE : PETSC_FALSE,
+               PETSC_FALSE};
   SPH_PETSC(read_options(&o));
   require(o.c0 >= 0, "-c0", "non-negative", o.c0);
   require(o.c0_factor > 0, "-c0_factor", "positive", o.c0_factor);
@@ -130,7 +132,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   if (o.closed_volume_set) closed_volume_option_ = o.closed_volume ? 1 : 0;
   prepared_start_ = o.prepared_start;
   diffusion_at_surface_ = o.diffusion_at_surface;
-  bound_to_walls_ = o.wall_bounding;
+  if (o.wall_bounding_set) wall_bounding_option_ = o.wall_bounding ? 1 : 0;
   c0_ = o.c0, c0_factor_ = o.c0_factor, eos_.gamma = o.gamma, cfl_ = o.cfl, delta_ = o.delta;
   av_.alpha = o.alpha, av_.beta = o.beta, av_.epsilon = o.epsilon;
   density_ = static_cast<DensityMethod>(o.density);

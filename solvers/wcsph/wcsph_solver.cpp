@@ -73,6 +73,9 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
         "-closed_volume 1 needs a scene without a free surface (a free surface lets the fluid's volume "
         "change); remove the option");
   closed_volume_ = closed_volume_option_ < 0 ? !disc.physics.free_surface : closed_volume_option_ > 0;
+  // The free surface's default kernel sums nearly flat over a wall's particles, which then let fluid
+  // through: the bounding holds the walls there (free_surface.md, "A wall that holds without the ripple").
+  bound_to_walls_ = wall_bounding_option_ < 0 ? disc.physics.free_surface : wall_bounding_option_ > 0;
   // The corrected gradient sees no pressure beyond a free surface, and WCSPH has no surface condition
   // that gives it one (docs/verification/free_surface.md, "What moves WCSPH's lattice").
   if (gradient_ == WcsphGradient::Corrected && disc.physics.free_surface)

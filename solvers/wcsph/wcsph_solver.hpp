@@ -31,6 +31,12 @@ template <int D> class WcsphSolver : public Solver<D> {
  public:
   std::string name() const override { return "wcsph"; }
   std::string courant_option() const override { return kAcousticCfl; }
+  // At a free surface the symmetric pressure force's pre-stress tips Wendland C2's square lattice at
+  // 3 dx over; the quintic spline at a support of 2.79 dx holds it without elasticity, its flat walls
+  // held by the wall bounding (docs/verification/free_surface.md, "The quintic spline's stable window").
+  KernelChoice default_kernel(const Physics<D>& phys) const override {
+    return phys.free_surface ? KernelChoice{KernelType::QuinticSpline, 0.93} : KernelChoice{};
+  }
   RenamedOption renamed_option(const std::string& option) const override { return acoustic_cfl_rename(option); }
   // Measured (docs/performance.md, "Memory per particle").
   double bytes_per_particle() const override { return D == 3 ? 1.6e3 : 0.56e3; }
@@ -78,7 +84,8 @@ template <int D> class WcsphSolver : public Solver<D> {
   int closed_volume_option_ = -1;      // -closed_volume: -1 unset (on without a free surface), 0 off, 1 on
   bool prepared_start_ = false;        // -prepared_start: the case's slow-manifold velocity added at set-up
   bool diffusion_at_surface_ = false;  // -density_diffusion_at_surface
-  bool bound_to_walls_ = false;        // -wall_bounding
+  int wall_bounding_option_ = -1;      // -wall_bounding: -1 unset (on with a free surface), 0 off, 1 on
+  bool bound_to_walls_ = false;
   WallBounding<D> wall_bounding_;
   long bounded_ = 0;                   // fluid particles put back on a wall's face, summed over the steps
   // This step's free-surface particles (owned), found once at the rates' positions and used again by

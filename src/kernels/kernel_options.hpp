@@ -16,7 +16,9 @@ struct KernelChoice {
   template <int D> Kernel<D> make(double dx) const { return Kernel<D>(type, resolved_h_over_dx<D>() * dx); }
 };
 
-// Reads -kernel and -h_over_dx (a PETSc options block: -help lists them) and checks them.
-KernelChoice read_kernel_options();
+// Reads -kernel and -h_over_dx (a PETSc options block: -help lists them) and checks them. A scheme's
+// own default pair (Solver::default_kernel) holds only when neither option is given: a kernel and its
+// h go together, so either option alone takes the general default for the other.
+KernelChoice read_kernel_options(const KernelChoice& scheme_default = KernelChoice{});
 
 }  // namespace sph

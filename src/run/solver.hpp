@@ -11,6 +11,7 @@
 #include "src/io/checkpoint.hpp"
 #include "src/io/particle_writer.hpp"
 #include "src/kernels/kernel.hpp"
+#include "src/kernels/kernel_options.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 
 namespace sph {
@@ -58,6 +59,8 @@ template <int D> class Solver {
   // The name now of an option this solver once read under another (without the dash): a run given the
   // old one is told the new one (see check_unused_options).
   virtual RenamedOption renamed_option(const std::string&) const { return {}; }
+  // The kernel and h of a run that gives neither -kernel nor -h_over_dx (src/kernels/kernel_options.hpp).
+  virtual KernelChoice default_kernel(const Physics<D>&) const { return {}; }
   // The option that sets its Courant number (src/sph/step_limits.hpp): failure messages name it.
   virtual std::string courant_option() const = 0;
   virtual void setup(Discretisation<D>& disc) = 0;

@@ -60,12 +60,14 @@ for run in ("isph", "wcsph", "wcsph2", "resumed"):
           f"{run}: fluid left {c['fluid_mass']:.6f} + removed {gone['mass']:.6f} = the start's {start:.6f}")
     check(gone["particles"] < 128, f"{run}: the fluid on the pedestal stays ({128 - gone['particles']} particles)")
 one = json.load(open(f"{tmp}/wcsph/summary.json"))["conservation"]["removed_fluid"]
-# Resumed: the same run, bit for bit. On 2 ranks WCSPH's round-off grows (tests/cli/mpi.sh): a particle
+# Resumed: the same particles taken out (the first run's step lands on t = 1.2 and the uninterrupted
+# one's does not, so the sum of their masses may differ at round-off). On 2 ranks WCSPH's round-off grows (tests/cli/mpi.sh): a particle
 # may cross the box's floor a step apart, not more than one or two.
 half = json.load(open(f"{tmp}/half/summary.json"))["conservation"]["removed_fluid"]
 check(half["particles"] > 0, f"the checkpoint at t = 1.2 holds {half['particles']} removed particles")
 resumed = json.load(open(f"{tmp}/resumed/summary.json"))["conservation"]["removed_fluid"]
-check(resumed == one, f"resumed: removed {resumed['particles']}, as one uninterrupted run ({one['particles']})")
+check(resumed["particles"] == one["particles"] and abs(resumed["mass"] - one["mass"]) < 1e-14,
+      f"resumed: removed {resumed['particles']}, as one uninterrupted run ({one['particles']})")
 two = json.load(open(f"{tmp}/wcsph2/summary.json"))["conservation"]["removed_fluid"]
 check(abs(two["particles"] - one["particles"]) <= 2, f"2 ranks removed {two['particles']}, one rank {one['particles']}")
 sys.exit(0 if ok else 1)
