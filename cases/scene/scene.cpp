@@ -139,7 +139,8 @@ template <int D> void SceneCase<D>::read_file() {
   if (opt_.nx_set && opt_.dx_set) throw Error("-nx and -scene_dx both set the particle spacing; give one of them");
   if (opt_.nx_set) require(opt_.nx >= 1, "-nx", "at least 1", opt_.nx);
   if (opt_.dx_set) require(opt_.dx > 0, "-scene_dx", "positive", opt_.dx);
-  // Walls as deep as the kernel's support, the depth the run checks them against (TimeLoop).
+  // Walls as deep as the kernel's support, the depth the run checks them against (TimeLoop). A scheme's
+  // own default (Solver::default_kernel) is no wider than the general one read here.
   const KernelChoice kernel = read_kernel_options();
   const double support_dx = kernel.resolved_h_over_dx<D>() * Kernel<D>::support_factor(kernel.type);
   const int layers = static_cast<int>(std::ceil(support_dx - 1e-9));
