@@ -73,8 +73,16 @@ EnergyBudgetRun energy_budget_run(int nx, const std::string& tag, const std::str
                   std::to_string(nx) + " " + extra);
   EXPECT_EQ(r.exit_code, 0);
   const auto& b = r.summary["conservation"]["energy_budget"];
-  EnergyBudgetRun e{b["kinetic_energy_start"], b["kinetic_energy_end"], b["viscous"], b["pressure"],
-                    b["body_force"],           b["shifting"],           0.0};
+  const auto& w = b["work"];
+  EnergyBudgetRun e{b["kinetic_energy_start"],
+                    b["kinetic_energy_end"],
+                    w["viscous"],
+                    w["pressure"],
+                    w["gravity"].get<double>() + w["body_force"].get<double>(),
+                    w["shifting"],
+                    0.0};
+  EXPECT_NEAR(b["closure"].get<double>(), e.end - e.start - (e.viscous + e.pressure + e.body_force + e.shifting),
+              1e-12 * e.start);
   // The integral of E over the run, by the trapezoidal rule over the steps (timeseries.csv: step, t,
   // dt, kinetic_energy, ...; one row per step, the first after step 1).
   std::ifstream in(r.output_dir + "/timeseries.csv");

@@ -126,8 +126,7 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
   if (shifting_model_.enabled) models["shifting"] = shifting_model_.describe();
   return {{"models", models},
           {"cfl", cfl_},
-          {"ksp", ppe_.describe()},
-          {"conservation", {{"energy_budget", energy_.describe(disc_->particles)}}}};
+          {"ksp", ppe_.describe()}};
 }
 
 // The solver's other members are instantiated with the class in its own file.

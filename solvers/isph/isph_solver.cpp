@@ -33,6 +33,7 @@ template <int D> void IsphSolver<D>::setup(Discretisation<D>& disc) {
   // Divergence-free ISPH: density stays at its reference value (walls included).
   for (std::size_t i = 0; i < P.n_owned; ++i) P.rho[i] = disc.physics.rho0;
   walls_ = has_walls(P);
+  energy_ = EnergyBudget(disc.physics.gravity, disc.neighbourhood.domain().periodic);
   ppe_.use_nonsymmetric(walls_ || disc.physics.free_surface || operators_ == OperatorSet::Consistent);
   // The last step's mean pressure pm moves with its particle (migration, checkpoints).
   mean_pressure_ = P.fields.declare_scalar("mean_step_pressure", kCarried, P.size());
@@ -323,9 +324,10 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   closing_kick_without_pressure(dt, s);
   const StepReport report = project_and_update_pressure(dt, s);
   if (shifting_model_.enabled) {
+    const Particles<D>& P = disc_->particles;
+    const auto before = energy_.energies(P);
     shift(dt);
-    energy_.add_change(EnergyCause::Shifting, s.energy_after_projection,
-                       EnergyBudget::kinetic_energy(disc_->particles, disc_->particles.v));
+    energy_.add_change(EnergyCause::Shifting, before, energy_.energies(P));
   }
   return report;
 }
@@ -347,26 +349,26 @@ template <int D> void IsphSolver<D>::opening_kick_and_drift(double dt, StepState
     nodes_ = surface_nodes(P, nh, disc_->kernel, free_surface_model_.detect(P, nh.list(), disc_->kernel, false),
                            0.5 * disc_->dx);
   s.acc.assign(n, Vector<D>::Zero());
-  std::vector<Vector<D>> pressure_acc(n, Vector<D>::Zero());
   // The factors at x^n serve this one operator: gathered in its pass (one pass over the pairs, not two).
   if (phys.viscous()) s.acc = viscous_acceleration(P.v);
-  const std::vector<Vector<D>> viscous_acc = s.acc;
-  s.gravity.assign(n, phys.gravity);
+  s.u_start = P.v;
+  if (phys.viscous()) {
+    s.viscous_kick.resize(n);
+    for (std::size_t i = 0; i < n; ++i) s.viscous_kick[i] = (0.5 * dt) * s.acc[i];
+  }
   if (s.have_pressure) {
     const std::vector<Vector<D>> grad_p = pressure_gradient(P.p);
-    for (std::size_t i = 0; i < n; ++i) pressure_acc[i] = -grad_p[i] / P.rho[i], s.acc[i] += pressure_acc[i];
+    for (std::size_t i = 0; i < n; ++i) s.acc[i] -= grad_p[i] / P.rho[i];
   }
-  energy_.add_update(P, P.v,
-                     {{EnergyCause::Viscous, 0.5 * dt, &viscous_acc},
-                      {EnergyCause::Pressure, 0.5 * dt, &pressure_acc},
-                      {EnergyCause::BodyForce, 0.5 * dt, &s.gravity}});
   s.u_half = P.v;
+  const double potential_before_drift = energy_.potential_energy(P);
   for (std::size_t i = 0; i < n; ++i) {
     if (P.kind[i] != kFluid) continue;  // walls keep their prescribed motion
     s.acc[i] += phys.gravity;
     s.u_half[i] += (0.5 * dt) * s.acc[i];
     P.x[i] += dt * s.u_half[i];  // drift
   }
+  energy_.add_change(EnergyCause::Gravity, EnergyForm::Potential, potential_before_drift, energy_.potential_energy(P));
   disc_->bodies.move_to(P, disc_->bodies.time() + dt);
 }
 
@@ -392,18 +394,14 @@ template <int D> void IsphSolver<D>::closing_kick_without_pressure(double dt, St
       if (fluid(i)) u_pred[i] += (0.5 * dt) * s.acc[i];
     nh.halo().update(u_pred);
     const std::vector<Vector<D>> visc = viscous_acceleration(u_pred, consistent ? &s.corrections : nullptr);
-    energy_.add_update(P, s.u_star,
-                       {{EnergyCause::Viscous, 0.5 * dt, &visc}, {EnergyCause::BodyForce, 0.5 * dt, &s.gravity}});
     for (std::size_t i = 0; i < n; ++i)
-      if (fluid(i)) s.u_star[i] += (0.5 * dt) * visc[i];
-  } else {
-    energy_.add_update(P, s.u_star, {{EnergyCause::BodyForce, 0.5 * dt, &s.gravity}});
+      if (fluid(i)) s.u_star[i] += (0.5 * dt) * visc[i], s.viscous_kick[i] += (0.5 * dt) * visc[i];
   }
   for (std::size_t i = 0; i < n; ++i)
     if (fluid(i)) s.u_star[i] += (0.5 * dt) * phys.gravity;
   if (consistent && !phys.viscous()) s.corrections = laplacian_corrections_if_used();
   // Spent: freed before the pressure system is built, where the step's memory peaks.
-  s.acc = {}, s.gravity = {}, s.u_half = {};
+  s.acc = {}, s.u_half = {};
 }
 
 // The projection of u*, then the step's pressure: P.p holds psi after it, turned into the step's mean
@@ -413,10 +411,8 @@ template <int D> StepReport IsphSolver<D>::project_and_update_pressure(double dt
   const std::size_t n = P.n_owned;
   disc_->neighbourhood.halo().update(s.u_star);
   const std::vector<double> p_start(P.p.begin(), P.p.begin() + n);
-  const double energy_before_projection = EnergyBudget::kinetic_energy(P, s.u_star);
   const StepReport report = project(s.u_star, s.have_pressure ? 0.5 * dt : dt, std::move(s.corrections));
-  s.energy_after_projection = EnergyBudget::kinetic_energy(P, P.v);  // the shift starts from it
-  energy_.add_change(EnergyCause::Pressure, energy_before_projection, s.energy_after_projection);
+  credit_velocity_update(dt, s);
   std::vector<double>& mean_pressure = P.fields[mean_pressure_];
   for (std::size_t i = 0; i < n; ++i) {
     const double mean = s.have_pressure ? 0.5 * (p_start[i] + P.p[i]) : P.p[i];
@@ -425,6 +421,26 @@ template <int D> StepReport IsphSolver<D>::project_and_update_pressure(double dt
   }
   disc_->neighbourhood.halo().update(P.p);
   return report;
+}
+
+// The step's velocity update u^n -> u^{n+1} credited to its causes as one update (energy_budget.hpp):
+// gravity's kicks and the pressure that holds the fluid up act in separate stages, and credited stage
+// by stage each would be credited with an O(dt) share (|g dt / 2|^2 / 2 a kick) that the other takes back.
+// The pressure's part is what the others leave: the opening kick's gradient and the projection.
+template <int D> void IsphSolver<D>::credit_velocity_update(double dt, const StepState& s) {
+  const Particles<D>& P = disc_->particles;
+  const std::size_t n = P.n_owned;
+  const std::vector<Vector<D>> gravity(n, dt * energy_.template potential_gravity<D>()),
+      forcing(n, dt * energy_.template forcing_gravity<D>());
+  const std::vector<Vector<D>> viscous = s.viscous_kick.empty() ? std::vector<Vector<D>>(n, Vector<D>::Zero())
+                                                                : s.viscous_kick;
+  std::vector<Vector<D>> pressure(n);
+  for (std::size_t i = 0; i < n; ++i) pressure[i] = P.v[i] - s.u_start[i] - viscous[i] - gravity[i] - forcing[i];
+  energy_.add_update(P, s.u_start,
+                     {{EnergyCause::Gravity, 1.0, &gravity},
+                      {EnergyCause::BodyForce, 1.0, &forcing},
+                      {EnergyCause::Viscous, 1.0, &viscous},
+                      {EnergyCause::Pressure, 1.0, &pressure}});
 }
 
 template <int D> void IsphSolver<D>::shift(double dt) {

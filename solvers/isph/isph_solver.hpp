@@ -85,17 +85,24 @@ template <int D> class IsphSolver : public Solver<D> {
   RenamedOption renamed_option(const std::string& option) const override {
     return PressurePoisson<D>::renamed_option(option);
   }
-  nlohmann::json checkpoint_scalars() const override { return {{"pressure_solves", solves_}}; }
-  void restore_scalars(const nlohmann::json& j) override { solves_ = j.value("pressure_solves", 0L); }
+  nlohmann::json checkpoint_scalars() const override {
+    return {{"pressure_solves", solves_}, {"energy_budget", energy_.to_json()}};
+  }
+  void restore_scalars(const nlohmann::json& j) override {
+    solves_ = j.value("pressure_solves", 0L);
+    energy_.from_json(j.value("energy_budget", nlohmann::json()));
+  }
+  const EnergyBudget* energy_budget() const override { return &energy_; }
+  EnergyBudget* energy_budget() override { return &energy_; }
 
  private:
   // What one step's phases hand on to the next (step()).
   struct StepState {
     bool have_pressure = false;  // a projection has run before: the opening kick has a pressure
     std::vector<Vector<D>> acc;  // a^n, the opening kick's acceleration (gravity included)
-    std::vector<Vector<D>> gravity, u_half, u_star;
+    std::vector<Vector<D>> u_half, u_star;
+    std::vector<Vector<D>> u_start, viscous_kick;  // u^n and the viscous term's change of it, for the energy budget
     std::vector<LaplacianCorrection<D>> corrections;  // the consistent Laplacian's factors at x^{n+1}
-    double energy_after_projection = 0.0;
   };
   void opening_kick_and_drift(double dt, StepState& s);
   void closing_kick_without_pressure(double dt, StepState& s);
@@ -117,6 +124,7 @@ template <int D> class IsphSolver : public Solver<D> {
   // The factors are taken: freed once the system is assembled.
   StepReport project(const std::vector<Vector<D>>& u_star, double tau, std::vector<LaplacianCorrection<D>> corrections);
   void shift(double dt);
+  void credit_velocity_update(double dt, const StepState& s);
   double max_speed() const;
 
   Discretisation<D>* disc_ = nullptr;
@@ -137,7 +145,7 @@ template <int D> class IsphSolver : public Solver<D> {
   SurfaceNodes<D> nodes_;        // the free-surface nodes at the current positions (empty: none)
   int wall_impact_option_ = -1;  // -ppe_wall_impact: -1 unset (on with a free surface), 0 off, 1 on
   bool wall_impact_ = false;
-  EnergyBudget energy_;  // since this run's start (a restart: since the restart)
+  EnergyBudget energy_;  // since the run's start (kept in checkpoints)
 };
 
 }  // namespace sph

@@ -20,6 +20,12 @@ struct TaitEos {
   double pressure(double rho) const { return B() * (power(rho / rho0, gamma) - 1.0); }
   double density(double p) const { return rho0 * std::pow(1.0 + p / B(), 1.0 / gamma); }
   double sound_speed(double rho) const { return c0 * power(rho / rho0, 0.5 * (gamma - 1.0)); }
+  // The specific elastic energy e(rho) = int_rho0^rho p / r^2 dr = (B / rho0) ((s^(gamma-1) - 1) / (gamma - 1)
+  // + 1/s - 1), s = rho / rho0, written in s - 1 so that the two O(s - 1) terms cancel without round-off.
+  double elastic_energy(double rho) const {
+    const double e = rho / rho0 - 1.0;
+    return B() / rho0 * (std::expm1((gamma - 1.0) * std::log1p(e)) / (gamma - 1.0) - e / (1.0 + e));
+  }
 };
 
 // Continuity: d rho_i/dt += rho_i V_j u_ij . grad_i W_ij.
@@ -52,19 +58,22 @@ struct MonaghanAV {
   }
 };
 
-// Momentum-conserving pressure (+ artificial viscosity) acceleration on i from j.
+// Momentum-conserving pressure acceleration on i from j.
 template <int D> inline Vector<D> pressure_acceleration_pair(double mj, double pi, double pj, double rho_i,
-                                                             double rho_j, double Pi_ij, const PairGeometry<D>& g) {
-  return (-mj * (pi / (rho_i * rho_i) + pj / (rho_j * rho_j) + Pi_ij)) * g.gradW;
+                                                             double rho_j, const PairGeometry<D>& g) {
+  return (-mj * (pi / (rho_i * rho_i) + pj / (rho_j * rho_j))) * g.gradW;
 }
 
 // What one fluid particle's pairs add up to in a rates evaluation: the acceleration and density rate,
 // and for the corrected forms the sums finished after the loop (moment matrix, pressure-difference
 // and velocity-difference gradients).
+// Kept by cause, for the energy budget (src/sph/energy_budget.hpp): the pressure's acceleration (acc),
+// the artificial and the laminar viscosity's, and the density rate of compression (drho) and diffusion.
 template <int D> struct RateSums {
-  Vector<D> acc = Vector<D>::Zero(), grad_p = Vector<D>::Zero();
+  Vector<D> acc = Vector<D>::Zero(), acc_av = Vector<D>::Zero(), acc_viscous = Vector<D>::Zero(),
+            grad_p = Vector<D>::Zero();
   Tensor<D> M = Tensor<D>::Zero(), grad_u = Tensor<D>::Zero();
-  double drho = 0.0;
+  double drho = 0.0, drho_diffusion = 0.0;
   FusedConsistentLaplacian<D> viscous;  // the consistent viscous Laplacian's moments and factors
   explicit RateSums(LaplacianPairs<D>& pairs) : viscous(pairs) {}
 };
@@ -113,15 +122,16 @@ template <int D> [[gnu::always_inline]] inline void add_rates_pair(const RatesIn
   if (in.corrected_gradient) {
     s.M += correction_moment_term(Vj, g);
     s.grad_p += difference_gradient_term(Vj, P.p[i], P.p[j], g);
-    if (Pi != 0.0) s.acc -= (P.m[j] * Pi) * g.gradW;
   } else {
-    s.acc += pressure_acceleration_pair(P.m[j], P.p[i], P.p[j], P.rho[i], P.rho[j], Pi, g);
+    s.acc += pressure_acceleration_pair(P.m[j], P.p[i], P.p[j], P.rho[i], P.rho[j], g);
   }
+  if (Pi != 0.0) s.acc_av -= (P.m[j] * Pi) * g.gradW;
   const double F = morris_factor(g, in.h);
   if (in.viscous) {
     if (in.consistent) s.viscous.add(Vj, g, in.inv_R, Vector<D>(in.uv[j] - in.uv[i]));
     else
-      s.acc += morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], in.nu, in.nu, F, Vector<D>(in.uv[i] - in.uv[j]));
+      s.acc_viscous +=
+          morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], in.nu, in.nu, F, Vector<D>(in.uv[i] - in.uv[j]));
   }
   if (in.continuity) {
     // Walls count as at rest here (moving bodies aside): every wall is fixed or slides along itself
@@ -144,7 +154,7 @@ template <int D> [[gnu::always_inline]] inline void add_rates_pair(const RatesIn
     if (in.diffuse) {
       const double rho_j = in.diffused[j] + in.hydrostatic_density_gradient.dot(g.rij);
       if (!drains_surface_layer(in, i, j, rho_j - in.diffused[i]))
-        s.drho += density_diffusion_pair(in.delta_h_c0, in.diffused[i], rho_j, Vj, F,
+        s.drho_diffusion += density_diffusion_pair(in.delta_h_c0, in.diffused[i], rho_j, Vj, F,
                                          in.grad_rho.empty() ? zero : in.grad_rho[i],
                                          in.grad_rho.empty() ? zero : in.grad_rho[j], g);
     }

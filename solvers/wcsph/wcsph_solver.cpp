@@ -54,6 +54,12 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
   walls_ = has_walls(P);
   acc_ = P.fields.declare_vector("acceleration", kCarried, P.size());
   drho_ = P.fields.declare_scalar("density_rate", kCarried, P.size());
+  const wcsph::TaitEos eos = eos_;
+  energy_ = EnergyBudget(disc.physics.gravity, disc.neighbourhood.domain().periodic,
+                         {[eos](double rho) { return eos.elastic_energy(rho); },
+                          [eos](double rho) { return eos.pressure(rho) / (rho * rho); }});
+  if (disc.physics.viscous()) viscous_acc_ = P.fields.declare_vector("viscous_acceleration", kCarried, P.size());
+  if (av_.active()) av_acc_ = P.fields.declare_vector("artificial_viscosity_acceleration", kCarried, P.size());
   free_surface_.setup(P, disc.physics.free_surface);
   // Under gravity Molteni's term diffuses the hydrostatic stratification: mass flows down, and still
   // water sank into its floor (t = 19 at 40 particles a unit). Fourtakas et al. (2019) diffuse the
@@ -62,6 +68,8 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
     diffusion_ = DensityDiffusion::Fourtakas;
   // Where a wall or a free surface cuts the kernel support, the kernel average of rho is not its
   // resolved part, and rho minus it would not be particle-scale noise.
+  if (diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity)
+    diffusion_rate_ = P.fields.declare_scalar("diffusion_density_rate", kCarried, P.size());
   if (diffusion_ == DensityDiffusion::Particle && (walls_ || disc.physics.free_surface))
     throw Error(
         "-density_diffusion particle needs a scene without walls or a free surface (the kernel average that "
@@ -142,7 +150,9 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   LogEventScope log_density(LogEvent::Density);
   if (density_ == DensityMethod::Summation) {
     const std::vector<double> rho = density_summation(P, nl, K);
+    const double before = energy_.internal_energy(P);
     std::copy(rho.begin(), rho.end(), P.rho.begin());
+    if (energy_.started()) energy_.add_change(EnergyCause::Pressure, EnergyForm::Internal, before, energy_.internal_energy(P));
     nh.halo().update(P.rho);
   }
   update_pressure();
@@ -189,6 +199,13 @@ template <int D> void WcsphSolver<D>::compute_rates() {
 
   acc.assign(n, Vector<D>::Zero());
   drho.assign(n, 0.0);
+  // The rates' parts by cause, for the energy budget (the pressure's is the rest of acc).
+  std::vector<Vector<D>>* viscous_part = viscous_acc_.valid() ? &P.fields[viscous_acc_] : nullptr;
+  std::vector<Vector<D>>* av_part = av_acc_.valid() ? &P.fields[av_acc_] : nullptr;
+  std::vector<double>* diffusion_part = diffusion_rate_.valid() ? &P.fields[diffusion_rate_] : nullptr;
+  if (viscous_part) viscous_part->assign(n, Vector<D>::Zero());
+  if (av_part) av_part->assign(n, Vector<D>::Zero());
+  if (diffusion_part) diffusion_part->assign(n, 0.0);
   const double inv_R = 1.0 / K.support_radius();
   const std::vector<double>& diffused = rho_fine.empty() ? P.rho : rho_fine;
   wcsph::RatesInputs<D> in{P,
@@ -243,10 +260,13 @@ template <int D> void WcsphSolver<D>::compute_rates() {
     visit_pairs([&](int, int j, const PairGeometry<D>& g) { wcsph::add_rates_pair(in, sums, i, j, g); });
     if (consistent_viscous) {
       const Vector<D> lap = sums.viscous.finish(inv_R, smoothing ? &lap_factors[i] : nullptr);
-      sums.acc += phys.nu * lap;
+      sums.acc_viscous += phys.nu * lap;
       if (smoothing) lap_u[i] = lap;
     }
-    acc[i] = sums.acc, drho[i] = sums.drho;
+    acc[i] = sums.acc + sums.acc_av + sums.acc_viscous, drho[i] = sums.drho + sums.drho_diffusion;
+    if (viscous_part) (*viscous_part)[i] = sums.acc_viscous;
+    if (av_part) (*av_part)[i] = sums.acc_av;
+    if (diffusion_part) (*diffusion_part)[i] = sums.drho_diffusion;
     if (corrected_gradient) M[i] = sums.M, grad_p[i] = sums.grad_p;
     if (corrected_continuity) grad_u[i] = sums.grad_u;
   });
@@ -254,7 +274,11 @@ template <int D> void WcsphSolver<D>::compute_rates() {
     std::vector<Vector<D>> corrected = lap_u;
     remove_laplacian_smoothing_error(P, nh, K, lap_factors, corrected);
     for (std::size_t i = 0; i < n; ++i)
-      if (P.kind[i] == kFluid) acc[i] += phys.nu * (corrected[i] - lap_u[i]);
+      if (P.kind[i] == kFluid) {
+        const Vector<D> removed = phys.nu * (corrected[i] - lap_u[i]);
+        acc[i] += removed;
+        if (viscous_part) (*viscous_part)[i] += removed;
+      }
   }
   // The corrected forms: d rho_i/dt = -rho_i tr(L_i grad u_i) and a_i = -L_i grad p_i / rho_i, both
   // exact for linear fields on any particle distribution (the plain forms are O(1) wrong in the
@@ -319,12 +343,20 @@ template <int D> double WcsphSolver<D>::stable_dt() const {
 // A step as its phases: kick, drift, the rates at the new positions and kick (leapfrog), the shift,
 // the wall bounding (-wall_bounding), and the pressures of the new densities.
 template <int D> StepReport WcsphSolver<D>::step(double dt) {
+  const Particles<D>& P = disc_->particles;
+  energy_.start(P);
   kick_drift_rates_kick(dt);
-  if (shifting_model_.enabled) shift(dt);
+  if (shifting_model_.enabled) {
+    const auto before = energy_.energies(P);
+    shift(dt);
+    energy_.add_change(EnergyCause::Shifting, before, energy_.energies(P));
+  }
   if (bound_to_walls_ && walls_) {
     disc_->neighbourhood.update(disc_->particles);
+    const auto before = energy_.energies(P);
     bounded_ += wall_bounding_.apply(disc_->particles, disc_->neighbourhood, disc_->kernel, disc_->dx, eos_.rho0,
                                      disc_->bodies.any());
+    energy_.add_change(EnergyCause::WallBounding, before, energy_.energies(P));
   }
   const LogEventScope log_density(LogEvent::Density);
   update_pressure();
@@ -343,6 +375,7 @@ template <int D> void WcsphSolver<D>::kick_drift_rates_kick(double dt) {
   std::vector<LeapfrogScalar> scalars;
   if (continuity) scalars.push_back({&P.rho, &drho});
   const double t_end = disc_->bodies.time() + dt;
+  const double potential_before_drift = energy_.potential_energy(P);
   leapfrog_step<D>(
       dt, n, P.x, P.v, acc, scalars, [&](std::size_t i) { return P.kind[i] == kFluid; },
       [&] {
@@ -350,9 +383,43 @@ template <int D> void WcsphSolver<D>::kick_drift_rates_kick(double dt) {
         if (!nh.update(P)) nh.halo().update(P.v);
         nh.halo().update(P.rho);
         compute_rates();
+      },
+      [&](const std::vector<Vector<D>>& u, const std::vector<const std::vector<double>*>& f) {
+        credit_kick(0.5 * dt, u, continuity ? *f[0] : P.rho);
       });
+  energy_.add_change(EnergyCause::Gravity, EnergyForm::Potential, potential_before_drift, energy_.potential_energy(P));
   disc_->bodies.move_to(P, t_end);  // the closing kick left the walls' velocity of the step's start
   nh.halo().update(P.rho);          // the closing kick's densities, for the shift and the pressures
+}
+
+template <int D>
+void WcsphSolver<D>::credit_kick(double half_dt, const std::vector<Vector<D>>& u, const std::vector<double>& rho) {
+  const Particles<D>& P = disc_->particles;
+  const std::size_t n = P.n_owned;
+  const std::vector<Vector<D>>& acc = P.fields[acc_];
+  const std::vector<double>& drho = P.fields[drho_];
+  const std::vector<Vector<D>> none(viscous_acc_.valid() && av_acc_.valid() ? 0 : n, Vector<D>::Zero());
+  const std::vector<Vector<D>>& viscous = viscous_acc_.valid() ? P.fields[viscous_acc_] : none;
+  const std::vector<Vector<D>>& av = av_acc_.valid() ? P.fields[av_acc_] : none;
+  const std::vector<Vector<D>> gravity(n, energy_.template potential_gravity<D>()),
+      forcing(n, energy_.template forcing_gravity<D>());
+  // The pressure's part is what the others leave of the acceleration; compression what diffusion leaves
+  // of the density rate.
+  std::vector<Vector<D>> pressure(n);
+  for (std::size_t i = 0; i < n; ++i) pressure[i] = acc[i] - gravity[i] - forcing[i] - viscous[i] - av[i];
+  energy_.add_update(P, u,
+                     {{EnergyCause::Gravity, half_dt, &gravity},
+                      {EnergyCause::BodyForce, half_dt, &forcing},
+                      {EnergyCause::Pressure, half_dt, &pressure},
+                      {EnergyCause::Viscous, half_dt, &viscous},
+                      {EnergyCause::ArtificialViscosity, half_dt, &av}});
+  if (density_ != DensityMethod::Continuity) return;
+  const std::vector<double> zero(diffusion_rate_.valid() ? 0 : n, 0.0);
+  const std::vector<double>& diffusion = diffusion_rate_.valid() ? P.fields[diffusion_rate_] : zero;
+  std::vector<double> compression(n);
+  for (std::size_t i = 0; i < n; ++i) compression[i] = drho[i] - diffusion[i];
+  energy_.add_density_update(
+      P, rho, {{EnergyCause::Pressure, half_dt, &compression}, {EnergyCause::DensityDiffusion, half_dt, &diffusion}});
 }
 
 template <int D> void WcsphSolver<D>::shift(double dt) {

@@ -45,8 +45,16 @@ template <int D> class WcsphSolver : public Solver<D> {
   double stable_dt() const override;
   StepReport step(double dt) override;
   nlohmann::json describe() const override;
+  nlohmann::json checkpoint_scalars() const override { return {{"energy_budget", energy_.to_json()}}; }
+  void restore_scalars(const nlohmann::json& j) override {
+    energy_.from_json(j.value("energy_budget", nlohmann::json()));
+  }
+  const EnergyBudget* energy_budget() const override { return &energy_; }
+  EnergyBudget* energy_budget() override { return &energy_; }
 
  private:
+  // Credits a kick u -> u + dt/2 a, rho -> rho + dt/2 drho with the current rates to their causes.
+  void credit_kick(double half_dt, const std::vector<Vector<D>>& u, const std::vector<double>& rho);
   // The step's phases (step()).
   void kick_drift_rates_kick(double dt);
   void shift(double dt);
@@ -78,6 +86,10 @@ template <int D> class WcsphSolver : public Solver<D> {
   // The leapfrog carries the last accelerations and density rates into the next step: particle fields.
   FieldId<Vector<D>> acc_;
   FieldId<double> drho_;
+  // Their parts by cause, declared where the cause acts: the energy budget credits each kick with them.
+  FieldId<Vector<D>> viscous_acc_, av_acc_;
+  FieldId<double> diffusion_rate_;
+  EnergyBudget energy_;  // since the run's start (kept in checkpoints)
   double max_acc_ = 0.0;
   bool walls_ = false;
   std::string speed_scale_name_;

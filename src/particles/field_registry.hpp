@@ -25,7 +25,10 @@ enum FieldUse : unsigned {
 };
 
 // A declared field's handle; T is double or Vector<D>.
-template <class T> struct FieldId { std::size_t index = static_cast<std::size_t>(-1); };
+template <class T> struct FieldId {
+  std::size_t index = static_cast<std::size_t>(-1);
+  bool valid() const { return index != static_cast<std::size_t>(-1); }  // declared
+};
 
 template <int D> class FieldRegistry {
  public:

@@ -115,8 +115,11 @@ inline std::string blow_up_advice(const std::string& courant_option) {
 // Run health: stops a run whose state is no longer a number, whose fluid left the box through a
 // non-periodic side (walls crossed, or the open top of a scene), or whose kinetic energy exceeds
 // `ke_bound`. The message names the first such particle and where it is.
+// `escapes_removed`: fluid that left over an open side has been taken out already (-box_exit auto), so
+// what is outside went through a wall.
 template <int D>
-void check_health(const Particles<D>& P, const Domain<D>& domain, double ke_bound, const std::string& courant_option) {
+void check_health(const Particles<D>& P, const Domain<D>& domain, double ke_bound, const std::string& courant_option,
+                  bool escapes_removed = false) {
   auto not_finite = [&](std::size_t i) { return !P.x[i].allFinite() || !P.v[i].allFinite() || !std::isfinite(P.p[i]); };
   auto outside = [&](std::size_t i) { return domain.outside(P.x[i]); };
   int bad[2] = {0, 0};  // NaN, outside
@@ -139,9 +142,13 @@ void check_health(const Particles<D>& P, const Domain<D>& domain, double ke_boun
     std::ostringstream msg;
     msg << p.where() << " left the box [";
     for (int a = 0; a < D; ++a) msg << (a ? ", " : "") << domain.lo[a] << ", " << domain.hi[a];
-    msg << "]: it went through a wall or over the box's open top; if the fluid may fly that high, enlarge the "
-           "scene's box or take such fluid out of the run (-box_exit remove), else the walls let it through (see "
-           "fluid_in_walls in timeseries.csv)";
+    if (escapes_removed)
+      msg << "] through a wall (where it crossed the box's side, a wall's particles lie): the walls let it through "
+             "(see fluid_in_walls in timeseries.csv); -box_exit remove would take it out of the run instead";
+    else
+      msg << "]: it went through a wall or over the box's open top; if the fluid may fly that high, enlarge the "
+             "scene's box or take such fluid out of the run (-box_exit auto or remove), else the walls let it "
+             "through (see fluid_in_walls in timeseries.csv)";
     throw Error(msg.str());
   }
   if (ke > ke_bound) {

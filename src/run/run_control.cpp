@@ -10,7 +10,7 @@
 namespace sph {
 
 namespace {
-const char* const box_exit_names[] = {"stop", "remove"};
+const char* const box_exit_names[] = {"stop", "remove", "auto"};
 const char* const body_pressure_force_names[] = {"surface", "pairs"};
 
 PetscErrorCode read_options(RunControl* o) {
@@ -77,11 +77,19 @@ PetscErrorCode read_options(RunControl* o) {
   PetscCall(option_bool(PetscOptionsObject, "-progress", "Print a progress line on stderr about once a second",
                         o->progress, &o->progress, nullptr));
   PetscCall(option_choice(PetscOptionsObject, "-box_exit",
-                          "Fluid beyond a side of the box that is not periodic: stop (the run stops and names the "
-                          "particle: it went through a wall or over an open top) or remove (taken out of the "
-                          "run and counted in timeseries.csv's removed_fluid: splashes thrown out of an open "
-                          "tank)",
-                          box_exit_names, 2, box_exit_names[o->box_exit], &o->box_exit, nullptr));
+                          "Fluid beyond a side of the box that is not periodic: auto (taken out of the run and "
+                          "counted where it left through a side no wall covers, a splash thrown out of an open "
+                          "tank; the run stops where it went through a wall), stop (the run stops and names the "
+                          "particle) or remove (always taken out and counted)",
+                          box_exit_names, 3, box_exit_names[o->box_exit], &o->box_exit, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-start_perturbation",
+                        "Move each fluid particle's start by a random amount up to this fraction of dx along "
+                        "each axis (0: none; 1e-12 asks whether round-off moves the answer)",
+                        o->start_perturbation, &o->start_perturbation, nullptr, OptionLevel::expert));
+  PetscCall(option_int(PetscOptionsObject, "-start_seed",
+                       "Seed of -start_perturbation's random moves (each particle's move depends on it and the "
+                       "particle's id only, not on the ranks)",
+                       o->start_seed, &o->start_seed, nullptr, OptionLevel::expert));
   PetscCall(option_bool(PetscOptionsObject, "-check_ghosts",
                         "Check before every pair loop that the ghost copies hold their owners' values, and stop "
                         "at a stale one (an internal error: for developers and bug reports; on in debug builds)",
@@ -112,6 +120,8 @@ void read_run_control(RunControl& opt, double case_steady_tol, int dim) {
           opt.skin);
   require(opt.partition_interval >= 0, "-partition_interval", "non-negative", opt.partition_interval);
   require(opt.threads >= 0, "-threads", "non-negative", opt.threads);
+  require(opt.start_perturbation >= 0 && opt.start_perturbation < 0.5, "-start_perturbation", "in [0, 0.5)",
+          opt.start_perturbation);
   opt.threads = configure_threads(static_cast<int>(opt.threads));
   ghost_checks() = opt.check_ghosts;
   std::stringstream fields(opt.output_fields);

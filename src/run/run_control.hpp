@@ -26,7 +26,11 @@ struct RunControl {
   PetscBool dt_force = PETSC_FALSE;   // run a -dt above the stability limit anyway
   PetscBool wall_forces = PETSC_TRUE;  // timeseries.csv's force columns (src/run/wall_groups.hpp)
   PetscInt body_pressure_force = 0;    // 0 surface, 1 pairs (src/run/wall_groups.hpp)
-  PetscInt box_exit = 0;               // fluid leaving the box: 0 stop the run, 1 remove it (src/run/box_exit.hpp)
+  // Fluid leaving the box: 0 stop the run, 1 remove it, 2 remove it unless it went through a wall
+  // (src/run/box_exit.hpp).
+  PetscInt box_exit = 2;
+  PetscReal start_perturbation = 0.0;  // fluid starts moved by up to this fraction of dx (round-off studies)
+  PetscInt start_seed = 1;
   PetscBool check_ghosts = ghost_checks() ? PETSC_TRUE : PETSC_FALSE;  // src/neighbours/ghost_check.hpp
   char output_dir[PETSC_MAX_PATH_LEN] = "";
   char output_fields[128] = "";   // extra point arrays in the frames: "vorticity"

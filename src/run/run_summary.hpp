@@ -37,6 +37,8 @@ template <int D> void add_final_state(nlohmann::json& summary, const Solver<D>& 
     if (it.key() == "conservation") summary["conservation"].update(it.value());
     else summary["solver_parameters"][it.key()] = it.value();
   }
+  if (const EnergyBudget* budget = solver.energy_budget())
+    summary["conservation"]["energy_budget"] = budget->describe(P);
   summary["errors"] = nlohmann::json::object();
   for (const auto& [name, value] : run_case.errors(P, t)) {
     summary["errors"][name] = value;  // NaN becomes null: a metric that could not be measured

@@ -13,6 +13,7 @@
 #include "src/kernels/kernel.hpp"
 #include "src/kernels/kernel_options.hpp"
 #include "src/neighbours/neighbourhood.hpp"
+#include "src/sph/energy_budget.hpp"
 
 namespace sph {
 
@@ -81,6 +82,10 @@ template <int D> class Solver {
   // follow the particle into checkpoints and migration, kWritten for the frames).
   virtual nlohmann::json checkpoint_scalars() const { return nlohmann::json::object(); }
   virtual void restore_scalars(const nlohmann::json&) {}
+  // The scheme's energy budget (src/sph/energy_budget.hpp), null where it keeps none; the time loop
+  // writes its columns and credits the fluid it takes out of the box.
+  virtual const EnergyBudget* energy_budget() const { return nullptr; }
+  virtual EnergyBudget* energy_budget() { return nullptr; }
 };
 
 }  // namespace sph

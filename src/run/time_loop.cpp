@@ -3,6 +3,7 @@
 #include <petscsys.h>
 
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -38,6 +39,26 @@ constexpr double kBlowUpKineticEnergy = 1e3;
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// Moves each owned fluid particle by a random amount in [-amplitude, amplitude] along each axis, drawn
+// from the seed and its permanent id alone (the same moves on any rank count): an ensemble of starts
+// that differ by round-off tells whether round-off moves the answer (-start_perturbation).
+template <int D> void perturb_fluid(Particles<D>& P, double amplitude, std::uint64_t seed) {
+  auto splitmix = [](std::uint64_t z) {
+    z += 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  };
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    if (P.kind[i] != kFluid) continue;
+    for (int a = 0; a < D; ++a) {
+      const std::uint64_t r = splitmix(splitmix(seed) ^ (static_cast<std::uint64_t>(P.id[i]) * D + a));
+      const double unit = static_cast<double>(r >> 11) * 0x1.0p-53;  // [0, 1)
+      P.x[i][a] += amplitude * (2.0 * unit - 1.0);
+    }
+  }
+}
 
 // The particles of a run, spread along the space-filling curve, and what the solver sees of them.
 template <int D> struct RunState {
@@ -78,6 +99,13 @@ template <int D> class TimeLoop {
   void set_start_state();
   void advance();
   void write_due_outputs();
+  void remove_escaped_fluid();
+  // Whether fluid can be taken out of this run (a side of the box is not periodic, -box_exit not stop).
+  bool counts_removed_fluid() const {
+    bool open = false;
+    for (int a = 0; a < D; ++a) open = open || !s_.domain.periodic[a];
+    return opt_.box_exit != 0 && open;
+  }
   void warn_dt(double stable);
   std::vector<ScalarField> frame_fields(bool derived = true);
   void write_frame(bool derived = true);
@@ -127,7 +155,8 @@ template <int D> class TimeLoop {
   int interrupted_ = 0;  // the signal that stopped the run
   bool warned_dt_ = false;
   bool surface_column_ = false, walls_column_ = false;  // timeseries.csv's free_surface_share, fluid_in_walls
-  RemovedFluid removed_;  // -box_exit remove: the fluid taken out so far (timeseries.csv's removed_fluid)
+  RemovedFluid removed_;  // -box_exit auto or remove: the fluid taken out so far (timeseries.csv's removed_fluid)
+  int removal_events_ = 0;
   double last_frame_t_ = 0.0, ke_bound_ = 0.0;
   std::optional<Progress> progress_;
   std::optional<Cadence> frames_, checkpoints_;
@@ -152,6 +181,8 @@ template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
   const double wall = case_.wall_thickness(), support = s_.kernel.support_radius();
   if (wall > 0 && wall < support * (1 - 1e-12))
     throw Error(case_.thin_walls(wall / case_.spacing(), support / case_.spacing()));
+  if (!opt_.restarting() && opt_.start_perturbation > 0)
+    perturb_fluid(s_.P, opt_.start_perturbation * case_.spacing(), static_cast<std::uint64_t>(opt_.start_seed));
   solver_.setup(s_.disc);
   if (opt_.restarting()) resume();
   // Bodies with prescribed motion start at the run's time, with their velocity there.
@@ -187,7 +218,7 @@ template <int D> nlohmann::json TimeLoop<D>::resumed_run_header() const {
 // canonical state, as the writing run did before writing it.
 template <int D> void TimeLoop<D>::resume() {
   resumed_ = read_checkpoint(opt_.restart, s_.P);
-  // The fluid the writing run had taken out of the box (-box_exit remove) goes again.
+  // The fluid the writing run had taken out of the box (-box_exit auto or remove) goes again.
   remove_particles_if(s_.P, [&](std::size_t i) { return s_.P.kind[i] == kRemovedKind; });
   solver_.restore_scalars(resumed_.scalars);
   repartition();
@@ -264,7 +295,11 @@ template <int D> void TimeLoop<D>::open_outputs() {
   walls_column_ = has_walls(s_.P);
   if (surface_column_) columns.push_back("free_surface_share");
   if (walls_column_) columns.push_back("fluid_in_walls");
-  if (opt_.box_exit == 1) columns.push_back("removed_fluid");
+  if (counts_removed_fluid()) columns.push_back("removed_fluid");
+  if (const EnergyBudget* budget = solver_.energy_budget()) {
+    const std::vector<std::string> energy = budget->columns();
+    columns.insert(columns.end(), energy.begin(), energy.end());
+  }
   if (walls_column_ && opt_.wall_forces) {
     wall_groups_.emplace(case_, s_.P, opt_.body_pressure_force == 0);
     const std::vector<std::string> forces = wall_groups_->columns();
@@ -338,12 +373,8 @@ template <int D> void TimeLoop<D>::advance() {
   stats_.add(report);
   if (step_ == resumed_.step + 1 && run_.after_first_step) run_.after_first_step();
   LogEventScope log_diagnostics(LogEvent::Diagnostics);
-  if (opt_.box_exit == 1 && fluid_outside(s_.P, s_.domain)) {
-    const RemovedFluid gone = remove_fluid_outside(s_.P, s_.domain);
-    removed_.count += gone.count, removed_.mass += gone.mass;
-    s_.nh.update(s_.P, true);
-  }
-  check_health(s_.P, s_.domain, ke_bound_, solver_.courant_option());
+  if (opt_.box_exit != 0 && fluid_outside(s_.P, s_.domain)) remove_escaped_fluid();
+  check_health(s_.P, s_.domain, ke_bound_, solver_.courant_option(), opt_.box_exit == 2);
   check_neighbours_(s_.P, s_.nh.list(), s_.nh.support_radius());
   if (opt_.partition_interval > 0 && step_ % opt_.partition_interval == 0) repartition();
 
@@ -357,7 +388,11 @@ template <int D> void TimeLoop<D>::advance() {
   for (const auto& e : case_.errors(s_.P, t_)) row.push_back(e.second);
   if (surface_column_) row.push_back(fluid_share(s_.P, *s_.P.fields.find_scalar("free_surface", kWritten)));
   if (walls_column_) row.push_back(static_cast<double>(fluid_in_walls(s_.P, s_.nh.list(), case_.spacing())));
-  if (opt_.box_exit == 1) row.push_back(static_cast<double>(removed_.count));
+  if (counts_removed_fluid()) row.push_back(static_cast<double>(removed_.count));
+  if (const EnergyBudget* budget = solver_.energy_budget()) {
+    const std::vector<double> energy = budget->row(budget->totals(s_.P));
+    row.insert(row.end(), energy.begin(), energy.end());
+  }
   if (wall_groups_) {
     const std::vector<double> forces = wall_groups_->row(s_.P, s_.nh, s_.kernel, s_.disc.physics, s_.disc.bodies);
     row.insert(row.end(), forces.begin(), forces.end());
@@ -365,6 +400,28 @@ template <int D> void TimeLoop<D>::advance() {
   series_->row(row);
   log_diagnostics.end();
   progress_->update(step_, t_, dt, report.linear_iterations);
+}
+
+// Fluid outside the box goes (-box_exit auto: unless it went through a wall, which the health check
+// then stops at), counted, its energy credited to the budget, and said in a warning line.
+template <int D> void TimeLoop<D>::remove_escaped_fluid() {
+  EnergyBudget* budget = solver_.energy_budget();
+  const auto before = budget ? budget->energies(s_.P) : std::array<double, EnergyBudget::kForms>{};
+  const RemovedFluid gone =
+      remove_fluid_outside(s_.P, s_.nh.list(), s_.domain, case_.spacing(), opt_.box_exit == 1);
+  if (gone.count == 0) return;
+  removed_.count += gone.count, removed_.mass += gone.mass;
+  if (budget) budget->add_change(EnergyCause::RemovedFluid, before, budget->energies(s_.P));
+  s_.nh.update(s_.P, true);
+  // A splash may throw out many: the first few removals are said, the rest counted in timeseries.csv.
+  constexpr int kWarnings = 5;
+  if (++removal_events_ > kWarnings) return;
+  std::ostringstream w;
+  w << "step " << step_ << " (t = " << t_ << "): " << gone.count << " fluid particle" << (gone.count > 1 ? "s" : "")
+    << " left the box over an open side and " << (gone.count > 1 ? "were" : "was") << " taken out of the run (mass "
+    << gone.mass << "; " << removed_.count << " so far, timeseries.csv's removed_fluid"
+    << (removal_events_ == kWarnings ? "; further removals are not said here" : "") << ")";
+  PetscFPrintf(PETSC_COMM_WORLD, stderr, "sph: warning: %s\n", w.str().c_str());
 }
 
 template <int D> void TimeLoop<D>::write_due_outputs() {
@@ -433,7 +490,7 @@ template <int D> void TimeLoop<D>::write_state(const std::string& why) {
                      {"steady_state_window", steady_.to_json()},
                      {"history", history_},
                      {"case_state", case_.accumulated_state()}};
-  if (opt_.box_exit == 1) run["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
+  if (counts_removed_fluid()) run["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
   run["history"].push_back(this_segment(why));
   write_checkpoint(checkpoint_path_, s_.P, {t_, step_, solver_.checkpoint_scalars(), run},
                    static_cast<int>(opt_.checkpoints_kept));
@@ -467,7 +524,7 @@ template <int D> void TimeLoop<D>::finish(const std::string& status, const std::
   j["partition"] = {
       {"curve", "morton"}, {"interval", opt_.partition_interval}, {"count", partitions_}, {"imbalance", s_.imbalance}};
   add_final_state(j, solver_, case_, s_.P, t_, stats_, *initial_);
-  if (opt_.box_exit == 1) j["conservation"]["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
+  if (counts_removed_fluid()) j["conservation"]["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
   write_json_file(run_.output_dir + "/summary.json", j);
 }
 

@@ -26,15 +26,25 @@ struct LeapfrogScalar {
   double hi = std::numeric_limits<double>::infinity();
 };
 
+// Sees nothing of the kicks (kick_seen's default).
+struct NoKickObserver {
+  template <class V, class F> void operator()(const V&, const F&) const {}
+};
+
 // One step for the first n particles. moves(i): whether particle i drifts (walls keep their place);
 // rates(): refreshes acc and the scalars' rates at the drifted positions and predicted values.
-template <int D, class MovesFn, class RatesFn>
+// before_kick(v, f): called before each of the two kicks with the velocities and scalar values it
+// starts from, while acc and the rates are the ones it applies (the energy budget's hook).
+template <int D, class MovesFn, class RatesFn, class KickFn = NoKickObserver>
 void leapfrog_step(double dt, std::size_t n, std::vector<Vector<D>>& x, std::vector<Vector<D>>& v,
                    const std::vector<Vector<D>>& acc, const std::vector<LeapfrogScalar>& scalars, MovesFn&& moves,
-                   RatesFn&& rates) {
+                   RatesFn&& rates, KickFn&& before_kick = KickFn()) {
   const double half_dt = 0.5 * dt;
   std::vector<Vector<D>> v_half(n);
   std::vector<std::vector<double>> f_half(scalars.size(), std::vector<double>(n));
+  std::vector<const std::vector<double>*> f_from;
+  for (const LeapfrogScalar& s : scalars) f_from.push_back(s.value);
+  before_kick(v, f_from);
   for (std::size_t i = 0; i < n; ++i) {
     v_half[i] = v[i] + half_dt * acc[i];
     if (moves(i)) x[i] += dt * v_half[i];
@@ -48,6 +58,8 @@ void leapfrog_step(double dt, std::size_t n, std::vector<Vector<D>>& x, std::vec
     }
   }
   rates();
+  for (std::size_t k = 0; k < scalars.size(); ++k) f_from[k] = &f_half[k];
+  before_kick(v_half, f_from);
   for (std::size_t i = 0; i < n; ++i) v[i] = v_half[i] + half_dt * acc[i];
   for (std::size_t k = 0; k < scalars.size(); ++k) {
     const LeapfrogScalar& s = scalars[k];

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# -box_exit: fluid that leaves the box through a side that is not periodic stops the run by default,
-# with the particle named and the option that lets it go; with -box_exit remove it is taken out of the
-# run and counted. Mass is conserved exactly: the fluid left plus the fluid removed is the fluid at the
+# -box_exit: fluid that leaves the box through a side that is not periodic and that no wall covers is
+# taken out of the run and counted by default (auto), with a warning line; with -box_exit stop it stops
+# the run, with the particle named and the option that lets it go; -box_exit remove takes out whatever
+# leaves. (Which crossings went through a wall: tests/test_box_exit.cpp.) Mass is conserved exactly: the fluid left plus the fluid removed is the fluid at the
 # start, on 1 and 2 ranks, and across a restart.   usage: box_exit.sh <sph executable> <source dir>
 set -u
 sph="$1"; src="$2"; tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
@@ -22,8 +23,12 @@ regions:
 YAML
 quick="-case scene -scene_file $tmp/ledge.yaml -nx 20 -t_end 1.5 -progress 0 -threads 1 -output_interval 0.3"
 for s in isph wcsph; do
-  expect_error "fluid particle [0-9]+ near .* left the box .*-box_exit remove" $quick -solver $s -output_dir "$tmp/$s-stop"
+  expect_error "fluid particle [0-9]+ near .* left the box .*-box_exit auto or remove" $quick -solver $s -box_exit stop \
+    -output_dir "$tmp/$s-stop"
   expect_ok $quick -solver $s -box_exit remove -output_dir "$tmp/$s"
+  expect_ok $quick -solver $s -output_dir "$tmp/$s-auto"
+  grep -qE "^sph: warning: step [0-9]+ .* fluid particles? left the box over an open side and w.* taken out of the run" \
+    "$tmp/stderr" && echo "ok: $s: the removal is said" || { echo "FAIL: $s: no removal warning"; cat "$tmp/stderr"; fail=1; }
 done
 # A slab only 3 particles deep thins into sheets as it spills: the run stops on the neighbour count
 # with the advice measured for a splash (a finer -nx completes it, a smaller -cfl fails sooner).
@@ -48,7 +53,7 @@ def check(cond, what):
     global ok
     print(("ok: " if cond else "FAIL: ") + what); ok &= bool(cond)
 start = 0.8 * 0.4 * 1.0  # the block's mass: rho0 times its area (16 x 8 particles of 0.05^2 at nx 20)
-for run in ("isph", "wcsph", "wcsph2", "resumed"):
+for run in ("isph", "wcsph", "isph-auto", "wcsph-auto", "wcsph2", "resumed"):
     s = json.load(open(f"{tmp}/{run}/summary.json"))
     c = s["conservation"]
     rows = list(csv.DictReader(open(f"{tmp}/{run}/timeseries.csv")))
@@ -60,6 +65,10 @@ for run in ("isph", "wcsph", "wcsph2", "resumed"):
           f"{run}: fluid left {c['fluid_mass']:.6f} + removed {gone['mass']:.6f} = the start's {start:.6f}")
     check(gone["particles"] < 128, f"{run}: the fluid on the pedestal stays ({128 - gone['particles']} particles)")
 one = json.load(open(f"{tmp}/wcsph/summary.json"))["conservation"]["removed_fluid"]
+# Over the box's open floor, far from any wall: auto takes out what remove does, bit for bit.
+for s in ("isph", "wcsph"):
+    check(open(f"{tmp}/{s}-auto/timeseries.csv").read() == open(f"{tmp}/{s}/timeseries.csv").read(),
+          f"{s}: auto's run is remove's")
 # Resumed: the same particles taken out (the first run's step lands on t = 1.2 and the uninterrupted
 # one's does not, so the sum of their masses may differ at round-off). On 2 ranks WCSPH's round-off grows (tests/cli/mpi.sh): a particle
 # may cross the box's floor a step apart, not more than one or two.

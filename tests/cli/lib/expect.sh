@@ -1,10 +1,11 @@
 # Shared by the CLI tests (sourced; expects $sph, $tmp and $fail to be set by the caller).
-# expect_error <pattern> <args...>: a non-zero exit and exactly one line on stderr matching pattern.
+# expect_error <pattern> <args...>: a non-zero exit and exactly one line on stderr matching pattern
+# (warnings, "sph: warning: ...", may precede it).
 expect_error() {
   local pattern="$1"; shift
   "$sph" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
   local rc=$?
-  local lines; lines=$(grep -c . "$tmp/stderr")
+  local lines; lines=$(grep -v '^sph: warning:' "$tmp/stderr" | grep -c .)
   if [ $rc -eq 0 ] || [ "$lines" -ne 1 ] || ! grep -qE -- "$pattern" "$tmp/stderr"; then
     echo "FAIL: sph $* -> rc=$rc, stderr:"; cat "$tmp/stderr"; fail=1
   else
