@@ -18,9 +18,11 @@ template <int D> bool Neighbourhood<D>::update(Particles<D>& P, bool force) {
   MPI_Allreduce(MPI_IN_PLACE, &max_disp2, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
   // Two particles each moving skin/2 towards each other is the worst case the skin covers.
   const bool rebuild = 2.0 * std::sqrt(max_disp2) >= skin_;
+  const bool screened = domain_.screens && domain_.screens->any();
   if (!rebuild) {
     halo_.update_positions(P.x);
     halo_.update(P.v);
+    if (screened) screen(P);
     return false;
   }
   const LogEventScope log_rebuild(LogEvent::NeighbourRebuild);
@@ -29,13 +31,16 @@ template <int D> bool Neighbourhood<D>::update(Particles<D>& P, bool force) {
   halo_.build(P, domain_, radius);
   list_.build(P.x, P.n_owned, radius);
   list_.set_halo(&halo_);
-  if (domain_.screens && domain_.screens->any()) {
-    const Screens<D>& screens = *domain_.screens;
-    list_.filter([&](std::size_t i, int j) { return screens.see(P.x[i], P.id[i], P.x[j], P.id[j]); });
-  }
+  if (screened) unscreened_ = list_, screen(P);
   x_at_build_.assign(P.x.begin(), P.x.begin() + P.n_owned);
   ++rebuilds_;
   return true;
+}
+
+template <int D> void Neighbourhood<D>::screen(const Particles<D>& P) {
+  const Screens<D>& screens = *domain_.screens;
+  list_ = unscreened_;
+  list_.filter([&](std::size_t i, int j) { return screens.see(P.x[i], P.id[i], P.x[j], P.id[j]); });
 }
 
 template class Neighbourhood<1>;
