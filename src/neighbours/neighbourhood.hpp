@@ -25,6 +25,10 @@ template <int D> class Neighbourhood {
   // the support, and the next update() rebuilds.
   void set_support_radius(double support) { support_ = support, skin_ = skin_fraction_ * support, x_at_build_.clear(); }
   long rebuilds() const { return rebuilds_; }
+  // The owned positions the lists were last built at (wrapped into a periodic box), in storage order:
+  // what the next update() measures the displacements from. Empty until the first build and after
+  // set_support_radius.
+  const std::vector<Vector<D>>& x_at_build() const { return x_at_build_; }
 
  private:
   Domain<D> domain_;
