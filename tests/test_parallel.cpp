@@ -112,6 +112,46 @@ TEST(Partition, KeepsEveryParticleOnceBalancedAndContiguousAlongTheCurve) {
   EXPECT_EQ(before, std::vector<GlobalIndex>(P.id.begin(), P.id.begin() + P.n_owned));
 }
 
+// A checkpoint's record of the order (each particle's global index, each rank's count) puts every
+// particle back on its rank and at its place after another partition, with its carried fields and
+// its position as it is (not wrapped into the periodic box); a record that does not fit is refused.
+TEST(Partition, RestoresARecordedOrder) {
+  const Domain<2> dom = box<2>({true, false});
+  Particles<2> P = scattered_particles(dom, 1001, 5u);
+  const FieldId<double> place = P.fields.declare_scalar("place", kCarried, P.size());
+  const FieldId<Vector<2>> x0 = P.fields.declare_vector("x0", kCarried, P.size());
+  partition_along_curve(P, dom);
+  for (std::size_t i = 0; i < P.n_owned; ++i) P.fields[place][i] = static_cast<double>(P.gid[i]);
+  const std::vector<GlobalIndex> ids(P.id.begin(), P.id.begin() + P.n_owned);
+  std::vector<GlobalIndex> owned(ranks());
+  const GlobalIndex n_owned = static_cast<GlobalIndex>(P.n_owned);
+  MPI_Allgather(&n_owned, 1, MPIU_INT, owned.data(), 1, MPIU_INT, PETSC_COMM_WORLD);
+
+  // Another order: the particles mirrored, re-partitioned, then put back where they were, one of them
+  // a period further on.
+  for (std::size_t i = 0; i < P.n_owned; ++i) P.fields[x0][i] = P.x[i], P.x[i][1] = 0.7 - P.x[i][1];
+  partition_along_curve(P, dom);
+  ASSERT_NE(ids, std::vector<GlobalIndex>(P.id.begin(), P.id.begin() + P.n_owned));
+  if (P.n_owned > 0) P.fields[x0][0][0] += dom.length()[0];
+  std::vector<GlobalIndex> recorded(P.n_owned), wrong(P.n_owned);
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    P.x[i] = P.fields[x0][i];
+    recorded[i] = wrong[i] = static_cast<GlobalIndex>(P.fields[place][i]);
+  }
+  if (!wrong.empty()) wrong[0] = P.n_global;  // beyond the last place
+  EXPECT_THROW(restore_order(P, wrong, owned), Error);
+  std::vector<GlobalIndex> short_by_one = owned;
+  short_by_one.back() -= 1;
+  EXPECT_THROW(restore_order(P, recorded, short_by_one), Error);
+
+  restore_order(P, recorded, owned);
+  EXPECT_EQ(ids, std::vector<GlobalIndex>(P.id.begin(), P.id.begin() + P.n_owned));
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    EXPECT_EQ(P.gid[i], static_cast<GlobalIndex>(P.fields[place][i]));
+    EXPECT_EQ(P.x[i], P.fields[x0][i]) << "positions are not wrapped";
+  }
+}
+
 TEST(Partition, MortonKeysInterleaveTheAxes) {
   const Vector<2> lo(0, 0), hi(1, 1);
   // The four quadrants in Z order: (0,0) < (1,0) < (0,1) < (1,1).

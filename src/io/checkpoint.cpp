@@ -300,6 +300,15 @@ template <int D> CheckpointState<D> read_checkpoint(const std::string& path, Par
                 std::to_string(D) + "D; restart with the options of the run that wrote it");
   std::vector<double> kind(P.n_owned);
   std::vector<CheckpointField> fields = particle_fields(P, kind);
+  // A field a checkpoint may lack (kOptional) that this one lacks is zero.
+  for (const ParticleField& f : P.fields.with(kOptional, P.n_owned)) {
+    const nlohmann::json& saved = header["fields"];
+    if (std::any_of(saved.begin(), saved.end(), [&](const nlohmann::json& s) { return s.value("name", "") == f.name; }))
+      continue;
+    std::fill(f.data, f.data + P.n_owned * f.components, 0.0);
+    fields.erase(
+        std::find_if(fields.begin(), fields.end(), [&](const CheckpointField& c) { return c.name == f.name; }));
+  }
   if (header["fields"].size() != fields.size())
     throw Error("checkpoint " + path +
                 " was written by another solver (field count differs); restart with the same -solver");

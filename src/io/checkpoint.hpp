@@ -45,7 +45,8 @@ void write_checkpoint(const std::string& path, Particles<D>& P, const Checkpoint
 nlohmann::json read_checkpoint_header(const std::string& path);
 
 // Reads a checkpoint into particles already created as the run started (any split over ranks); those
-// taken out of the run since come back with kind kRemovedKind, for the caller to remove.
+// taken out of the run since come back with kind kRemovedKind, for the caller to remove. A carried
+// field declared kOptional that the checkpoint lacks comes back zero.
 // Throws sph::Error when the file is damaged or does not match the run (count, fields).
 template <int D> CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P);
 

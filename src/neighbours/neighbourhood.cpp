@@ -18,11 +18,8 @@ template <int D> bool Neighbourhood<D>::update(Particles<D>& P, bool force) {
   MPI_Allreduce(MPI_IN_PLACE, &max_disp2, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
   // Two particles each moving skin/2 towards each other is the worst case the skin covers.
   const bool rebuild = 2.0 * std::sqrt(max_disp2) >= skin_;
-  const bool screened = domain_.screens && domain_.screens->any();
   if (!rebuild) {
-    halo_.update_positions(P.x);
-    halo_.update(P.v);
-    if (screened) screen(P);
+    refresh(P);
     return false;
   }
   const LogEventScope log_rebuild(LogEvent::NeighbourRebuild);
@@ -31,10 +28,16 @@ template <int D> bool Neighbourhood<D>::update(Particles<D>& P, bool force) {
   halo_.build(P, domain_, radius);
   list_.build(P.x, P.n_owned, radius);
   list_.set_halo(&halo_);
-  if (screened) unscreened_ = list_, screen(P);
+  if (domain_.screens && domain_.screens->any()) unscreened_ = list_, screen(P);
   x_at_build_.assign(P.x.begin(), P.x.begin() + P.n_owned);
   ++rebuilds_;
   return true;
+}
+
+template <int D> void Neighbourhood<D>::refresh(Particles<D>& P) {
+  halo_.update_positions(P.x);
+  halo_.update(P.v);
+  if (domain_.screens && domain_.screens->any()) screen(P);
 }
 
 template <int D> void Neighbourhood<D>::screen(const Particles<D>& P) {

@@ -18,6 +18,11 @@ template <int D> class Neighbourhood {
   // screens are applied at every call, at the current positions.
   bool update(Particles<D>& P, bool force = false);
 
+  // What an update that does not rebuild does: the ghosts to the owned particles' positions and
+  // velocities, and the plates' screens at the current positions (a restart's lists, built at the
+  // writing run's places, are brought to the particles' places so).
+  void refresh(Particles<D>& P);
+
   const NeighbourList<D>& list() const { return list_; }
   const Halo<D>& halo() const { return halo_; }
   const Domain<D>& domain() const { return domain_; }
@@ -26,6 +31,10 @@ template <int D> class Neighbourhood {
   // the support, and the next update() rebuilds.
   void set_support_radius(double support) { support_ = support, skin_ = skin_fraction_ * support, x_at_build_.clear(); }
   long rebuilds() const { return rebuilds_; }
+  // The owned positions the lists were last built at (wrapped into a periodic box), in storage order:
+  // what the next update() measures the displacements from. Empty until the first build and after
+  // set_support_radius.
+  const std::vector<Vector<D>>& x_at_build() const { return x_at_build_; }
 
  private:
   Domain<D> domain_;

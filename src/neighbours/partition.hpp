@@ -23,4 +23,12 @@ template <int D> std::uint64_t morton_key(const Vector<D>& x, const Vector<D>& l
 // Returns the load imbalance afterwards: max owned count / mean owned count.
 template <int D> double partition_along_curve(Particles<D>& P, const Domain<D>& domain);
 
+// Puts every owned particle back on the rank and at the place it had in an earlier partition of the
+// same particles (a checkpoint's record): place[i] is particle i's global index there, owned[r] the
+// count rank r held (one entry per rank). Moves the carried fields with them, as the partition does,
+// renumbers global indices and drops the ghosts; positions are left as they are (not wrapped).
+// Throws sph::Error when the record does not fit the particles. Returns the load imbalance.
+template <int D>
+double restore_order(Particles<D>& P, const std::vector<GlobalIndex>& place, const std::vector<GlobalIndex>& owned);
+
 }  // namespace sph

@@ -17,11 +17,14 @@ namespace sph {
 // What a declared field is for (bit flags).
 enum FieldUse : unsigned {
   // State carried from one step to the next: it moves with its particle when particles migrate or
-  // leave the run, and checkpoints save it. One flag for both: a restart re-partitions, so a field
-  // that moved but was not saved would make restarts differ.
+  // leave the run, and checkpoints save it. One flag for both: a restart puts the particles in order
+  // again, so a field that moved but was not saved would make restarts differ.
   kCarried = 1u,
   // Written to every frame, under its name (scalar fields).
   kWritten = 2u,
+  // With kCarried: a field a checkpoint may lack (one written before the field existed), read back
+  // as zeros; its owner tells from the checkpoint's header whether it was saved.
+  kOptional = 4u,
 };
 
 // A declared field's handle; T is double or Vector<D>.

@@ -66,7 +66,7 @@ PetscErrorCode read_options(RunControl* o) {
                        o->checkpoints_kept, &o->checkpoints_kept, nullptr, OptionLevel::expert));
   PetscCall(option_int(PetscOptionsObject, "-partition_interval",
                        "Steps between re-orderings of the particles along a space-filling curve, which also "
-                       "re-balances them over MPI ranks (0: only at start-up and at checkpoints)",
+                       "re-balances them over MPI ranks (0: only at start-up)",
                        o->partition_interval, &o->partition_interval, nullptr, OptionLevel::expert));
   PetscCall(option_int(PetscOptionsObject, "-threads",
                        "OpenMP threads per MPI rank for the pair loops, neighbour search and PPE assembly (0: "

@@ -110,6 +110,7 @@ template <int D> class TimeLoop {
   std::vector<ScalarField> frame_fields(bool derived = true);
   void write_frame(bool derived = true);
   void repartition();
+  void restore_order_and_lists();
   void write_state(const std::string& why = "checkpointed");
   nlohmann::json this_segment(const std::string& status) const;
   nlohmann::json checked_restart() const;
@@ -130,6 +131,10 @@ template <int D> class TimeLoop {
   const MemoryBudgetScope memory_;         // checked as the scene is created, before the solver allocates
   RunState<D> s_;
   long partitions_ = 1;
+  // The checkpoints' record of where each particle is stored (its global index) and of the positions
+  // the neighbour lists were built at: a restart on as many ranks puts both back (restore_order_and_lists).
+  FieldId<double> place_;
+  FieldId<Vector<D>> x_at_build_;
   CheckpointState<D> resumed_;
   const std::string checkpoint_path_;
 
@@ -184,6 +189,8 @@ template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
   if (!opt_.restarting() && opt_.start_perturbation > 0)
     perturb_fluid(s_.P, opt_.start_perturbation * case_.spacing(), static_cast<std::uint64_t>(opt_.start_seed));
   solver_.setup(s_.disc);
+  place_ = s_.P.fields.declare_scalar("storage_index", kCarried | kOptional, s_.P.size());
+  x_at_build_ = s_.P.fields.declare_vector("x_at_build", kCarried | kOptional, s_.P.size());
   if (opt_.restarting()) resume();
   // Bodies with prescribed motion start at the run's time, with their velocity there.
   s_.disc.bodies =
@@ -214,14 +221,45 @@ template <int D> nlohmann::json TimeLoop<D>::resumed_run_header() const {
   return resumed;
 }
 
-// A restart overwrites the freshly set-up state with the checkpoint's, then brings it into the
-// canonical state, as the writing run did before writing it.
+// A restart overwrites the freshly set-up state with the checkpoint's, then puts the particles and
+// the neighbour lists where the writing run had them, so that it continues bit for bit. On another
+// rank count, or from a checkpoint without that record, it re-partitions along the curve instead: the
+// same particles in another order, whose sums round differently.
 template <int D> void TimeLoop<D>::resume() {
   resumed_ = read_checkpoint(opt_.restart, s_.P);
   // The fluid the writing run had taken out of the box (-box_exit auto or remove) goes again.
   remove_particles_if(s_.P, [&](std::size_t i) { return s_.P.kind[i] == kRemovedKind; });
   solver_.restore_scalars(resumed_.scalars);
+  const nlohmann::json order = resumed_run_.value("order", nlohmann::json::object());
+  PetscMPIInt ranks;
+  MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+  if (order.value("ranks", 0) == ranks) return restore_order_and_lists();
+  const std::string why = order.contains("ranks")
+                              ? std::to_string(ranks) + (ranks == 1 ? " rank" : " ranks") +
+                                    ", the checkpoint was written on " + std::to_string(order["ranks"].get<int>())
+                              : "the checkpoint has no record of its particles' order";
+  PetscPrintf(PETSC_COMM_WORLD,
+              "restart: %s: continuing from the curve's order; results match the uninterrupted run to "
+              "round-off, not bitwise\n",
+              why.c_str());
   repartition();
+}
+
+// The writing run's order: each particle on its rank at its place, and the lists built at the
+// positions the writing run built them at (wrapped, so wrapping them again changes nothing), which
+// makes the lists, the ghosts and the next rebuild's decision that run's.
+template <int D> void TimeLoop<D>::restore_order_and_lists() {
+  Particles<D>& P = s_.P;
+  const std::vector<double>& place = P.fields[place_];
+  const std::vector<GlobalIndex> gid(place.begin(), place.begin() + P.n_owned);
+  s_.imbalance = restore_order(P, gid, resumed_run_.at("order").at("owned").get<std::vector<GlobalIndex>>());
+  std::vector<Vector<D>>& built = P.fields[x_at_build_];
+  std::swap_ranges(P.x.begin(), P.x.begin() + P.n_owned, built.begin());
+  s_.nh.update(P, true);
+  std::swap_ranges(P.x.begin(), P.x.begin() + P.n_owned, built.begin());
+  // As an update that does not rebuild leaves them: the ghosts at the owned particles' positions,
+  // the plates' screens at them.
+  s_.nh.refresh(P);
 }
 
 template <int D> std::string TimeLoop<D>::dt_above_limit(double stable, double t_now) const {
@@ -481,16 +519,29 @@ template <int D> std::vector<ScalarField> TimeLoop<D>::frame_fields(bool derived
   return fields;
 }
 
+// A checkpoint is an output: it changes nothing in the run. It records where each particle is stored
+// and where the lists were built, for a restart on as many ranks to continue bit for bit.
 template <int D> void TimeLoop<D>::write_state(const std::string& why) {
   last_checkpoint_step_ = step_;
-  repartition();
   const LogEventScope log_checkpoint(LogEvent::Checkpoint);
+  Particles<D>& P = s_.P;
+  const std::vector<Vector<D>>& built = s_.nh.x_at_build();
+  std::vector<double>& place = P.fields[place_];
+  std::vector<Vector<D>>& x_at_build = P.fields[x_at_build_];
+  for (std::size_t i = 0; i < P.n_owned; ++i) place[i] = static_cast<double>(P.gid[i]);  // exact below 2^53
+  if (built.size() == P.n_owned) std::copy(built.begin(), built.end(), x_at_build.begin());
+  std::vector<GlobalIndex> owned(ranks_);
+  const GlobalIndex n_owned = static_cast<GlobalIndex>(P.n_owned);
+  MPI_Allgather(&n_owned, 1, MPIU_INT, owned.data(), 1, MPIU_INT, PETSC_COMM_WORLD);
+  int lists_built = built.size() == P.n_owned;
+  MPI_Allreduce(MPI_IN_PLACE, &lists_built, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
   nlohmann::json run{{"identity", identity_},
                      {"ksp_statistics", stats_.to_json()},
                      {"steady_state_window", steady_.to_json()},
                      {"history", history_},
                      {"case_state", case_.accumulated_state()}};
   if (counts_removed_fluid()) run["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
+  if (lists_built) run["order"] = {{"ranks", ranks_}, {"owned", owned}};
   run["history"].push_back(this_segment(why));
   write_checkpoint(checkpoint_path_, s_.P, {t_, step_, solver_.checkpoint_scalars(), run},
                    static_cast<int>(opt_.checkpoints_kept));

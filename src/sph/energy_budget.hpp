@@ -221,25 +221,42 @@ class EnergyBudget {
     return r;
   }
 
-  // A checkpoint keeps the budget, so that a restarted run's budget is its whole run's: the sums over
-  // the ranks (collective), which rank 0 takes back on restart (the others start from zero).
+  // A checkpoint keeps the budget, so that a restarted run's budget is its whole run's: each rank's
+  // partial sums (collective). A restart on as many ranks, which puts each particle back on its rank
+  // (src/run/time_loop.cpp), takes each rank's own, so that the sums go on bitwise as the writing run's;
+  // on another rank count rank 0 takes their total and the others start from zero.
   nlohmann::json to_json() const {
-    std::array<double, kForms * (1 + kCauses)> buf{};
-    for (int f = 0; f < kForms; ++f) buf[f] = start_[f];
+    std::array<double, kForms * (1 + kCauses)> mine{};
+    for (int f = 0; f < kForms; ++f) mine[f] = start_[f];
     for (int c = 0; c < kCauses; ++c)
-      for (int f = 0; f < kForms; ++f) buf[kForms * (1 + c) + f] = change_[c][f];
-    MPI_Allreduce(MPI_IN_PLACE, buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-    return {{"sums", buf}, {"started", started_}};
+      for (int f = 0; f < kForms; ++f) mine[kForms * (1 + c) + f] = change_[c][f];
+    int ranks = 1;
+    MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+    std::vector<double> all(mine.size() * static_cast<std::size_t>(ranks));
+    MPI_Allgather(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), static_cast<int>(mine.size()),
+                  MPI_DOUBLE, PETSC_COMM_WORLD);
+    nlohmann::json per_rank = nlohmann::json::array();
+    for (int r = 0; r < ranks; ++r)
+      per_rank.push_back(std::vector<double>(all.begin() + r * mine.size(), all.begin() + (r + 1) * mine.size()));
+    return {{"per_rank", per_rank}, {"started", started_}};
   }
   void from_json(const nlohmann::json& j) {
     if (!j.is_object() || !j.value("started", false)) return;
-    int rank = 0;
+    int rank = 0, ranks = 1;
     MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-    const auto buf = j.at("sums").get<std::array<double, kForms*(1 + kCauses)>>();
+    MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+    const auto per_rank = j.at("per_rank").get<std::vector<std::array<double, kForms*(1 + kCauses)>>>();
+    std::array<double, kForms*(1 + kCauses)> mine{};
+    if (static_cast<int>(per_rank.size()) == ranks) {
+      mine = per_rank[rank];
+    } else if (rank == 0) {
+      for (const auto& r : per_rank)
+        for (std::size_t k = 0; k < mine.size(); ++k) mine[k] += r[k];
+    }
     started_ = true;
-    for (int f = 0; f < kForms; ++f) start_[f] = rank == 0 ? buf[f] : 0.0;
+    for (int f = 0; f < kForms; ++f) start_[f] = mine[f];
     for (int c = 0; c < kCauses; ++c)
-      for (int f = 0; f < kForms; ++f) change_[c][f] = rank == 0 ? buf[kForms * (1 + c) + f] : 0.0;
+      for (int f = 0; f < kForms; ++f) change_[c][f] = mine[kForms * (1 + c) + f];
   }
 
  private:

@@ -39,36 +39,20 @@ rc=${PIPESTATUS[0]}
 [ "$rc" -eq 0 ] && echo "ok: output to a closed pipe -> exit 0" || { echo "FAIL: output to a closed pipe -> exit $rc (want 0)"; fail=1; }
 expect_json "$tmp/pipe/summary.json" "s['status'] == 'completed'" "closed pipe: the run completed"
 
-# Resume and compare with the run that was never interrupted. A checkpoint re-orders the particles, so
-# the match is to round-off (measured: 9e-15). The flow is Poiseuille's because it keeps round-off at
-# round-off: on Taylor-Green the particles rearrange from their lattice and amplify any difference (nx
-# 24: a start perturbed by 1e-9 dx differs by 1e-5 in l1_velocity at t = 0.9, with either shift scale),
-# so there a lost piece of state could not be told from round-off.
+# Resume and compare with the run that was never interrupted: a checkpoint changes nothing in a run,
+# and a restart on as many ranks puts the particles and their lists back as they were, so the time
+# series (each step's iterations included), the errors and the iteration statistics are the same, byte
+# for byte.
 expect_ok $run -output_dir "$tmp/whole"
 expect_ok $run -output_dir "$tmp/int" -restart "$tmp/int/checkpoint.bin"
 python3 - "$tmp/whole" "$tmp/int" <<'PY' || fail=1
-import csv, json, sys
+import json, sys
 a, b = (json.load(open(d + "/summary.json")) for d in sys.argv[1:])
-rel = {k: abs(a["errors"][k] - b["errors"][k]) / abs(a["errors"][k]) for k in a["errors"]}
-worst = max(rel.values())
-ok = all(r < 1e-8 for r in rel.values())
+rows = [open(d + "/timeseries.csv").read() for d in sys.argv[1:]]
+ok = rows[0] == rows[1] and a["errors"] == b["errors"] and a["ksp"] == b["ksp"]
 ok &= a["steps"] == b["steps"] and len(b["history"]) == 2 and b["history"][0]["status"].startswith("interrupted")
-# Same solver set-up: the first resumed step takes the iterations the uninterrupted run took at that
-# step, up to one flip for each of the step's three solves (the closed channel's restoring solve, the
-# projection, its correction pass). Later steps are not compared one by one, nor their mean: near
-# steady state each solve works at round-off, and the 1e-15 differences of the re-ordered particles
-# flip counts by up to 3 a step in a dozen of the 143 steps (measured over five resumed runs; the mean
-# moved by up to 0.056). The checkpointed pressure as initial guess is not what this detects: a zero
-# guess changes a step's count by at most 1 at this tolerance.
-ka, kb = a["ksp"], b["ksp"]
-ok &= all(ka[k] == kb[k] for k in ("type", "pc_type", "rtol", "max_it"))
-def iterations(d):
-    return {int(r["step"]): int(r["ksp_iterations"]) for r in csv.DictReader(open(d + "/timeseries.csv"))}
-ia, ib = (iterations(d) for d in sys.argv[1:])
-first = b["history"][0]["steps"][1] + 1
-ok &= abs(ib[first] - ia[first]) <= 3
-print(("ok" if ok else "FAIL") + f": resumed run: steps {b['steps']} / {a['steps']}, largest relative error"
-      f" difference {worst:.1e}, iterations at the first resumed step {first}: {ib[first]} / {ia[first]}")
+print(("ok" if ok else "FAIL") + f": resumed after step {b['history'][0]['steps'][1]} of {a['steps']}: time series, errors"
+      f" and iteration statistics {'as' if ok else 'differ from'} uninterrupted")
 sys.exit(0 if ok else 1)
 PY
 exit $fail
