@@ -55,6 +55,46 @@ def classify_cell(run):
     return "n/a", failure, metric or "", None, wall, steps
 
 
+# The causes of an energy budget that can only take energy out of a flow in a closed tank or a periodic
+# box (src/sph/energy_budget.hpp): a positive total is energy the scheme created.
+NON_POSITIVE_CAUSES = ("pressure", "viscous", "artificial_viscosity", "density_diffusion", "shifting",
+                       "wall_bounding")
+
+
+def largest_kinetic_energy(run_dir):
+    """The largest kinetic_energy of a run's timeseries.csv (0 without one)."""
+    try:
+        with open(os.path.join(run_dir, "timeseries.csv"), newline="") as f:
+            return max((float(r["kinetic_energy"]) for r in csv.DictReader(f)), default=0.0)
+    except (OSError, KeyError, ValueError):
+        return 0.0
+
+
+def energy_figures(run):
+    """(created, scale) from a cell's energy budget (summary.json conservation.energy_budget), or None
+    without one: the summed positive totals of the causes that should only remove energy, and the scale
+    they are measured against, the largest kinetic energy of the run (at the start, or in any step's
+    row of timeseries.csv) or the kinetic energy gravity's kicks gave, if larger. A flow that should
+    stay at rest (still water) has only spurious motion to measure against: a large share there says
+    that the scheme's own motion is what it created."""
+    s = read_json(os.path.join(run["dir"], "summary.json")) or {}
+    b = (s.get("conservation") or {}).get("energy_budget")
+    if not b:
+        return None
+    work = b.get("work") or {}
+    created = sum(max(0.0, work.get(c, 0.0)) for c in NON_POSITIVE_CAUSES)
+    scale = max([abs(b.get(k, 0.0)) for k in ("kinetic_energy_start", "kinetic_energy_end", "gravity_released")] +
+                [largest_kinetic_energy(run["dir"])])
+    return created, scale
+
+
+def energy_text(e):
+    """', energy +x %' (created over scale) for an ok cell with a budget; '' without one."""
+    if e is None or not e[1] > 0:
+        return ""
+    return ", energy +%s %%" % fmt(100.0 * e[0] / e[1], "%.2g")
+
+
 def cell_text(c):
     status, reason, metric, value, wall, steps = c
     if status == "ok":
@@ -69,24 +109,39 @@ def cell_text(c):
     return status
 
 
+def energy_cell_text(run, c):
+    """cell_text with an ok cell's energy created inserted before its wall time."""
+    text = cell_text(c)
+    if c[0] != "ok":
+        return text
+    extra = energy_text(energy_figures(run))
+    cut = text.rfind(" (")
+    return text[:cut] + extra + text[cut:] if cut > 0 and text.endswith(")") else text + extra
+
+
 def make_matrix_outputs(study, study_file, runs, out_dir, counts):
     m = study["matrix"]
     cells = {(r["row"], r["column"]): (r, classify_cell(r)) for r in runs}
     with open(os.path.join(out_dir, "matrix.csv"), "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["row", "column", "status", "reason", "metric", "value", "wall_time_s", "steps", "run_dir"])
+        w.writerow(["row", "column", "status", "reason", "metric", "value", "wall_time_s", "steps",
+                    "energy_created", "energy_scale", "run_dir"])
         for r in runs:
             status, reason, metric, value, wall, steps = cells[(r["row"], r["column"])][1]
+            e = energy_figures(r)
             w.writerow([r["row"], r["column"], status, short_reason(reason, 10 ** 6), metric,
                         "" if value is None else value, "" if wall is None else wall, "" if steps is None else steps,
-                        os.path.relpath(r["dir"], out_dir)])
+                        "" if e is None else e[0], "" if e is None else e[1], os.path.relpath(r["dir"], out_dir)])
     cols = [c["label"] for c in m["columns"]]
     L = ["# Stability matrix: %s" % study["name"], ""]
     if study.get("description"):
         L += [str(study["description"]).strip(), ""]
     ran, skipped, failed = counts
-    L += ["Study file `%s`; %d cells (%d run now, %d up to date). Cells: **ok**, the row's error norm and the "
-          "wall time; **failed**: the run stopped during time stepping (reason); **n/a**: the program refuses "
+    L += ["Study file `%s`; %d cells (%d run now, %d up to date). Cells: **ok**, the row's error norm, the "
+          "energy the scheme created (the positive totals of the budget's pressure, viscous, artificial "
+          "viscosity, density diffusion, shifting and wall bounding terms, in %% of the run's largest kinetic "
+          "energy or of what gravity gave; a moving wall, the cavity's lid, feeds energy in through the "
+          "pressure and viscous terms) and the wall time; **failed**: the run stopped during time stepping (reason); **n/a**: the program refuses "
           "this case with this solver at start-up; **error**: a start-up error about the options." %
           (os.path.relpath(os.path.abspath(study_file), REPO) if os.path.abspath(study_file).startswith(REPO)
            else study_file, len(runs), ran, skipped), ""]
@@ -94,7 +149,7 @@ def make_matrix_outputs(study, study_file, runs, out_dir, counts):
                                    "".join(" " + a for a in option_args(c["options"]))) for c in m["columns"]), ""]
     body = []
     for row in m["rows"]:
-        body.append([row["label"]] + [cell_text(cells[(row["label"], c)][1]).replace("|", "\\|") for c in cols])
+        body.append([row["label"]] + [energy_cell_text(*cells[(row["label"], c)]).replace("|", "\\|") for c in cols])
     L += [noted(md_table(["case"] + cols, body, align=["---"] * (len(cols) + 1))), ""]
     L += ["Per case:", ""]
     for row in m["rows"]:

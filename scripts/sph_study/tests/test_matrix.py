@@ -6,7 +6,8 @@ import os
 import unittest
 
 from sph_study.execute import make_scene
-from sph_study.matrix import cell_text, classify_cell, make_matrix_outputs, option_problem, short_reason
+from sph_study.matrix import (cell_text, classify_cell, energy_cell_text, energy_figures, make_matrix_outputs,
+                              option_problem, short_reason)
 from sph_study.plan import load_study, plan_matrix_runs
 from sph_study.tests.support import TempDirCase, record_run
 
@@ -61,6 +62,21 @@ class Cells(TempDirCase):
         c = classify_cell(run)
         self.assertEqual(c, ("ok", "", "l1_velocity", 0.0123, 2.0, 5))
         self.assertEqual(cell_text(c), "ok, l1_velocity=0.0123 (2 s)")
+
+    def test_energy_created(self):
+        # Pressure +2 and shifting +1 created, viscous -3 took out: 3 of the scale 10 (gravity's kinetic
+        # energy, the largest), said in the cell before its wall time.
+        run = self.runs["TGV", "ISPH"]
+        budget = {"kinetic_energy_start": 0.0, "kinetic_energy_end": 4.0, "gravity_released": 10.0,
+                  "work": {"pressure": 2.0, "shifting": 1.0, "viscous": -3.0, "gravity": 0.5}}
+        record_run(run, summary={"status": "completed", "errors": {"l1_velocity": 0.0123}, "wall_time_s": 2.0,
+                                 "steps": 5, "conservation": {"energy_budget": budget}}, elapsed_s=3.0)
+        self.assertEqual(energy_figures(run), (3.0, 10.0))
+        self.assertEqual(energy_cell_text(run, classify_cell(run)), "ok, l1_velocity=0.0123, energy +30 % (2 s)")
+        other = self.runs["TGV", "WCSPH"]
+        record_run(other, summary={"status": "completed", "errors": {"l1_velocity": 0.01}, "wall_time_s": 2.0})
+        self.assertIsNone(energy_figures(other))
+        self.assertEqual(energy_cell_text(other, classify_cell(other)), "ok, l1_velocity=0.01 (2 s)")
 
     def test_ok_but_not_measured(self):
         run = self.runs["TGV", "ISPH"]
@@ -117,11 +133,12 @@ class Cells(TempDirCase):
         make_matrix_outputs(self.study, os.path.join(self.tmp, "mini.yaml"), runs, self.out, (5, 0, 3))
         with open(os.path.join(self.out, "matrix.csv")) as f:
             rows = list(csv.reader(f))
-        self.assertEqual(rows[0], ["row", "column", "status", "reason", "metric", "value", "wall_time_s", "steps", "run_dir"])
-        self.assertEqual(rows[1], ["TGV", "ISPH", "ok", "", "l1_velocity", "0.02", "1.5", "4", "r1-TGV--c1-ISPH"])
+        self.assertEqual(rows[0], ["row", "column", "status", "reason", "metric", "value", "wall_time_s", "steps",
+                                   "energy_created", "energy_scale", "run_dir"])
+        self.assertEqual(rows[1], ["TGV", "ISPH", "ok", "", "l1_velocity", "0.02", "1.5", "4", "", "", "r1-TGV--c1-ISPH"])
         self.assertEqual(rows[4][:4], ["Sod", "ISPH", "n/a", GAS])
         self.assertEqual(rows[5][:4], ["Sod", "WCSPH", "failed", "boom"])
-        self.assertEqual(rows[6], ["Sod", "gas", "not run", "", "l1_density", "", "", "", "r2-Sod--c3-gas"])
+        self.assertEqual(rows[6], ["Sod", "gas", "not run", "", "l1_density", "", "", "", "", "", "r2-Sod--c3-gas"])
         with open(os.path.join(self.out, "matrix.md")) as f:
             md = f.read()
         self.assertTrue(md.startswith("# Stability matrix: mini\n\nA 2 x 3 matrix.\n\nStudy file `%s`; 6 cells (5 run now, "
