@@ -186,8 +186,9 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   const bool corrected_gradient = gradient_ == WcsphGradient::Corrected;
   const bool continuity = density_ == DensityMethod::Continuity;
   // The corrected divergence goes with the corrected pressure gradient. The symmetric gradient's
-  // discrete adjoint is the plain divergence: together they exchange energy exactly between pressure
-  // work and compression. Mixed with the corrected divergence (a free surface, where auto picks the
+  // discrete adjoint is nearly the plain divergence: together they exchange energy between pressure
+  // work and compression but for the factor rho_i / rho_j in each continuity pair (3e-3 of the energy
+  // exchanged in an inviscid vortex; docs/verification/free_surface.md, "Energy budgets"). Mixed with the corrected divergence (a free surface, where auto picks the
   // symmetric gradient) the dam-break front runs far ahead of the experiment (docs/verification/dam_break.md,
   // "Design measurements").
   const bool corrected_continuity = consistent && corrected_gradient && continuity;
