@@ -432,8 +432,8 @@ template <int D> void IsphSolver<D>::credit_velocity_update(double dt, const Ste
   const std::size_t n = P.n_owned;
   const std::vector<Vector<D>> gravity(n, dt * energy_.template potential_gravity<D>()),
       forcing(n, dt * energy_.template forcing_gravity<D>());
-  const std::vector<Vector<D>> viscous = s.viscous_kick.empty() ? std::vector<Vector<D>>(n, Vector<D>::Zero())
-                                                                : s.viscous_kick;
+  const std::vector<Vector<D>> none(s.viscous_kick.empty() ? n : 0, Vector<D>::Zero());
+  const std::vector<Vector<D>>& viscous = s.viscous_kick.empty() ? none : s.viscous_kick;
   std::vector<Vector<D>> pressure(n);
   for (std::size_t i = 0; i < n; ++i) pressure[i] = P.v[i] - s.u_start[i] - viscous[i] - gravity[i] - forcing[i];
   energy_.add_update(P, s.u_start,

@@ -54,22 +54,15 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
   walls_ = has_walls(P);
   acc_ = P.fields.declare_vector("acceleration", kCarried, P.size());
   drho_ = P.fields.declare_scalar("density_rate", kCarried, P.size());
-  const wcsph::TaitEos eos = eos_;
-  energy_ = EnergyBudget(disc.physics.gravity, disc.neighbourhood.domain().periodic,
-                         {[eos](double rho) { return eos.elastic_energy(rho); },
-                          [eos](double rho) { return eos.pressure(rho) / (rho * rho); }});
-  if (disc.physics.viscous()) viscous_acc_ = P.fields.declare_vector("viscous_acceleration", kCarried, P.size());
-  if (av_.active()) av_acc_ = P.fields.declare_vector("artificial_viscosity_acceleration", kCarried, P.size());
   free_surface_.setup(P, disc.physics.free_surface);
   // Under gravity Molteni's term diffuses the hydrostatic stratification: mass flows down, and still
   // water sank into its floor (t = 19 at 40 particles a unit). Fourtakas et al. (2019) diffuse the
   // density's difference from the hydrostatic one instead.
   if (!diffusion_chosen_ && diffusion_ == DensityDiffusion::Molteni && disc.physics.has_body_force())
     diffusion_ = DensityDiffusion::Fourtakas;
+  declare_energy_budget(disc);
   // Where a wall or a free surface cuts the kernel support, the kernel average of rho is not its
   // resolved part, and rho minus it would not be particle-scale noise.
-  if (diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity)
-    diffusion_rate_ = P.fields.declare_scalar("diffusion_density_rate", kCarried, P.size());
   if (diffusion_ == DensityDiffusion::Particle && (walls_ || disc.physics.free_surface))
     throw Error(
         "-density_diffusion particle needs a scene without walls or a free surface (the kernel average that "
@@ -103,6 +96,20 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
 // viscous sqrt(nu U / L) with L its smallest extent (mu U / L, which dominates at low Reynolds
 // number). With U alone a Stokes flow driven by a body force is compressed and its drag too low
 // (docs/user-guide.md, "Drag of a periodic array of cylinders").
+// The energy budget, with the Tait fluid's elastic energy, and the rates' parts by cause that it
+// credits the kicks with (carried: the next step's opening kick applies them), where the cause is on.
+template <int D> void WcsphSolver<D>::declare_energy_budget(const Discretisation<D>& disc) {
+  Particles<D>& P = disc.particles;
+  const wcsph::TaitEos eos = eos_;
+  energy_ = EnergyBudget(disc.physics.gravity, disc.neighbourhood.domain().periodic,
+                         {[eos](double rho) { return eos.elastic_energy(rho); },
+                          [eos](double rho) { return eos.pressure(rho) / (rho * rho); }});
+  if (disc.physics.viscous()) viscous_acc_ = P.fields.declare_vector("viscous_acceleration", kCarried, P.size());
+  if (av_.active()) av_acc_ = P.fields.declare_vector("artificial_viscosity_acceleration", kCarried, P.size());
+  if (diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity)
+    diffusion_rate_ = P.fields.declare_scalar("diffusion_density_rate", kCarried, P.size());
+}
+
 template <int D> double WcsphSolver<D>::speed_scale() {
   const Particles<D>& P = disc_->particles;
   const Physics<D>& phys = disc_->physics;
@@ -136,6 +143,17 @@ template <int D> void WcsphSolver<D>::update_pressure() {
   nh.halo().update(P.rho);
 }
 
+// Densities by summation (-density summation), their change of elastic energy credited to pressure.
+template <int D> void WcsphSolver<D>::sum_densities() {
+  Particles<D>& P = disc_->particles;
+  const std::vector<double> rho = density_summation(P, disc_->neighbourhood.list(), disc_->kernel);
+  const double before = energy_.internal_energy(P);
+  std::copy(rho.begin(), rho.end(), P.rho.begin());
+  if (energy_.started())
+    energy_.add_change(EnergyCause::Pressure, EnergyForm::Internal, before, energy_.internal_energy(P));
+  disc_->neighbourhood.halo().update(P.rho);
+}
+
 template <int D> void WcsphSolver<D>::compute_rates() {
   Particles<D>& P = disc_->particles;
   std::vector<Vector<D>>& acc = P.fields[acc_];
@@ -148,13 +166,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   const double h = K.h();
 
   LogEventScope log_density(LogEvent::Density);
-  if (density_ == DensityMethod::Summation) {
-    const std::vector<double> rho = density_summation(P, nl, K);
-    const double before = energy_.internal_energy(P);
-    std::copy(rho.begin(), rho.end(), P.rho.begin());
-    if (energy_.started()) energy_.add_change(EnergyCause::Pressure, EnergyForm::Internal, before, energy_.internal_energy(P));
-    nh.halo().update(P.rho);
-  }
+  if (density_ == DensityMethod::Summation) sum_densities();
   update_pressure();
 
   // Antuono's correction needs the renormalised density gradient on both sides of each pair.
@@ -187,8 +199,8 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   const bool continuity = density_ == DensityMethod::Continuity;
   // The corrected divergence goes with the corrected pressure gradient. The symmetric gradient's
   // discrete adjoint is nearly the plain divergence: together they exchange energy between pressure
-  // work and compression but for the factor rho_i / rho_j in each continuity pair (3e-3 of the energy
-  // exchanged in an inviscid vortex; docs/verification/free_surface.md, "Energy budgets"). Mixed with the corrected divergence (a free surface, where auto picks the
+  // work and compression but for the factor rho_i / rho_j in each continuity pair
+  // (docs/verification/free_surface.md, "Energy budgets"). Mixed with the corrected divergence (a free surface, where auto picks the
   // symmetric gradient) the dam-break front runs far ahead of the experiment (docs/verification/dam_break.md,
   // "Design measurements").
   const bool corrected_continuity = consistent && corrected_gradient && continuity;
@@ -201,12 +213,10 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   acc.assign(n, Vector<D>::Zero());
   drho.assign(n, 0.0);
   // The rates' parts by cause, for the energy budget (the pressure's is the rest of acc).
-  std::vector<Vector<D>>* viscous_part = viscous_acc_.valid() ? &P.fields[viscous_acc_] : nullptr;
-  std::vector<Vector<D>>* av_part = av_acc_.valid() ? &P.fields[av_acc_] : nullptr;
-  std::vector<double>* diffusion_part = diffusion_rate_.valid() ? &P.fields[diffusion_rate_] : nullptr;
-  if (viscous_part) viscous_part->assign(n, Vector<D>::Zero());
-  if (av_part) av_part->assign(n, Vector<D>::Zero());
-  if (diffusion_part) diffusion_part->assign(n, 0.0);
+  const Vector<D> zero = Vector<D>::Zero();
+  std::vector<Vector<D>>* viscous_part = zeroed(viscous_acc_, zero);
+  std::vector<Vector<D>>* av_part = zeroed(av_acc_, zero);
+  std::vector<double>* diffusion_part = zeroed(diffusion_rate_, 0.0);
   const double inv_R = 1.0 / K.support_radius();
   const std::vector<double>& diffused = rho_fine.empty() ? P.rho : rho_fine;
   wcsph::RatesInputs<D> in{P,
@@ -271,28 +281,54 @@ template <int D> void WcsphSolver<D>::compute_rates() {
     if (corrected_gradient) M[i] = sums.M, grad_p[i] = sums.grad_p;
     if (corrected_continuity) grad_u[i] = sums.grad_u;
   });
-  if (smoothing) {
-    std::vector<Vector<D>> corrected = lap_u;
-    remove_laplacian_smoothing_error(P, nh, K, lap_factors, corrected);
-    for (std::size_t i = 0; i < n; ++i)
-      if (P.kind[i] == kFluid) {
-        const Vector<D> removed = phys.nu * (corrected[i] - lap_u[i]);
-        acc[i] += removed;
-        if (viscous_part) (*viscous_part)[i] += removed;
-      }
-  }
-  // The corrected forms: d rho_i/dt = -rho_i tr(L_i grad u_i) and a_i = -L_i grad p_i / rho_i, both
-  // exact for linear fields on any particle distribution (the plain forms are O(1) wrong in the
-  // disorder; Negi & Ramachandran 2022 found them the obstacle to second order).
-  for (std::size_t i = 0; i < n && corrected_gradient; ++i) {
+  if (smoothing) remove_viscous_smoothing_error(lap_factors, lap_u, viscous_part);
+  if (corrected_gradient) apply_corrected_forms(M, grad_p, grad_u);
+  add_body_force_and_limit();
+}
+
+// The viscous Laplacian's smoothing error removed after the pair loop (src/sph/laplacian_smoothing.hpp),
+// from its factors and values lap_u; the change goes to the viscous part too.
+template <int D>
+void WcsphSolver<D>::remove_viscous_smoothing_error(const std::vector<LaplacianCorrection<D>>& factors,
+                                                    const std::vector<Vector<D>>& lap_u,
+                                                    std::vector<Vector<D>>* viscous_part) {
+  Particles<D>& P = disc_->particles;
+  std::vector<Vector<D>>& acc = P.fields[acc_];
+  std::vector<Vector<D>> corrected = lap_u;
+  remove_laplacian_smoothing_error(P, disc_->neighbourhood, disc_->kernel, factors, corrected);
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (P.kind[i] == kFluid) {
+      const Vector<D> removed = disc_->physics.nu * (corrected[i] - lap_u[i]);
+      acc[i] += removed;
+      if (viscous_part) (*viscous_part)[i] += removed;
+    }
+}
+
+// The corrected forms: d rho_i/dt = -rho_i tr(L_i grad u_i) and a_i = -L_i grad p_i / rho_i, both
+// exact for linear fields on any particle distribution (the plain forms are O(1) wrong in the
+// disorder; Negi & Ramachandran 2022 found them the obstacle to second order). grad_u empty: the
+// plain continuity equation.
+template <int D>
+void WcsphSolver<D>::apply_corrected_forms(const std::vector<Tensor<D>>& M, const std::vector<Vector<D>>& grad_p,
+                                           const std::vector<Tensor<D>>& grad_u) {
+  Particles<D>& P = disc_->particles;
+  std::vector<Vector<D>>& acc = P.fields[acc_];
+  std::vector<double>& drho = P.fields[drho_];
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
     if (P.kind[i] != kFluid) continue;
     const Tensor<D> L = correction_from_moments(M[i]);
     acc[i] -= (L * grad_p[i]) / P.rho[i];
-    if (corrected_continuity) drho[i] -= P.rho[i] * (L * grad_u[i]).trace();
+    if (!grad_u.empty()) drho[i] -= P.rho[i] * (L * grad_u[i]).trace();
   }
-  for (std::size_t i = 0; i < n; ++i)
-    if (P.kind[i] == kFluid) acc[i] += phys.gravity;
-  if (continuity && closed_volume_) remove_net_volume_rate();
+}
+
+// Gravity, the closed box's volume constraint, and the largest acceleration (the force step limit).
+template <int D> void WcsphSolver<D>::add_body_force_and_limit() {
+  Particles<D>& P = disc_->particles;
+  std::vector<Vector<D>>& acc = P.fields[acc_];
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (P.kind[i] == kFluid) acc[i] += disc_->physics.gravity;
+  if (density_ == DensityMethod::Continuity && closed_volume_) remove_net_volume_rate();
   double a2 = 0.0;
   for (const auto& a : acc) a2 = std::max(a2, a.squaredNorm());
   MPI_Allreduce(MPI_IN_PLACE, &a2, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);

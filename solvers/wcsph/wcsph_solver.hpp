@@ -53,6 +53,20 @@ template <int D> class WcsphSolver : public Solver<D> {
   EnergyBudget* energy_budget() override { return &energy_; }
 
  private:
+  void sum_densities();
+  void remove_viscous_smoothing_error(const std::vector<LaplacianCorrection<D>>& factors,
+                                      const std::vector<Vector<D>>& lap_u, std::vector<Vector<D>>* viscous_part);
+  void apply_corrected_forms(const std::vector<Tensor<D>>& M, const std::vector<Vector<D>>& grad_p,
+                             const std::vector<Tensor<D>>& grad_u);
+  void add_body_force_and_limit();
+  // A rate part's field, set to `zero` over the owned particles; null where the part's cause is off.
+  template <class T> std::vector<T>* zeroed(FieldId<T> id, const T& zero) {
+    if (!id.valid()) return nullptr;
+    std::vector<T>& f = disc_->particles.fields[id];
+    f.assign(disc_->particles.n_owned, zero);
+    return &f;
+  }
+  void declare_energy_budget(const Discretisation<D>& disc);
   // Credits a kick u -> u + dt/2 a, rho -> rho + dt/2 drho with the current rates to their causes.
   void credit_kick(double half_dt, const std::vector<Vector<D>>& u, const std::vector<double>& rho);
   // The step's phases (step()).

@@ -41,10 +41,9 @@ template <int D> class Neighbourhood {
   double support_, skin_, skin_fraction_;
   Halo<D> halo_;
   // With thin plates: which pairs a plate separates depends on where the particles are now. Decided
-  // at the rebuild and kept for the list's life, it depended on when the list was last rebuilt, and
-  // so did the run (the baffle's impulse moved 4 % with the rebuild schedule): the list as built is
-  // kept, and screened again at every update (docs/verification/free_surface.md, "Answers that
-  // round-off cannot move").
+  // at the rebuild and kept for the list's life, it made the run depend on when the list was last
+  // rebuilt: the list as built is kept, and screened again at every update
+  // (docs/verification/free_surface.md, "Answers that the rebuild schedule moved").
   void screen(const Particles<D>& P);
   NeighbourList<D> list_, unscreened_;
   std::vector<Vector<D>> x_at_build_;

@@ -13,6 +13,26 @@ namespace {
 const char* const box_exit_names[] = {"stop", "remove", "auto"};
 const char* const body_pressure_force_names[] = {"surface", "pairs"};
 
+// What becomes of fluid that leaves the box, and the start's perturbation (round-off studies).
+PetscErrorCode read_box_exit_and_start_options(PetscOptionItems* PetscOptionsObject, RunControl* o) {
+  PetscFunctionBeginUser;
+  PetscCall(option_choice(PetscOptionsObject, "-box_exit",
+                          "Fluid beyond a side of the box that is not periodic: auto (taken out of the run and "
+                          "counted where it left through a side no wall covers, a splash thrown out of an open "
+                          "tank; the run stops where it went through a wall), stop (the run stops and names the "
+                          "particle) or remove (always taken out and counted)",
+                          box_exit_names, 3, box_exit_names[o->box_exit], &o->box_exit, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-start_perturbation",
+                        "Move each fluid particle's start by a random amount up to this fraction of dx along "
+                        "each axis (0: none; 1e-12 asks whether round-off moves the answer)",
+                        o->start_perturbation, &o->start_perturbation, nullptr, OptionLevel::expert));
+  PetscCall(option_int(PetscOptionsObject, "-start_seed",
+                       "Seed of -start_perturbation's random moves (each particle's move depends on it and the "
+                       "particle's id only, not on the ranks)",
+                       o->start_seed, &o->start_seed, nullptr, OptionLevel::expert));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode read_options(RunControl* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Run control and output", "sph");
@@ -76,20 +96,7 @@ PetscErrorCode read_options(RunControl* o) {
                           o->restart, o->restart, sizeof(o->restart), nullptr));
   PetscCall(option_bool(PetscOptionsObject, "-progress", "Print a progress line on stderr about once a second",
                         o->progress, &o->progress, nullptr));
-  PetscCall(option_choice(PetscOptionsObject, "-box_exit",
-                          "Fluid beyond a side of the box that is not periodic: auto (taken out of the run and "
-                          "counted where it left through a side no wall covers, a splash thrown out of an open "
-                          "tank; the run stops where it went through a wall), stop (the run stops and names the "
-                          "particle) or remove (always taken out and counted)",
-                          box_exit_names, 3, box_exit_names[o->box_exit], &o->box_exit, nullptr));
-  PetscCall(option_real(PetscOptionsObject, "-start_perturbation",
-                        "Move each fluid particle's start by a random amount up to this fraction of dx along "
-                        "each axis (0: none; 1e-12 asks whether round-off moves the answer)",
-                        o->start_perturbation, &o->start_perturbation, nullptr, OptionLevel::expert));
-  PetscCall(option_int(PetscOptionsObject, "-start_seed",
-                       "Seed of -start_perturbation's random moves (each particle's move depends on it and the "
-                       "particle's id only, not on the ranks)",
-                       o->start_seed, &o->start_seed, nullptr, OptionLevel::expert));
+  PetscCall(read_box_exit_and_start_options(PetscOptionsObject, o));
   PetscCall(option_bool(PetscOptionsObject, "-check_ghosts",
                         "Check before every pair loop that the ghost copies hold their owners' values, and stop "
                         "at a stale one (an internal error: for developers and bug reports; on in debug builds)",
