@@ -176,22 +176,20 @@ TEST(SceneShapes, WallsAreExactlyTheGivenLayersDeep) {
   }
 }
 
-// p = rho0 |g| (top - up . x), up = -g / |g|, the top the region's highest corner along up.
+// p = rho0 |g| s, s the distance along up = -g / |g| at which the line from x leaves the water: the
+// box's top or its left side under this tilted gravity.
 TEST(SceneShapes, HydrostaticPressureIsRhoGDepth) {
   const std::string text =
       "dimension: 2\nphysics: {gravity: [0.6, -0.8], rho0: 3}\nregions:\n"
       "  - {role: fluid, shape: {box: [0, 1, 0, 0.4]}, pressure: hydrostatic}\n"
       "  - {role: fluid, shape: {box: [2, 3, 0, 1]}, velocity: [0.5, 0], pressure: 7}\n";
   const sph::YamlScene s = sample("hydrostatic", text, 0.05);
-  const double up[2] = {-0.6, 0.8};
-  double top = -1e300;
-  for (double cx : {0.0, 1.0})
-    for (double cy : {0.0, 0.4}) top = std::max(top, up[0] * cx + up[1] * cy);
   long pool = 0, block = 0;
   for (std::size_t i = 0; i < s.file.x.size(); ++i) {
     const double x = s.file.x[i][0], y = s.file.x[i][1];
     if (x < 1.5) {
-      EXPECT_NEAR(s.file.p[i], 3.0 * 1.0 * (top - (up[0] * x + up[1] * y)), 1e-12) << x << ", " << y;
+      const double depth = std::min((0.4 - y) / 0.8, x / 0.6);
+      EXPECT_NEAR(s.file.p[i], 3.0 * 1.0 * depth, 1e-12) << x << ", " << y;
       EXPECT_EQ(s.file.v[i][0], 0.0);
       ++pool;
     } else {
@@ -202,6 +200,30 @@ TEST(SceneShapes, HydrostaticPressureIsRhoGDepth) {
   }
   EXPECT_EQ(pool, 20 * 8);
   EXPECT_EQ(block, 20 * 20);
+}
+
+// A tilted surface (the sloshing tank's start) and a body under water: each particle's pressure is
+// rho0 g times its depth below the surface above it, which the body does not interrupt.
+TEST(SceneShapes, HydrostaticPressureFollowsATiltedSurface) {
+  const std::string text =
+      "dimension: 2\nbox: [-0.2, 2.2, -0.2, 1.2]\nphysics: {gravity: [0, -9.81], rho0: 1000}\nregions:\n"
+      "  - {role: wall, shape: {difference: [{box: [-0.2, 2.2, -0.2, 1.2]}, {box: [0, 2, 0, 1.2]}]}}\n"
+      "  - {role: fluid, shape: {polygon: [[0, 0], [2, 0], [2, 0.3], [0, 0.5]]}, pressure: hydrostatic}\n"
+      "  - {role: {body: stone}, shape: {circle: {centre: [1, 0.15], radius: 0.08}}}\n";
+  for (const double dx : {0.05, 0.0125}) {
+    const sph::YamlScene s = sample("tilted", text, dx);
+    long fluid = 0, under_stone = 0;
+    for (std::size_t i = 0; i < s.file.x.size(); ++i) {
+      if (s.file.kind[i] != sph::kSceneFluid) continue;
+      const double x = s.file.x[i][0], y = s.file.x[i][1];
+      const double surface = 0.5 - 0.1 * x;
+      EXPECT_NEAR(s.file.p[i], 1000 * 9.81 * (surface - y), 1e-9) << x << ", " << y << " at dx " << dx;
+      ++fluid;
+      under_stone += std::abs(x - 1) < 0.05 && y < 0.07;
+    }
+    EXPECT_GT(fluid, 0);
+    EXPECT_GT(under_stone, 0);
+  }
 }
 
 TEST(SceneShapes, BodiesAreFixedWallsThatKeepTheirNames) {

@@ -24,6 +24,30 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Lattice points within this share of dx of a surface or a box face count as on it (inside).
 constexpr double kOnSurface = 1e-6;
 
+// How far x lies below the free surface above it: the distance along `up` to the first point that
+// `occupied` (a signed distance: negative inside the scene's fluid regions or solids) leaves empty, so
+// that a tilted or curved surface starts in hydrostatic balance column by column and a submerged body
+// does not cut the column. Marched in steps of dx (an overhang is found) and refined by bisection to
+// round-off; `top` (the box's highest point along up) ends the march.
+template <class Occupied>
+double depth_below_surface(const Occupied& occupied, const Point3& x, const Point3& up, double top, double dx) {
+  const double reach = top - up.dot(x);
+  if (reach <= 0.0 || occupied(x) >= 0.0) return 0.0;
+  double inside = 0.0, outside = reach;
+  for (double s = dx; s < reach; s += dx) {
+    if (occupied(x + s * up) >= 0.0) {
+      outside = s;
+      break;
+    }
+    inside = s;
+  }
+  for (int k = 0; k < 60 && outside - inside > 1e-12 * dx; ++k) {
+    const double mid = 0.5 * (inside + outside);
+    (occupied(x + mid * up) < 0.0 ? inside : outside) = mid;
+  }
+  return 0.5 * (inside + outside);
+}
+
 std::string number_text(double v) {
   std::ostringstream s;
   s << v;
@@ -755,6 +779,20 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
                "; raise the spacing (a smaller -nx) or cut the regions with a box");
 
   const double on = kOnSurface * dx, deep = -wall_layers * dx + on;
+  // Hydrostatic starts: the water above a particle ends where neither a fluid region nor a solid is.
+  const Point3 up = g.norm() > 0 ? Point3(-g.normalized()) : Point3::Zero();
+  double box_top = 0.0;
+  for (int a = 0; a < D; ++a) box_top += std::max(up[a] * box_lo[a], up[a] * box_hi[a]);
+  double shapes_top = -kInf;
+  for (const auto* group : {&fluids, &solids})
+    for (const Region& r : *group) shapes_top = std::max(shapes_top, r.shape->highest(up));
+  box_top = std::min(box_top, shapes_top);
+  auto occupied = [&](const Point3& y) {
+    double d = kInf;
+    for (const Region& f : fluids) d = std::min(d, f.shape->distance(y));
+    for (const Region& w : solids) d = std::min(d, w.shape->distance(y));
+    return d;
+  };
   long fluid = 0;
   std::array<long, 3> i{};
   for (i[2] = D == 3 ? range[2].first : 0; i[2] <= (D == 3 ? range[2].second : 0); ++i[2])
@@ -785,8 +823,8 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
           out.body.push_back(holder->body), out.free_slip.push_back(holder->free_slip);
           continue;
         }
-        const double p =
-            in_fluid->hydrostatic ? rho0 * g.norm() * (in_fluid->top + g.normalized().dot(x)) : in_fluid->pressure;
+        const double p = in_fluid->hydrostatic ? rho0 * g.norm() * depth_below_surface(occupied, x, up, box_top, dx)
+                                               : in_fluid->pressure;
         s.v.push_back({in_fluid->velocity[0], in_fluid->velocity[1], in_fluid->velocity[2]});
         s.p.push_back(p), s.kind.push_back(kSceneFluid), out.body.push_back(-1), out.free_slip.push_back(0);
         ++fluid;

@@ -26,7 +26,8 @@
 // Roles: fluid (kind 0); wall (fixed wall, kind 1); {body: NAME} (or role: body, name: NAME), a fixed
 // wall whose particles keep the body's name (YamlScene::body): timeseries.csv reports its force.
 // Region values (fluid only): velocity (default zero); pressure, a number (default 0) or hydrostatic:
-// rho0 |g| times the depth below the region's highest point along -g. Walls and bodies: slip: free
+// rho0 |g| times the depth below the free surface above the particle (along -g, to the first point in
+// no fluid region and no solid: a tilted surface starts in balance). Walls and bodies: slip: free
 // (no shear on the fluid; default no_slip, src/boundary/moving_bodies.hpp).
 //
 // Sampling: lattice points (i + 1/2) dx within the box (and within the regions' bounds), so a box from
