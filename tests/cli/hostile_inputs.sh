@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Input that must not take the machine down or touch the user's files: -overwrite removes only what runs
+# wrote (the folder's manifest), a run stopped before -t_end leaves a checkpoint to continue from, and
+# malformed scenes, meshes and option values are refused in one line.   usage: hostile_inputs.sh <sph executable> <source dir>
+set -u
+sph="$1"; src="$2"; tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+fail=0
+source "$(dirname "$0")/lib/expect.sh"
+check() { if eval "$1"; then echo "ok: $2"; else echo "FAIL: $2"; fail=1; fi; }
+small="-case taylor_green -nx 8 -progress 0 -threads 1"
+
+# -overwrite removes the files the runs there wrote, and nothing else: not the user's table, backup or
+# a file whose name looks like an output.
+d="$tmp/run"
+expect_ok $small -t_end 0.02 -output_dir "$d"
+echo "user data" >"$d/my_measurements.csv"; cp "$d/checkpoint.bin" "$d/checkpoint.bin.bak"; echo "x" >"$d/body_mybody.pvd"
+expect_ok $small -t_end 0.02 -output_dir "$d" -overwrite
+check '[ -f "$d/my_measurements.csv" ] && [ -f "$d/checkpoint.bin.bak" ] && [ -f "$d/body_mybody.pvd" ]' \
+  "-overwrite keeps the user's files beside the run"
+check '[ -f "$d/summary.json" ] && grep -qx summary.json "$d/.sph_manifest"' "the new run lists its files in .sph_manifest"
+# A folder whose results no manifest lists (an earlier version's run, or the user's files) is left alone.
+o="$tmp/unlisted"; mkdir -p "$o"; echo "{}" >"$o/summary.json"; echo "mine" >"$o/notes.csv"
+expect_error "holds results \(summary.json\) that no manifest of a run lists" $small -t_end 0.02 -output_dir "$o" -overwrite
+check '[ -f "$o/notes.csv" ] && [ "$(cat "$o/summary.json")" = "{}" ]' "an unlisted folder is untouched by -overwrite"
+
+# -checkpoints_kept is bounded (each kept one is a copy of the state), and an integer beyond the
+# option's type is refused instead of wrapping.
+expect_error "-checkpoints_kept must be between 1 and 1000" $small -t_end 0.02 -checkpoints_kept 100000000 -output_dir "$tmp/k1"
+expect_error "option -checkpoints_kept has the value '2147483648', beyond the integers it takes" $small -t_end 0.02 -checkpoints_kept 2147483648 -output_dir "$tmp/k2"
+exit $fail
