@@ -23,6 +23,15 @@ o="$tmp/unlisted"; mkdir -p "$o"; echo "{}" >"$o/summary.json"; echo "mine" >"$o
 expect_error "holds results \(summary.json\) that no manifest of a run lists" $small -t_end 0.02 -output_dir "$o" -overwrite
 check '[ -f "$o/notes.csv" ] && [ "$(cat "$o/summary.json")" = "{}" ]' "an unlisted folder is untouched by -overwrite"
 
+# A run stopped by -max_steps before -t_end writes its checkpoint, says so, and -restart continues it.
+m="$tmp/steps"
+expect_ok $small -t_end 0.3 -output_interval 0 -max_steps 3 -output_dir "$m"
+expect_json "$m/summary.json" "s['status'] == 'completed' and s['stopped_early']['reason'] == 'max_steps' and s['t_final'] < 0.3" \
+  "-max_steps: summary.json says stopped_early"
+expect_ok $small -t_end 0.3 -output_interval 0 -restart "$m/checkpoint.bin"
+expect_json "$m/summary.json" "abs(s['t_final'] - 0.3) < 1e-12 and 'stopped_early' not in s and len(s['history']) == 2" \
+  "-restart continues a run stopped by -max_steps to -t_end"
+
 # -checkpoints_kept is bounded (each kept one is a copy of the state), and an integer beyond the
 # option's type is refused instead of wrapping.
 expect_error "-checkpoints_kept must be between 1 and 1000" $small -t_end 0.02 -checkpoints_kept 100000000 -output_dir "$tmp/k1"
