@@ -36,4 +36,31 @@ expect_json "$m/summary.json" "abs(s['t_final'] - 0.3) < 1e-12 and 'stopped_earl
 # option's type is refused instead of wrapping.
 expect_error "-checkpoints_kept must be between 1 and 1000" $small -t_end 0.02 -checkpoints_kept 100000000 -output_dir "$tmp/k1"
 expect_error "option -checkpoints_kept has the value '2147483648', beyond the integers it takes" $small -t_end 0.02 -checkpoints_kept 2147483648 -output_dir "$tmp/k2"
+
+# A mesh face naming a vertex the OBJ file does not hold (past the end, or 0: OBJ counts from 1) is
+# refused naming the line, not read out of bounds.
+printf 'v 0.3 0.3 0.2\nv 0.7 0.3 0.2\nv 0.5 0.7 0.2\nv 0.5 0.5 0.6\nf 1 2 3\nf 1 2 4\nf 2 3 4\nf 1 3 99\n' >"$tmp/far.obj"
+sed 's/f 1 3 99/f 1 3 0/' "$tmp/far.obj" >"$tmp/zero.obj"
+for m in far zero; do
+  printf 'dimension: 3\nbox: [0, 1, 0, 1, 0, 1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 1, 0, 1]}\n  - {role: body, name: tet, shape: mesh, file: %s.obj}\n' $m >"$tmp/$m.yaml"
+done
+expect_error "far.obj' line 8: a face names vertex 99 of the 4 the file holds" -case scene -scene_file "$tmp/far.yaml" -nx 10 -output_dir "$tmp/o1"
+expect_error "zero.obj' line 8: a face names vertex 0; OBJ numbers vertices from 1" -case scene -scene_file "$tmp/zero.yaml" -nx 10 -output_dir "$tmp/o2"
+
+# A YAML key given twice in one mapping is refused naming both lines, not settled by the first.
+printf 'dimension: 2\nbox: [0, 1, 0, 1]\ndimension: 3\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5]}\n' >"$tmp/twice.yaml"
+expect_error "line 3: key 'dimension' is given a second time in one mapping \(first on line 1\); keep one" -case scene -scene_file "$tmp/twice.yaml" -nx 10 -output_dir "$tmp/o3"
+printf 'dimension: 2\nbox: [0, 1, 0, 1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5], velocity: [1, 0], velocity: [0, 1]}\n' >"$tmp/twice2.yaml"
+expect_error "line 4: key 'velocity' is given a second time" -case scene -scene_file "$tmp/twice2.yaml" -nx 10 -output_dir "$tmp/o4"
+
+# The help into a pipe closed early ends quietly, as any printing program does (SIGPIPE), without
+# PETSc's crash report.
+for k in 1 2 3 4 5; do
+  "$sph" -help 2>"$tmp/help_err" | head -c 10 >/dev/null
+  rc=${PIPESTATUS[0]}
+  if [ -s "$tmp/help_err" ] || { [ "$rc" -ne 0 ] && [ "$rc" -ne 141 ]; }; then
+    echo "FAIL: sph -help | head -c 10 -> exit $rc, stderr: $(head -3 "$tmp/help_err")"; fail=1; break
+  fi
+done
+[ "$k" -eq 5 ] && [ "$fail" -eq 0 ] && echo "ok: sph -help | head -c 10 ends quietly (5 tries)"
 exit $fail
