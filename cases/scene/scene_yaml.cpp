@@ -9,6 +9,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -70,11 +71,33 @@ class Reader {
   }
 
   YAML::Node load(const std::string& text) const {
+    YAML::Node root;
     try {
-      return YAML::Load(text);
+      root = YAML::Load(text);
     } catch (const YAML::ParserException& e) {
       throw Error("scene file '" + path_ + "': line " + std::to_string(e.mark.line + 1) + ", column " +
                   std::to_string(e.mark.column + 1) + ": YAML syntax error (" + e.msg + "); fix the syntax there");
+    }
+    refuse_repeated_keys(root);
+    return root;
+  }
+
+  // yaml-cpp keeps a key given twice in one mapping and answers the first: the second (dimension: 2,
+  // then 3) would be silently ignored.
+  void refuse_repeated_keys(const YAML::Node& n) const {
+    if (n.IsSequence())
+      for (const auto& item : n) refuse_repeated_keys(item);
+    if (!n.IsMap()) return;
+    std::map<std::string, int> seen;  // key -> its first line
+    for (const auto& item : n) {
+      if (item.first.IsScalar()) {
+        const auto [first, fresh] = seen.emplace(item.first.Scalar(), item.first.Mark().line + 1);
+        if (!fresh)
+          fail(item.first, "",
+               "key '" + item.first.Scalar() + "' is given a second time in one mapping (first on line " +
+                   std::to_string(first->second) + "); keep one");
+      }
+      refuse_repeated_keys(item.second);
     }
   }
 
