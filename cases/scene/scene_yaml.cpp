@@ -16,6 +16,7 @@
 #include "cases/scene/body_surface.hpp"
 #include "cases/scene/shapes.hpp"
 #include "src/core/error.hpp"
+#include "src/particles/particle_budget.hpp"
 
 namespace sph {
 
@@ -246,6 +247,7 @@ class Reader {
       if (file.is_relative()) file = dir_ / file;
       try {
         ShapePtr mesh = make_mesh(file.string());
+        meshes.push_back({v, k, file.string(), mesh->bounds()});
         std::ifstream in(file, std::ios::binary);
         const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         checksum = fnv1a(checksum, bytes.data(), bytes.size());
@@ -530,6 +532,12 @@ class Reader {
 
   std::uint64_t checksum = kFnv1aBasis;
   int dim = 2;
+  struct MeshRead {
+    YAML::Node at;
+    std::string key, file;
+    Bounds bounds;
+  };
+  std::vector<MeshRead> meshes;  // every mesh the regions read, for the check of their units
 
  private:
   std::string path_;
@@ -582,6 +590,36 @@ void read_physics(Reader& r, const YAML::Node& n, SceneFile& s, const std::strin
       on = v == 1;
     }
     s.field["free_surface"] = {on ? 1.0 : 0.0};
+  }
+}
+
+// A mesh drawn in other units than the scene (millimetres in a scene of metres) is far larger or
+// smaller than the scene's box: refused naming the likely unit, before its surface is sampled at the
+// scene's spacing (a 400-wide cube refined to dx/4 exhausts any memory).
+void check_mesh_units(const Reader& r, const Point3& box_lo, const Point3& box_hi) {
+  double box = 0;
+  for (int a = 0; a < r.dim; ++a) box = std::max(box, box_hi[a] - box_lo[a]);
+  for (const Reader::MeshRead& m : r.meshes) {
+    double size = 0;
+    for (int a = 0; a < r.dim; ++a) size = std::max(size, m.bounds.hi[a] - m.bounds.lo[a]);
+    const double ratio = size / box;
+    if (ratio <= 100) continue;
+    // The likely unit: the smallest of the usual ones (as factors against the scene's) that brings the
+    // mesh within the box.
+    struct Unit {
+      const char* name;
+      double per_metre;
+    };
+    static const Unit units[] = {{"inches", 39.37}, {"centimetres", 1e2}, {"millimetres", 1e3}, {"micrometres", 1e6}};
+    const Unit* best = nullptr;
+    for (const Unit& u : units)
+      if (!best && size / u.per_metre <= box) best = &u;
+    r.fail(m.at, m.key,
+           "'" + m.file + "' spans " + number_text(size) + ", " + number_text(ratio) + " times the scene's box (" +
+               number_text(box) + "); " +
+               (best ? "is it in " + std::string(best->name) + "? scale it by " + number_text(1 / best->per_metre)
+                     : std::string("scale it")) +
+               " to the scene's units");
   }
 }
 
@@ -760,6 +798,8 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
       r.fail(list[k], "regions[" + std::to_string(k) + "]", "is the 128th plate; a scene holds at most 127");
   }
 
+  if (has_box) check_mesh_units(r, box_lo, box_hi);
+
   // The lattice over the regions' reach, within the box.
   std::array<std::pair<long, long>, 3> range{};
   double points = 1;
@@ -778,42 +818,73 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
                "; raise the spacing (a smaller -nx) or cut the regions with a box");
 
   const double on = kOnSurface * dx, deep = -wall_layers * dx + on;
+  // What a lattice point becomes: a solid's particle (holder), a fluid region's, or none.
+  struct Fill {
+    const Region* holder = nullptr;
+    const Region* fluid = nullptr;
+  };
+  auto fill = [&](const Point3& x) {
+    Fill f;
+    // The solids' union: its distance is the nearest part's; the last solid holding x names it.
+    double solid = kInf;
+    for (const Region& w : solids) {
+      const double d = w.shape->distance(x);
+      solid = std::min(solid, d);
+      if (d <= on) f.holder = &w;
+    }
+    if (!f.holder && !in_plate_gap(plates, x, dx))
+      for (const Region& fl : fluids)
+        if (fl.shape->distance(x) <= on) f.fluid = &fl;
+    // A body is kept whole: it is a solid with a mass, and a hollow shell's inner face would read
+    // as a wall thinner than the support where the shell curves (scene_geometry.hpp's measure).
+    if (f.holder && !(solid > deep || f.holder->role == Role::Body)) f.holder = nullptr;
+    return f;
+  };
+  auto lattice_point = [&](const std::array<long, 3>& i) {
+    Point3 x = Point3::Zero();
+    for (int a = 0; a < D; ++a) x[a] = std::clamp((i[a] + 0.5) * dx, box_lo[a], box_hi[a]);
+    return x;
+  };
+  // The memory check before the particles exist: their count estimated from a sample of the lattice
+  // (about 2^16 points), so a scene far too large is refused in well under a second.
+  {
+    std::array<long, 3> stride{1, 1, 1};
+    const long per_axis = static_cast<long>(std::ceil(std::pow(65536.0, 1.0 / D)));
+    double sampled = 0, kept = 0;
+    for (int a = 0; a < D; ++a) stride[a] = std::max(1L, (range[a].second - range[a].first + 1) / per_axis);
+    std::array<long, 3> i{};
+    for (i[2] = D == 3 ? range[2].first : 0; i[2] <= (D == 3 ? range[2].second : 0); i[2] += stride[2])
+      for (i[1] = range[1].first; i[1] <= range[1].second; i[1] += stride[1])
+        for (i[0] = range[0].first; i[0] <= range[0].second; i[0] += stride[0]) {
+          const Fill f = fill(lattice_point(i));
+          sampled += 1, kept += f.holder || f.fluid;
+        }
+    if (sampled > 0 && kept / sampled * points > static_cast<double>(particle_budget().limit)) refuse_over_budget();
+  }
   long fluid = 0;
   std::array<long, 3> i{};
   for (i[2] = D == 3 ? range[2].first : 0; i[2] <= (D == 3 ? range[2].second : 0); ++i[2])
-    for (i[1] = range[1].first; i[1] <= range[1].second; ++i[1])
+    for (i[1] = range[1].first; i[1] <= range[1].second; ++i[1]) {
+      if (s.x.size() > particle_budget().limit) refuse_over_budget();
       for (i[0] = range[0].first; i[0] <= range[0].second; ++i[0]) {
-        Point3 x = Point3::Zero();
-        for (int a = 0; a < D; ++a) x[a] = std::clamp((i[a] + 0.5) * dx, box_lo[a], box_hi[a]);
-        // The solids' union: its distance is the nearest part's; the last solid holding x names it.
-        double solid = kInf;
-        const Region* holder = nullptr;
-        for (const Region& w : solids) {
-          const double d = w.shape->distance(x);
-          solid = std::min(solid, d);
-          if (d <= on) holder = &w;
-        }
-        const Region* in_fluid = nullptr;
-        if (!holder && !in_plate_gap(plates, x, dx))
-          for (const Region& f : fluids)
-            if (f.shape->distance(x) <= on) in_fluid = &f;
-        // A body is kept whole: it is a solid with a mass, and a hollow shell's inner face would read
-        // as a wall thinner than the support where the shell curves (scene_geometry.hpp's measure).
-        const bool kept_solid = holder && (solid > deep || holder->role == Role::Body);
-        if (!kept_solid && !in_fluid) continue;
+        const Point3 x = lattice_point(i);
+        const Fill f = fill(x);
+        if (!f.holder && !f.fluid) continue;
         const std::array<double, 3> xa = {x[0], x[1], x[2]};
         s.x.push_back(xa);
-        if (holder) {
+        if (f.holder) {
           s.v.push_back({0.0, 0.0, 0.0}), s.p.push_back(0.0), s.kind.push_back(kSceneFixedWall);
-          out.body.push_back(holder->body), out.free_slip.push_back(holder->free_slip);
+          out.body.push_back(f.holder->body), out.free_slip.push_back(f.holder->free_slip);
           continue;
         }
+        const Region* in_fluid = f.fluid;
         const double p =
             in_fluid->hydrostatic ? rho0 * g.norm() * (in_fluid->top + g.normalized().dot(x)) : in_fluid->pressure;
         s.v.push_back({in_fluid->velocity[0], in_fluid->velocity[1], in_fluid->velocity[2]});
         s.p.push_back(p), s.kind.push_back(kSceneFluid), out.body.push_back(-1), out.free_slip.push_back(0);
         ++fluid;
       }
+    }
   add_plate_layers(plates, wall_layers, dx, box_lo, box_hi, out);
   out.plate_face.resize(s.x.size(), 0);
   if (fluid == 0)

@@ -53,6 +53,25 @@ expect_error "line 3: key 'dimension' is given a second time in one mapping \(fi
 printf 'dimension: 2\nbox: [0, 1, 0, 1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5], velocity: [1, 0], velocity: [0, 1]}\n' >"$tmp/twice2.yaml"
 expect_error "line 4: key 'velocity' is given a second time" -case scene -scene_file "$tmp/twice2.yaml" -nx 10 -output_dir "$tmp/o4"
 
+# The memory check comes before the particles exist: a YAML scene counts its lattice first, and a
+# mesh drawn in millimetres for a scene in metres is refused naming the unit (not refined to dx/4 until
+# the memory is gone). Both under a memory limit, so a regression cannot take the machine down.
+python3 - "$tmp/cube_mm.stl" <<'PY'
+import sys
+lo, hi = (300.0, 300.0, 150.0), (700.0, 700.0, 550.0)
+corner = lambda b: tuple(hi[a] if b >> a & 1 else lo[a] for a in range(3))
+with open(sys.argv[1], "w") as f:
+    f.write("solid cube\n")
+    for q in [(0, 2, 6, 4), (1, 5, 7, 3), (0, 4, 5, 1), (2, 3, 7, 6), (0, 1, 3, 2), (4, 6, 7, 5)]:
+        for tri in ((q[0], q[1], q[2]), (q[0], q[2], q[3])):
+            f.write(" facet normal 0 0 0\n  outer loop\n" + "".join("   vertex %g %g %g\n" % corner(b) for b in tri) +
+                    "  endloop\n endfacet\n")
+    f.write("endsolid cube\n")
+PY
+printf 'dimension: 3\nbox: [-0.3, 1.3, -0.3, 1.3, -0.3, 1.3]\ngravity: [0, 0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 1, 0, 0.7]}\n  - {role: body, name: cube, shape: mesh, file: cube_mm.stl}\n' >"$tmp/mm.yaml"
+(ulimit -v 2000000; expect_error "cube_mm.stl' spans 400, 250 times the scene's box \(1.6\); is it in millimetres\? scale it by 0.001" -case scene -scene_file "$tmp/mm.yaml" -nx 12 -output_dir "$tmp/o5"; exit $fail) || fail=1
+(ulimit -v 2000000; expect_error "the scene needs more than [0-9]+ particles; .* lower -nx" -case scene -scene_file "$src/cases/scenes/falling_block.yaml" -nx 20000 -output_dir "$tmp/o6"; exit $fail) || fail=1
+
 # The help into a pipe closed early ends quietly, as any printing program does (SIGPIPE), without
 # PETSc's crash report.
 for k in 1 2 3 4 5; do
