@@ -57,6 +57,8 @@ struct Region {
   bool free_slip = false;  // walls and bodies: slip: free
   bool is_plate = false;   // shape: plate (then `shape` is its outline, for the bounds)
   PlateSpec plate;
+  std::string key;  // regions[k], for the messages
+  YAML::Node at;
 };
 
 // Parses one scene file; every refusal names the file, the line and the key. A key that is absent gives a
@@ -210,6 +212,14 @@ class Reader {
       std::vector<Eigen::Vector2d> vertices;
       for (std::size_t i = 0; i < v.size(); ++i)
         vertices.push_back(point(v[i], k + "[" + std::to_string(i) + "]").head<2>());
+      // Collinear vertices enclose nothing: the lattice points on the line would be a region of no area.
+      double area = 0, extent = 0;
+      for (std::size_t i = 0, j = vertices.size() - 1; i < vertices.size(); j = i++) {
+        area += 0.5 * (vertices[j].x() * vertices[i].y() - vertices[i].x() * vertices[j].y());
+        extent = std::max(extent, (vertices[i] - vertices[0]).norm());
+      }
+      if (!(std::abs(area) > 1e-12 * extent * extent))
+        fail(v, k, "encloses no area (its vertices lie on one line); give vertices around the region");
       return make_polygon(vertices);
     }
     if (kind == "cylinder") {
@@ -623,6 +633,26 @@ void check_mesh_units(const Reader& r, const Point3& box_lo, const Point3& box_h
   }
 }
 
+// A fluid region or a body that got no particle would silently be missing from the run (a body smaller
+// than the spacing, outside the box, or thinner than dx; fluid beyond the box): refused, naming it.
+void check_regions_filled(const Reader& r, const std::vector<Region>& fluids, const std::vector<Region>& solids,
+                          const std::vector<Region>& plates, const std::vector<std::string>& bodies,
+                          std::map<const Region*, long>& taken, double dx) {
+  const std::string fix = " at dx = " + number_text(dx) +
+                          ": it is smaller or thinner than the spacing, outside the box, or covered by the "
+                          "regions after it; refine (a larger -nx), enlarge it or move it into the box";
+  for (const Region& f : fluids)
+    if (taken[&f] == 0) r.fail(f.at, f.key, "is a fluid region that holds no particle" + fix);
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    long n = 0;
+    const Region* first = nullptr;
+    for (const Region& w : solids)
+      if (w.body == static_cast<int>(b)) n += taken[&w], first = first ? first : &w;
+    for (const Region& p : plates) n += p.body == static_cast<int>(b);  // a plate's layers come later
+    if (n == 0 && first) r.fail(first->at, first->key, "is body '" + bodies[b] + "', which holds no particle" + fix);
+  }
+}
+
 // Lattice points (i + 1/2) dx of one axis within [lo, hi] ([lo, hi) when periodic), as index range.
 std::pair<long, long> lattice_range(double lo, double hi, double dx, bool periodic) {
   const long first = static_cast<long>(std::ceil(lo / dx - 0.5 - kOnSurface));
@@ -778,7 +808,8 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
   Bounds reach{Point3::Constant(kInf), Point3::Constant(-kInf)};
   std::vector<char> given;  // per body: its motion was given
   for (std::size_t k = 0; k < list.size(); ++k) {
-    const Region region = r.region(list[k], "regions[" + std::to_string(k) + "]", out.bodies, g);
+    Region region = r.region(list[k], "regions[" + std::to_string(k) + "]", out.bodies, g);
+    region.key = "regions[" + std::to_string(k) + "]", region.at = list[k];
     // A body's motion, given once (on any of its regions).
     if (region.role == Role::Body) {
       out.motions.resize(out.bodies.size());
@@ -862,6 +893,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
     if (sampled > 0 && kept / sampled * points > static_cast<double>(particle_budget().limit)) refuse_over_budget();
   }
   long fluid = 0;
+  std::map<const Region*, long> taken;  // particles per fluid region and per solid region
   std::array<long, 3> i{};
   for (i[2] = D == 3 ? range[2].first : 0; i[2] <= (D == 3 ? range[2].second : 0); ++i[2])
     for (i[1] = range[1].first; i[1] <= range[1].second; ++i[1]) {
@@ -870,6 +902,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
         const Point3 x = lattice_point(i);
         const Fill f = fill(x);
         if (!f.holder && !f.fluid) continue;
+        ++taken[f.holder ? f.holder : f.fluid];
         const std::array<double, 3> xa = {x[0], x[1], x[2]};
         s.x.push_back(xa);
         if (f.holder) {
@@ -885,6 +918,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
         ++fluid;
       }
     }
+  check_regions_filled(r, fluids, solids, plates, out.bodies, taken, dx);
   add_plate_layers(plates, wall_layers, dx, box_lo, box_hi, out);
   out.plate_face.resize(s.x.size(), 0);
   if (fluid == 0)

@@ -337,6 +337,24 @@ ShapePtr make_mesh(const std::string& path) {
   normals->ComputeCellNormalsOn();
   normals->Update();
   vtkSmartPointer<vtkPolyData> surface = normals->GetOutput();
+  // A closed surface of no volume (every z equal) has no inside to tell: its distance's sign is noise,
+  // and the lattice points near it all read as inside. Its volume by the divergence theorem.
+  double volume = 0, b[6], p[3][3];
+  surface->GetBounds(b);
+  const vtkIdType* ids = nullptr;
+  vtkIdType count = 0;
+  vtkCellArray* cells = surface->GetPolys();
+  for (cells->InitTraversal(); cells->GetNextCell(count, ids);) {
+    if (count != 3) continue;
+    for (int c = 0; c < 3; ++c) surface->GetPoint(ids[c], p[c]);
+    volume += (p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) - p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
+               p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0])) / 6.0;
+  }
+  const double size = std::max({b[1] - b[0], b[3] - b[2], b[5] - b[4]});
+  if (!(std::abs(volume) > 1e-9 * size * size * size))
+    throw Error("'" + path + "' encloses no volume (a flat surface: its extent is " + std::to_string(b[1] - b[0]) +
+                " x " + std::to_string(b[3] - b[2]) + " x " + std::to_string(b[5] - b[4]) +
+                "); give a solid with thickness");
   return std::make_shared<Mesh>(surface);
 }
 

@@ -72,6 +72,22 @@ printf 'dimension: 3\nbox: [-0.3, 1.3, -0.3, 1.3, -0.3, 1.3]\ngravity: [0, 0, -1
 (ulimit -v 2000000; expect_error "cube_mm.stl' spans 400, 250 times the scene's box \(1.6\); is it in millimetres\? scale it by 0.001" -case scene -scene_file "$tmp/mm.yaml" -nx 12 -output_dir "$tmp/o5"; exit $fail) || fail=1
 (ulimit -v 2000000; expect_error "the scene needs more than [0-9]+ particles; .* lower -nx" -case scene -scene_file "$src/cases/scenes/falling_block.yaml" -nx 20000 -output_dir "$tmp/o6"; exit $fail) || fail=1
 
+# Geometry that gets no particle, or has no area or volume, is refused naming the region: a body
+# smaller than the spacing or outside the box, a fluid region beyond the box, three collinear
+# vertices, a closed STL whose z are all equal.
+scene2() { printf 'dimension: 2\nbox: [0, 1, 0, 1]\ngravity: [0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5]}\n  - %s\n' "$2" >"$tmp/$1.yaml"; }
+scene2 tiny "{role: body, name: tiny, shape: circle, centre: [0.5, 0.25], radius: 0.01}"
+scene2 away "{role: body, name: away, shape: circle, centre: [3, 3], radius: 0.2}"
+scene2 beyond "{role: fluid, shape: box, bounds: [2, 3, 0, 0.5]}"
+scene2 line "{role: fluid, shape: polygon, vertices: [[0.1, 0.6], [0.2, 0.7], [0.3, 0.8]]}"
+expect_error "regions\[1\]: is body 'tiny', which holds no particle at dx = 0.05" -case scene -scene_file "$tmp/tiny.yaml" -nx 20 -output_dir "$tmp/g1"
+expect_error "regions\[1\]: is body 'away', which holds no particle" -case scene -scene_file "$tmp/away.yaml" -nx 20 -output_dir "$tmp/g2"
+expect_error "regions\[1\]: is a fluid region that holds no particle" -case scene -scene_file "$tmp/beyond.yaml" -nx 20 -output_dir "$tmp/g3"
+expect_error "regions\[1\].shape.polygon: encloses no area \(its vertices lie on one line\)" -case scene -scene_file "$tmp/line.yaml" -nx 20 -output_dir "$tmp/g4"
+sed 's/vertex \([^ ]*\) \([^ ]*\) [^ ]*$/vertex \1 \2 0.3/' "$tmp/cube_mm.stl" | sed 's/\b300\b/0.3/g; s/\b700\b/0.7/g' >"$tmp/flat.stl"
+printf 'dimension: 3\nbox: [0, 1, 0, 1, 0, 1]\ngravity: [0, 0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 1, 0, 0.6]}\n  - {role: body, name: plate, shape: mesh, file: flat.stl}\n' >"$tmp/flat.yaml"
+expect_error "flat.stl' encloses no volume" -case scene -scene_file "$tmp/flat.yaml" -nx 10 -output_dir "$tmp/g5"
+
 # The help into a pipe closed early ends quietly, as any printing program does (SIGPIPE), without
 # PETSc's crash report.
 for k in 1 2 3 4 5; do
