@@ -918,7 +918,6 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
         ++fluid;
       }
     }
-  check_regions_filled(r, fluids, solids, plates, out.bodies, taken, dx);
   add_plate_layers(plates, wall_layers, dx, box_lo, box_hi, out);
   out.plate_face.resize(s.x.size(), 0);
   if (fluid == 0)
@@ -926,6 +925,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
            "hold no fluid particle at dx = " + number_text(dx) +
                ": no lattice point lies inside a fluid region, outside the solids and inside the box; refine "
                "(a larger -nx) or move the fluid regions");
+  check_regions_filled(r, fluids, solids, plates, out.bodies, taken, dx);
 
   // Each body's surface, sampled at a quarter of the spacing (an eighth of the body across at least in
   // 2D, at most 200 steps along an edge in 3D), within the box.
