@@ -7,6 +7,7 @@
 #include "solvers/registry.hpp"
 #include "src/core/options.hpp"
 #include "src/kernels/kernel_options.hpp"
+#include "src/run/memory_budget.hpp"
 #include "src/run/run_control.hpp"
 #include "src/run/time_loop.hpp"
 
@@ -20,7 +21,11 @@ namespace {
 template <int D> void run_in_dim(const RunOptions& names) {
   const std::unique_ptr<Case<D>> run_case = create_case<D>(names.case_name);
   const std::unique_ptr<Solver<D>> solver = create_solver<D>(names.solver_name);
-  run_case->set_from_options();
+  {
+    // A scene read from a file may build its particles' positions here: the memory check applies.
+    const MemoryBudgetScope budget(solver->bytes_per_particle(), names.solver_name);
+    run_case->set_from_options();
+  }
   solver->set_from_options();
   RunControl control;
   control.t_end = run_case->default_t_end();

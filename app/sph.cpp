@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -132,16 +133,30 @@ bool options_files_valid(int argc, char** argv) {
   return true;
 }
 
+// Whether this invocation only prints (-help, -version) and runs nothing.
+bool only_prints(int argc, char** argv) {
+  for (int k = 1; k < argc; ++k) {
+    const std::string a = argv[k];
+    if (a == "-help" || a == "-h" || a == "--help" || a == "-version") return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (!options_files_valid(argc, argv)) return 1;
+  // Printing the help into a closed pipe (sph -help | head) must end quietly, as any printing program
+  // does, not in PETSc's crash report: its signal handler, installed while it prints, catches SIGPIPE.
+  const bool printing = only_prints(argc, argv);
+  if (printing) PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr);
   if (PetscInitialize(&argc, &argv, nullptr, kEssentialHelp)) {
     std::fprintf(stderr, "sph: error: could not initialise PETSc/MPI (check -options_file paths)\n");
     return 1;
   }
   sph::install_error_handler();
   sph::install_interrupt_handlers();
+  if (printing) std::signal(SIGPIPE, SIG_DFL);
   // PETSc printed its own version during initialisation; -version runs nothing.
   PetscBool version = PETSC_FALSE;
   PetscOptionsHasName(nullptr, nullptr, "-version", &version);

@@ -10,6 +10,7 @@
 #include "cases/common/wall_options.hpp"
 #include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
+#include "src/io/output_dir.hpp"
 
 namespace sph {
 
@@ -153,6 +154,7 @@ template <int D> void DamBreak<D>::write_outputs(const Particles<D>& P, double t
   PetscMPIInt rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   if (rank != 0) return;
+  note_output(dir + "/front_position.csv");
   std::ofstream out(dir + "/front_position.csv");
   out.precision(10);
   out << "T,Z,P_foot,P_far,H\n";

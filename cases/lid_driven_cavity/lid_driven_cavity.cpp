@@ -11,6 +11,7 @@
 #include "cases/common/wall_options.hpp"
 #include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
+#include "src/io/output_dir.hpp"
 
 namespace sph {
 
@@ -271,6 +272,7 @@ template <int D> void LidDrivenCavity<D>::write_outputs(const Particles<D>& P, d
   PetscMPIInt rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   if (rank != 0) return;
+  for (const char* name : {"/centreline_u.csv", "/centreline_v.csv"}) note_output(dir + name);
   std::ofstream cu(dir + "/centreline_u.csv"), cv(dir + "/centreline_v.csv");
   cu.precision(10), cv.precision(10);
   cu << "y,u\n";
@@ -279,6 +281,7 @@ template <int D> void LidDrivenCavity<D>::write_outputs(const Particles<D>& P, d
   for (int k = 0; k < m; ++k) cv << pts[m + k][0] << "," << u[m + k][1] / U_ << "\n";
   if (!has_reference()) return;
   const Reference ref = reference();
+  note_output(dir + "/centreline_" + ref.file_tag + ".csv");
   std::ofstream cr(dir + "/centreline_" + ref.file_tag + ".csv");
   cr.precision(10);
   // With -profile_average_from, the time-averaged profile beside the last one (empty before the window).

@@ -9,12 +9,14 @@
 #include <fstream>
 #include <initializer_list>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 
 #include "cases/scene/body_surface.hpp"
 #include "cases/scene/shapes.hpp"
 #include "src/core/error.hpp"
+#include "src/particles/particle_budget.hpp"
 
 namespace sph {
 
@@ -79,6 +81,8 @@ struct Region {
   bool free_slip = false;  // walls and bodies: slip: free
   bool is_plate = false;   // shape: plate (then `shape` is its outline, for the bounds)
   PlateSpec plate;
+  std::string key;  // regions[k], for the messages
+  YAML::Node at;
 };
 
 // Parses one scene file; every refusal names the file, the line and the key. A key that is absent gives a
@@ -94,11 +98,33 @@ class Reader {
   }
 
   YAML::Node load(const std::string& text) const {
+    YAML::Node root;
     try {
-      return YAML::Load(text);
+      root = YAML::Load(text);
     } catch (const YAML::ParserException& e) {
       throw Error("scene file '" + path_ + "': line " + std::to_string(e.mark.line + 1) + ", column " +
                   std::to_string(e.mark.column + 1) + ": YAML syntax error (" + e.msg + "); fix the syntax there");
+    }
+    refuse_repeated_keys(root);
+    return root;
+  }
+
+  // yaml-cpp keeps a key given twice in one mapping and answers the first: the second (dimension: 2,
+  // then 3) would be silently ignored.
+  void refuse_repeated_keys(const YAML::Node& n) const {
+    if (n.IsSequence())
+      for (const auto& item : n) refuse_repeated_keys(item);
+    if (!n.IsMap()) return;
+    std::map<std::string, int> seen;  // key -> its first line
+    for (const auto& item : n) {
+      if (item.first.IsScalar()) {
+        const auto [first, fresh] = seen.emplace(item.first.Scalar(), item.first.Mark().line + 1);
+        if (!fresh)
+          fail(item.first, "",
+               "key '" + item.first.Scalar() + "' is given a second time in one mapping (first on line " +
+                   std::to_string(first->second) + "); keep one");
+      }
+      refuse_repeated_keys(item.second);
     }
   }
 
@@ -210,6 +236,14 @@ class Reader {
       std::vector<Eigen::Vector2d> vertices;
       for (std::size_t i = 0; i < v.size(); ++i)
         vertices.push_back(point(v[i], k + "[" + std::to_string(i) + "]").head<2>());
+      // Collinear vertices enclose nothing: the lattice points on the line would be a region of no area.
+      double area = 0, extent = 0;
+      for (std::size_t i = 0, j = vertices.size() - 1; i < vertices.size(); j = i++) {
+        area += 0.5 * (vertices[j].x() * vertices[i].y() - vertices[i].x() * vertices[j].y());
+        extent = std::max(extent, (vertices[i] - vertices[0]).norm());
+      }
+      if (!(std::abs(area) > 1e-12 * extent * extent))
+        fail(v, k, "encloses no area (its vertices lie on one line); give vertices around the region");
       return make_polygon(vertices);
     }
     if (kind == "cylinder") {
@@ -247,6 +281,7 @@ class Reader {
       if (file.is_relative()) file = dir_ / file;
       try {
         ShapePtr mesh = make_mesh(file.string());
+        meshes.push_back({v, k, file.string(), mesh->bounds()});
         std::ifstream in(file, std::ios::binary);
         const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         checksum = fnv1a(checksum, bytes.data(), bytes.size());
@@ -531,6 +566,12 @@ class Reader {
 
   std::uint64_t checksum = kFnv1aBasis;
   int dim = 2;
+  struct MeshRead {
+    YAML::Node at;
+    std::string key, file;
+    Bounds bounds;
+  };
+  std::vector<MeshRead> meshes;  // every mesh the regions read, for the check of their units
 
  private:
   std::string path_;
@@ -583,6 +624,56 @@ void read_physics(Reader& r, const YAML::Node& n, SceneFile& s, const std::strin
       on = v == 1;
     }
     s.field["free_surface"] = {on ? 1.0 : 0.0};
+  }
+}
+
+// A mesh drawn in other units than the scene (millimetres in a scene of metres) is far larger or
+// smaller than the scene's box: refused naming the likely unit, before its surface is sampled at the
+// scene's spacing (a 400-wide cube refined to dx/4 exhausts any memory).
+void check_mesh_units(const Reader& r, const Point3& box_lo, const Point3& box_hi) {
+  double box = 0;
+  for (int a = 0; a < r.dim; ++a) box = std::max(box, box_hi[a] - box_lo[a]);
+  for (const Reader::MeshRead& m : r.meshes) {
+    double size = 0;
+    for (int a = 0; a < r.dim; ++a) size = std::max(size, m.bounds.hi[a] - m.bounds.lo[a]);
+    const double ratio = size / box;
+    if (ratio <= 100) continue;
+    // The likely unit: the smallest of the usual ones (as factors against the scene's) that brings the
+    // mesh within the box.
+    struct Unit {
+      const char* name;
+      double per_metre;
+    };
+    static const Unit units[] = {{"inches", 39.37}, {"centimetres", 1e2}, {"millimetres", 1e3}, {"micrometres", 1e6}};
+    const Unit* best = nullptr;
+    for (const Unit& u : units)
+      if (!best && size / u.per_metre <= box) best = &u;
+    r.fail(m.at, m.key,
+           "'" + m.file + "' spans " + number_text(size) + ", " + number_text(ratio) + " times the scene's box (" +
+               number_text(box) + "); " +
+               (best ? "is it in " + std::string(best->name) + "? scale it by " + number_text(1 / best->per_metre)
+                     : std::string("scale it")) +
+               " to the scene's units");
+  }
+}
+
+// A fluid region or a body that got no particle would silently be missing from the run (a body smaller
+// than the spacing, outside the box, or thinner than dx; fluid beyond the box): refused, naming it.
+void check_regions_filled(const Reader& r, const std::vector<Region>& fluids, const std::vector<Region>& solids,
+                          const std::vector<Region>& plates, const std::vector<std::string>& bodies,
+                          std::map<const Region*, long>& taken, double dx) {
+  const std::string fix = " at dx = " + number_text(dx) +
+                          ": it is smaller or thinner than the spacing, outside the box, or covered by the "
+                          "regions after it; refine (a larger -nx), enlarge it or move it into the box";
+  for (const Region& f : fluids)
+    if (taken[&f] == 0) r.fail(f.at, f.key, "is a fluid region that holds no particle" + fix);
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    long n = 0;
+    const Region* first = nullptr;
+    for (const Region& w : solids)
+      if (w.body == static_cast<int>(b)) n += taken[&w], first = first ? first : &w;
+    for (const Region& p : plates) n += p.body == static_cast<int>(b);  // a plate's layers come later
+    if (n == 0 && first) r.fail(first->at, first->key, "is body '" + bodies[b] + "', which holds no particle" + fix);
   }
 }
 
@@ -741,7 +832,8 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
   Bounds reach{Point3::Constant(kInf), Point3::Constant(-kInf)};
   std::vector<char> given;  // per body: its motion was given
   for (std::size_t k = 0; k < list.size(); ++k) {
-    const Region region = r.region(list[k], "regions[" + std::to_string(k) + "]", out.bodies, g);
+    Region region = r.region(list[k], "regions[" + std::to_string(k) + "]", out.bodies, g);
+    region.key = "regions[" + std::to_string(k) + "]", region.at = list[k];
     // A body's motion, given once (on any of its regions).
     if (region.role == Role::Body) {
       out.motions.resize(out.bodies.size());
@@ -760,6 +852,8 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
     if (plates.size() > 127)
       r.fail(list[k], "regions[" + std::to_string(k) + "]", "is the 128th plate; a scene holds at most 127");
   }
+
+  if (has_box) check_mesh_units(r, box_lo, box_hi);
 
   // The lattice over the regions' reach, within the box.
   std::array<std::pair<long, long>, 3> range{};
@@ -793,42 +887,75 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
     for (const Region& w : solids) d = std::min(d, w.shape->distance(y));
     return d;
   };
+  // What a lattice point becomes: a solid's particle (holder), a fluid region's, or none.
+  struct Fill {
+    const Region* holder = nullptr;
+    const Region* fluid = nullptr;
+  };
+  auto fill = [&](const Point3& x) {
+    Fill f;
+    // The solids' union: its distance is the nearest part's; the last solid holding x names it.
+    double solid = kInf;
+    for (const Region& w : solids) {
+      const double d = w.shape->distance(x);
+      solid = std::min(solid, d);
+      if (d <= on) f.holder = &w;
+    }
+    if (!f.holder && !in_plate_gap(plates, x, dx))
+      for (const Region& fl : fluids)
+        if (fl.shape->distance(x) <= on) f.fluid = &fl;
+    // A body is kept whole: it is a solid with a mass, and a hollow shell's inner face would read
+    // as a wall thinner than the support where the shell curves (scene_geometry.hpp's measure).
+    if (f.holder && !(solid > deep || f.holder->role == Role::Body)) f.holder = nullptr;
+    return f;
+  };
+  auto lattice_point = [&](const std::array<long, 3>& i) {
+    Point3 x = Point3::Zero();
+    for (int a = 0; a < D; ++a) x[a] = std::clamp((i[a] + 0.5) * dx, box_lo[a], box_hi[a]);
+    return x;
+  };
+  // The memory check before the particles exist: their count estimated from a sample of the lattice
+  // (about 2^16 points), so a scene far too large is refused in well under a second.
+  {
+    std::array<long, 3> stride{1, 1, 1};
+    const long per_axis = static_cast<long>(std::ceil(std::pow(65536.0, 1.0 / D)));
+    double sampled = 0, kept = 0;
+    for (int a = 0; a < D; ++a) stride[a] = std::max(1L, (range[a].second - range[a].first + 1) / per_axis);
+    std::array<long, 3> i{};
+    for (i[2] = D == 3 ? range[2].first : 0; i[2] <= (D == 3 ? range[2].second : 0); i[2] += stride[2])
+      for (i[1] = range[1].first; i[1] <= range[1].second; i[1] += stride[1])
+        for (i[0] = range[0].first; i[0] <= range[0].second; i[0] += stride[0]) {
+          const Fill f = fill(lattice_point(i));
+          sampled += 1, kept += f.holder || f.fluid;
+        }
+    if (sampled > 0 && kept / sampled * points > static_cast<double>(particle_budget().limit)) refuse_over_budget();
+  }
   long fluid = 0;
+  std::map<const Region*, long> taken;  // particles per fluid region and per solid region
   std::array<long, 3> i{};
   for (i[2] = D == 3 ? range[2].first : 0; i[2] <= (D == 3 ? range[2].second : 0); ++i[2])
-    for (i[1] = range[1].first; i[1] <= range[1].second; ++i[1])
+    for (i[1] = range[1].first; i[1] <= range[1].second; ++i[1]) {
+      if (s.x.size() > particle_budget().limit) refuse_over_budget();
       for (i[0] = range[0].first; i[0] <= range[0].second; ++i[0]) {
-        Point3 x = Point3::Zero();
-        for (int a = 0; a < D; ++a) x[a] = std::clamp((i[a] + 0.5) * dx, box_lo[a], box_hi[a]);
-        // The solids' union: its distance is the nearest part's; the last solid holding x names it.
-        double solid = kInf;
-        const Region* holder = nullptr;
-        for (const Region& w : solids) {
-          const double d = w.shape->distance(x);
-          solid = std::min(solid, d);
-          if (d <= on) holder = &w;
-        }
-        const Region* in_fluid = nullptr;
-        if (!holder && !in_plate_gap(plates, x, dx))
-          for (const Region& f : fluids)
-            if (f.shape->distance(x) <= on) in_fluid = &f;
-        // A body is kept whole: it is a solid with a mass, and a hollow shell's inner face would read
-        // as a wall thinner than the support where the shell curves (scene_geometry.hpp's measure).
-        const bool kept_solid = holder && (solid > deep || holder->role == Role::Body);
-        if (!kept_solid && !in_fluid) continue;
+        const Point3 x = lattice_point(i);
+        const Fill f = fill(x);
+        if (!f.holder && !f.fluid) continue;
+        ++taken[f.holder ? f.holder : f.fluid];
         const std::array<double, 3> xa = {x[0], x[1], x[2]};
         s.x.push_back(xa);
-        if (holder) {
+        if (f.holder) {
           s.v.push_back({0.0, 0.0, 0.0}), s.p.push_back(0.0), s.kind.push_back(kSceneFixedWall);
-          out.body.push_back(holder->body), out.free_slip.push_back(holder->free_slip);
+          out.body.push_back(f.holder->body), out.free_slip.push_back(f.holder->free_slip);
           continue;
         }
+        const Region* in_fluid = f.fluid;
         const double p = in_fluid->hydrostatic ? rho0 * g.norm() * depth_below_surface(occupied, x, up, box_top, dx)
                                                : in_fluid->pressure;
         s.v.push_back({in_fluid->velocity[0], in_fluid->velocity[1], in_fluid->velocity[2]});
         s.p.push_back(p), s.kind.push_back(kSceneFluid), out.body.push_back(-1), out.free_slip.push_back(0);
         ++fluid;
       }
+    }
   add_plate_layers(plates, wall_layers, dx, box_lo, box_hi, out);
   out.plate_face.resize(s.x.size(), 0);
   if (fluid == 0)
@@ -836,6 +963,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
            "hold no fluid particle at dx = " + number_text(dx) +
                ": no lattice point lies inside a fluid region, outside the solids and inside the box; refine "
                "(a larger -nx) or move the fluid regions");
+  check_regions_filled(r, fluids, solids, plates, out.bodies, taken, dx);
 
   // Each body's surface, sampled at a quarter of the spacing (an eighth of the body across at least in
   // 2D, at most 200 steps along an edge in 3D), within the box.

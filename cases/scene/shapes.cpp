@@ -14,8 +14,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <limits>
+#include <sstream>
 
 #include "src/core/error.hpp"
 
@@ -240,6 +243,40 @@ template <class Reader> vtkSmartPointer<vtkPolyData> read_with(const std::string
   return out;
 }
 
+// VTK's OBJ reader trusts the faces' vertex numbers: one past the vertices (f 1 2 99) or 0 (OBJ counts
+// from 1) is read out of bounds. Checked here first: the largest, the smallest and any zero number
+// against the vertices the file holds (a face may name a vertex given after it; -k counts back).
+void check_obj_faces(const std::string& path) {
+  std::ifstream in(path);
+  long vertices = 0, line_no = 0, highest = 0, lowest = 0, highest_at = 0, lowest_at = 0, zero_at = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++line_no;
+    std::istringstream words(line);
+    std::string tag;
+    words >> tag;
+    if (tag == "v") ++vertices;
+    if (tag != "f" && tag != "l" && tag != "p") continue;
+    for (std::string w; words >> w;) {
+      char* end = nullptr;
+      const long k = std::strtol(w.c_str(), &end, 10);
+      if (end == w.c_str()) continue;  // not a number: the reader's to judge
+      if (k == 0 && !zero_at) zero_at = line_no;
+      if (k > highest) highest = k, highest_at = line_no;
+      if (k < lowest) lowest = k, lowest_at = line_no;
+    }
+  }
+  const std::string where = "'" + path + "' line ";
+  if (zero_at)
+    throw Error(where + std::to_string(zero_at) +
+                ": a face names vertex 0; OBJ numbers vertices from 1 (or -1 for the last): fix the face");
+  if (highest > vertices)
+    throw Error(where + std::to_string(highest_at) + ": a face names vertex " + std::to_string(highest) +
+                " of the " + std::to_string(vertices) + " the file holds; fix the face or add its vertices");
+  if (-lowest > vertices)
+    throw Error(where + std::to_string(lowest_at) + ": a face names vertex " + std::to_string(lowest) + ", before the " +
+                std::to_string(vertices) + " the file holds; fix the face");
+}
+
 vtkSmartPointer<vtkPolyData> read_surface(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -247,7 +284,7 @@ vtkSmartPointer<vtkPolyData> read_surface(const std::string& path) {
     throw Error("'" + path + "' is not .stl, .obj or .vtp; convert the surface to one of those");
   if (!std::filesystem::is_regular_file(path)) throw Error("cannot read '" + path + "'; check the path");
   return ext == ".stl"   ? read_with<vtkSTLReader>(path)
-         : ext == ".obj" ? read_with<vtkOBJReader>(path)
+         : ext == ".obj" ? (check_obj_faces(path), read_with<vtkOBJReader>(path))
                          : read_with<vtkXMLPolyDataReader>(path);
 }
 
@@ -300,6 +337,24 @@ ShapePtr make_mesh(const std::string& path) {
   normals->ComputeCellNormalsOn();
   normals->Update();
   vtkSmartPointer<vtkPolyData> surface = normals->GetOutput();
+  // A closed surface of no volume (every z equal) has no inside to tell: its distance's sign is noise,
+  // and the lattice points near it all read as inside. Its volume by the divergence theorem.
+  double volume = 0, b[6], p[3][3];
+  surface->GetBounds(b);
+  const vtkIdType* ids = nullptr;
+  vtkIdType count = 0;
+  vtkCellArray* cells = surface->GetPolys();
+  for (cells->InitTraversal(); cells->GetNextCell(count, ids);) {
+    if (count != 3) continue;
+    for (int c = 0; c < 3; ++c) surface->GetPoint(ids[c], p[c]);
+    volume += (p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) - p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
+               p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0])) / 6.0;
+  }
+  const double size = std::max({b[1] - b[0], b[3] - b[2], b[5] - b[4]});
+  if (!(std::abs(volume) > 1e-9 * size * size * size))
+    throw Error("'" + path + "' encloses no volume (a flat surface: its extent is " + std::to_string(b[1] - b[0]) +
+                " x " + std::to_string(b[3] - b[2]) + " x " + std::to_string(b[5] - b[4]) +
+                "); give a solid with thickness");
   return std::make_shared<Mesh>(surface);
 }
 

@@ -58,6 +58,7 @@ failed (during time stepping: why), n/a (the program refused the case with that 
 
 import argparse
 import os
+import sys
 
 from .common import REPO
 from .execute import carry_out, study_settings
@@ -114,4 +115,8 @@ def main(argv=None):
         return 0
     make_outputs(study, a.study, runs, out_dir, counts, max(1, a.jobs), mpi)
     print("wrote %s" % os.path.join(out_dir, "report.md"))
+    ran, skipped, failed = counts
+    if ran and failed == ran and not skipped:  # nothing to report on: a script must not read it as success
+        print("study: every run failed (their failures are in report.md and each run's stderr.txt)", file=sys.stderr)
+        return 1
     return 0

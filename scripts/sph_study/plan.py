@@ -42,6 +42,7 @@ def load_study(path):
     order = sorted(range(len(given)), key=lambda i: given[i])
     study["resolutions"] = [given[i] for i in order]
     study.setdefault("name", os.path.splitext(os.path.basename(path))[0])
+    check_name(study, path)
     for key in ("options", "sweeps", "solver_options", "solver_sweeps", "resolution_options",
                 "solver_resolution_options"):
         study[key] = study.get(key) or {}
@@ -73,6 +74,15 @@ def load_study(path):
             sys.exit("study: %s: 'levels' must be a list of positive error levels, e.g. [1e-3, 3e-4]" % path)
         study["levels"] = sorted(values, reverse=True)
     return study
+
+
+def check_name(study, path):
+    """The study's name names its folder (out/studies/<name>): one plain folder name, so that a study
+    writes only under its own folder, never over another's results.csv or report.md."""
+    name = study["name"]
+    if not isinstance(name, str) or not name or name in (".", "..") or "/" in name or "\\" in name or "\0" in name:
+        sys.exit("study: %s: 'name' must be a plain folder name (no '/', not '.' or '..'), got %r; "
+                 "give e.g. name: %s" % (path, name, safe_name(os.path.splitext(os.path.basename(path))[0])))
 
 
 def load_scene(study, path):
@@ -231,6 +241,7 @@ def load_matrix(study, path):
                     sys.exit("study: %s: matrix: %s '%s': '%s' must be a mapping" % (path, what, it["label"], key))
             it.setdefault("metric", m.get("metric"))
     study.setdefault("name", os.path.splitext(os.path.basename(path))[0])
+    check_name(study, path)
     return study
 
 

@@ -1,6 +1,8 @@
 #include "src/core/option_reads.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include "src/core/options.hpp"
@@ -38,6 +40,23 @@ PetscErrorCode refuse_non_finite(PetscOptionItems* block, const char* name, cons
     SETERRQ(block->comm, PETSC_ERR_USER_INPUT, "option %s has the value '%s', which is not a finite number", name,
             given ? given : "");
   }
+  PetscFunctionReturn(0);
+}
+
+// PETSc wraps an integer beyond its int type (2147483648 reads as a negative number): refused, named.
+PetscErrorCode refuse_out_of_range(PetscOptionItems* block, const char* name) {
+  PetscFunctionBeginUser;
+  const char* given = nullptr;
+  PetscBool found = PETSC_FALSE;
+  PetscCall(PetscOptionsFindPair(block->options, block->prefix, name, &given, &found));
+  if (!found || !given) PetscFunctionReturn(0);
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(given, &end, 10);
+  const bool integer = end != given && *end == '\0';
+  PetscCheck(!integer || (errno != ERANGE && v >= PETSC_MIN_INT && v <= PETSC_MAX_INT), block->comm,
+             PETSC_ERR_USER_INPUT, "option %s has the value '%s', beyond the integers it takes (%d to %d)", name, given,
+             PETSC_MIN_INT, PETSC_MAX_INT);
   PetscFunctionReturn(0);
 }
 
@@ -90,6 +109,7 @@ PetscErrorCode option_int(PetscOptionItems* block, const char* name, const char*
   PetscFunctionBeginUser;
   record(name);
   PetscCall(refuse_missing_value(block, name, shown(current)));
+  PetscCall(refuse_out_of_range(block, name));
   PetscCall(PetscOptionsInt_Private(block, name, text(help, level).c_str(), "", current, value, set, PETSC_MIN_INT,
                                     PETSC_MAX_INT));
   PetscFunctionReturn(0);

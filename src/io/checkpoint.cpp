@@ -18,6 +18,7 @@
 #include "src/core/collective.hpp"
 #include "src/core/error.hpp"
 #include "src/io/json_file.hpp"
+#include "src/io/output_dir.hpp"
 
 namespace sph {
 
@@ -146,13 +147,20 @@ void fault_point(const char* stage, int write_number) {
 
 // Moves the older checkpoints along to make room for a new <path>: <path>.<k> to <path>.<k+1>, the
 // oldest dropped, and <path> linked as <path>.1, so <path> itself stays until the new one replaces it.
+// Only the chain that exists moves (up to the first missing number): the cost follows the files on
+// disk, not -checkpoints_kept.
 std::string keep_older(const std::string& path, int kept) {
   if (kept <= 1) return "";
   auto older = [&path](int k) { return path + "." + std::to_string(k); };
-  std::remove(older(kept - 1).c_str());
-  for (int k = kept - 2; k >= 1; --k)
+  int last = 0;  // <path>.1 ... <path>.<last> exist
+  while (last < kept - 1 && access(older(last + 1).c_str(), F_OK) == 0) ++last;
+  if (last == kept - 1) std::remove(older(last--).c_str());
+  for (int k = last; k >= 1; --k) {
+    note_output(older(k + 1));
     if (std::rename(older(k).c_str(), older(k + 1).c_str()) != 0 && errno != ENOENT)
       return "cannot move " + older(k) + " to " + older(k + 1) + " (" + std::strerror(errno) + ")";
+  }
+  note_output(older(1));
   if (link(path.c_str(), older(1).c_str()) != 0 && errno != ENOENT)
     return "cannot keep " + path + " as " + older(1) + " (" + std::strerror(errno) + ")";
   return "";
@@ -252,6 +260,7 @@ void write_checkpoint(const std::string& path, Particles<D>& P, const Checkpoint
   std::vector<CheckpointField> fields = particle_fields(P, kind);
   const std::string tmp = path + ".tmp";
   const bool root = world_rank() == 0;
+  if (root) note_output(path);
   nlohmann::json header{{"format", "sph checkpoint 1"}, {"t", state.t},         {"step", state.step},
                         {"n_global", P.n_global},       {"n_ids", id_count(P)}, {"dim", D},
                         {"scalars", state.scalars},     {"run", state.run},     {"fields", nlohmann::json::array()}};

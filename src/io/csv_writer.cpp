@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "src/core/error.hpp"
+#include "src/io/output_dir.hpp"
 
 namespace sph {
 
@@ -39,6 +40,7 @@ void append_number(std::string& line, double x) {
 CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns)
     : columns_(columns.size()), path_(path) {
   if (!is_root()) return;
+  note_output(path);
   file_ = std::fopen(path.c_str(), "w");
   if (!file_) throw Error("cannot write " + path + "; check that -output_dir is writable");
   std::string header;
@@ -55,6 +57,7 @@ CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& co
                      double resume_at)
     : columns_(columns.size()), path_(path) {
   if (!is_root()) return;
+  note_output(path);
   std::vector<std::string> kept;
   {
     std::ifstream in(path);

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "src/core/error.hpp"
+#include "src/io/output_dir.hpp"
 
 namespace sph {
 
@@ -15,6 +16,7 @@ void write_json_file(const std::string& path, const nlohmann::json& j) {
   if (rank != 0) return;
   // replace: invalid UTF-8 in a string becomes U+FFFD rather than a nlohmann::json::type_error.
   const std::string text = j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  note_output(path);
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);

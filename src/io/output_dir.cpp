@@ -8,7 +8,10 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <regex>
+#include <set>
 #include <system_error>
 #include <vector>
 
@@ -27,11 +30,7 @@ bool is_result(const std::string& name) {
   return std::regex_match(name, result);
 }
 
-// What -overwrite removes: the results, every table and temporary file sph writes.
-bool is_removable(const std::string& name) {
-  static const std::regex other(".*\\.csv|.*\\.tmp|checkpoint\\.bin.*");
-  return is_result(name) || std::regex_match(name, other);
-}
+constexpr const char* kManifest = ".sph_manifest";
 
 std::vector<fs::path> entries(const std::string& dir, bool (*keep)(const std::string&)) {
   std::vector<fs::path> out;
@@ -39,6 +38,42 @@ std::vector<fs::path> entries(const std::string& dir, bool (*keep)(const std::st
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
     if (keep(it->path().filename().string())) out.push_back(it->path());
   return out;
+}
+
+// The files this process has noted, so each is appended to its folder's manifest once.
+std::set<std::string>& noted() {
+  static std::set<std::string> files;
+  return files;
+}
+
+std::string folder_of(const std::string& path) {
+  const fs::path parent = fs::path(path).parent_path();
+  return parent.empty() ? std::string(".") : parent.string();
+}
+
+// The names the manifest of `dir` lists (plain names in `dir`: a line naming another folder is no
+// output of a run there and is skipped), and whether there is a manifest at all.
+std::vector<std::string> manifest_names(const std::string& dir, bool* exists) {
+  std::ifstream in((fs::path(dir) / kManifest).string());
+  *exists = static_cast<bool>(in);
+  std::vector<std::string> names;
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line != "." && line != ".." && line.find('/') == std::string::npos) names.push_back(line);
+  return names;
+}
+
+// -overwrite: removes each listed file and its temporary twin, then the manifest; "" or the failure.
+std::string remove_listed(const std::string& dir, const std::vector<std::string>& names) {
+  std::error_code ec;
+  for (const std::string& name : names)
+    for (const fs::path& p : {fs::path(dir) / name, fs::path(dir) / (name + ".tmp")})
+      if (!fs::remove(p, ec) && ec) return "cannot remove " + p.string() + " for -overwrite (" + ec.message() + ")";
+  fs::remove(fs::path(dir) / kManifest, ec);
+  // This process may write the same names again: they go into the new manifest.
+  const std::string prefix = (fs::path(dir) / "").string();
+  for (auto it = noted().begin(); it != noted().end();)
+    it = it->compare(0, prefix.size(), prefix) == 0 ? noted().erase(it) : std::next(it);
+  return "";
 }
 
 PetscMPIInt rank() {
@@ -97,16 +132,30 @@ OutputDirLock prepare_output_dir(const std::string& dir, bool overwrite, bool co
       error = "output directory " + dir + " already holds a run (" + found.front().filename().string() +
               "); pass -overwrite to replace it, -restart to continue it, or choose another -output_dir";
     } else if (!found.empty()) {
-      std::error_code ec;
-      for (const fs::path& p : entries(dir, is_removable))
-        if (!fs::remove(p, ec) && ec) {
-          error = "cannot remove " + p.string() + " for -overwrite (" + ec.message() + ")";
-          break;
-        }
+      bool listed = false;
+      const std::vector<std::string> names = manifest_names(dir, &listed);
+      error = listed ? remove_listed(dir, names)
+                     : "output directory " + dir + " holds results (" + found.front().filename().string() +
+                           ") that no manifest of a run lists (" + kManifest +
+                           ", written by sph since it keeps one); -overwrite removes only the files a run "
+                           "lists there: remove the old results yourself or choose another -output_dir";
     }
   }
   throw_if_root_failed(error);
   return lock;
+}
+
+void note_output(const std::string& path) {
+  const std::string dir = folder_of(path);
+  const std::string name = fs::path(path).filename().string();
+  if (!noted().insert((fs::path(dir) / name).string()).second) return;
+  // One short line in append mode: the ranks' lines do not mix. A manifest that cannot be written
+  // costs only -overwrite's cleaning; the output's own write reports an unwritable folder.
+  const int fd = open((fs::path(dir) / kManifest).c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) return;
+  const std::string line = name + "\n";
+  [[maybe_unused]] const ssize_t written = write(fd, line.data(), line.size());
+  close(fd);
 }
 
 void remove_frames_from(const std::string& dir, const std::string& basename, int first) {

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <regex>
 
+#include "src/io/output_dir.hpp"
+
 namespace sph {
 
 namespace {
@@ -55,6 +57,7 @@ Error write_failure(const std::string& path, int err) {
 }
 
 void write_atomically(const std::string& path, const std::string& text) {
+  note_output(path);
   const std::string tmp = path + ".tmp";
   {
     errno = 0;
@@ -72,6 +75,7 @@ void write_atomically(const std::string& path, const std::string& text) {
 }
 
 void write_frame(vtkXMLPolyDataWriter* writer, const std::string& path) {
+  note_output(path);
   const std::string tmp = path + ".tmp";
   writer->SetFileName(tmp.c_str());
   const vtkTypeBool warnings = vtkObject::GetGlobalWarningDisplay();

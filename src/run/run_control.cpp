@@ -10,6 +10,7 @@
 namespace sph {
 
 namespace {
+constexpr PetscInt kMaxCheckpointsKept = 1000;
 const char* const box_exit_names[] = {"stop", "remove", "auto"};
 const char* const body_pressure_force_names[] = {"surface", "pairs"};
 
@@ -118,7 +119,9 @@ void read_run_control(RunControl& opt, double case_steady_tol, int dim) {
   require(opt.max_steps >= -1, "-max_steps", "-1 (no limit) or non-negative", opt.max_steps);
   require(opt.output_interval == -1 || opt.output_interval >= 0, "-output_interval",
           "-1 (t_end/20), 0 (first and last frame) or positive", opt.output_interval);
-  require(opt.checkpoints_kept >= 1, "-checkpoints_kept", "at least 1", static_cast<double>(opt.checkpoints_kept));
+  // Each kept checkpoint is a full copy of the state, and each write moves them all along.
+  require(opt.checkpoints_kept >= 1 && opt.checkpoints_kept <= kMaxCheckpointsKept, "-checkpoints_kept",
+          "between 1 and " + std::to_string(kMaxCheckpointsKept), static_cast<double>(opt.checkpoints_kept));
   require(opt.checkpoint_interval == -1 || opt.checkpoint_interval >= 0, "-checkpoint_interval",
           "-1 (with every frame), 0 (never) or positive", opt.checkpoint_interval);
   require(opt.steady_tol == -1 || opt.steady_tol >= 0, "-steady_tol", "-1 (the case's default), 0 (off) or positive",

@@ -114,6 +114,7 @@ template <int D> class TimeLoop {
   void write_state(const std::string& why = "checkpointed");
   nlohmann::json this_segment(const std::string& status) const;
   nlohmann::json checked_restart() const;
+  void stop_early();
   void finish(const std::string& status, const std::string& failure);
   [[noreturn]] void fail(const Error& e);
   [[noreturn]] void stop_interrupted();
@@ -291,6 +292,8 @@ template <int D> void TimeLoop<D>::run() {
       // Everything needed to look at the state reached and to resume it.
       if (last_frame_t_ < t_) write_frame(), last_frame_t_ = t_;
       if (last_checkpoint_step_ != step_) write_state("interrupted (" + signal_name(interrupted_) + ")");
+    } else if (!time_reached(t_, opt_.t_end)) {
+      stop_early();
     }
   } catch (const OptionError&) {
     throw;  // a mistake in the command line, not a failed run
@@ -547,6 +550,24 @@ template <int D> void TimeLoop<D>::write_state(const std::string& why) {
                    static_cast<int>(opt_.checkpoints_kept));
 }
 
+// A run ended before -t_end by -max_steps or at steady state did what it was asked, and may be continued
+// (both options may change on restart): its checkpoint is written, unless -checkpoint_interval 0 asks
+// for none, and summary.json says why it stopped where it did.
+template <int D> void TimeLoop<D>::stop_early() {
+  const bool steps = opt_.max_steps >= 0 && step_ >= opt_.max_steps;
+  std::ostringstream why;
+  if (steps) why << "-max_steps " << opt_.max_steps << " reached";
+  else why << "steady state reached (-steady_tol " << opt_.steady_tol << ")";
+  why << " at t = " << t_ << ", before -t_end " << opt_.t_end;
+  const bool checkpoint = opt_.checkpoint_interval != 0;
+  if (checkpoint && last_checkpoint_step_ != step_) write_state(steps ? "stopped by -max_steps" : "steady state");
+  summary_["stopped_early"] = {{"reason", steps ? "max_steps" : "steady_state"}, {"detail", why.str()},
+                               {"checkpoint", checkpoint}};
+  PetscPrintf(PETSC_COMM_WORLD, "stopped early: %s; %s\n", why.str().c_str(),
+              checkpoint ? ("continue with -restart " + checkpoint_path_).c_str()
+                         : "no checkpoint (-checkpoint_interval 0)");
+}
+
 // This run's entry in the history of runs that led to its state.
 template <int D> nlohmann::json TimeLoop<D>::this_segment(const std::string& status) const {
   nlohmann::json j{{"status", status},
@@ -604,6 +625,7 @@ template <int D> void TimeLoop<D>::fail(const Error& e) {
 template <int D> void TimeLoop<D>::stop_interrupted() {
   const std::string signal = signal_name(interrupted_);
   summary_["signal"] = signal;
+  summary_["stopped_early"] = {{"reason", "signal"}, {"detail", signal}, {"checkpoint", true}};
   if (opt_.steady_tol > 0) summary_["steady_state_reached"] = steady_.reached();
   case_.write_outputs(s_.P, t_, run_.output_dir);
   finish("interrupted", "");

@@ -40,7 +40,7 @@ python3 -c 'import sys; t = [float(x) for x in sys.argv[1:]]; sys.exit(not (len(
 oldest=$(times "$k/checkpoint.bin.2")
 expect_ok $run -t_end 0.1 -checkpoints_kept 3 -cfl 0.1 -restart "$k/checkpoint.bin.2" -output_dir "$k"
 expect_json "$k/summary.json" "s['status'] == 'completed' and abs(s['history'][-1]['t'][0] - $oldest) < 1e-6 and 'cfl' in s['history'][-1]['numerics_changed']" "restarted from the oldest kept checkpoint, with a smaller step"
-expect_error "-checkpoints_kept must be at least 1" $run -checkpoints_kept 0 -output_dir "$tmp/b"
+expect_error "-checkpoints_kept must be between 1 and 1000" $run -checkpoints_kept 0 -output_dir "$tmp/b"
 
 # Two bytes changed in the data, then a time edited in the header.
 cp "$ck" "$tmp/data.bin"

@@ -118,6 +118,15 @@ class DryRun(TempDirCase):
         self.assertEqual(rc, "study: no sph executable at %s (build it with scripts/build, or pass --sph PATH)"
                          % os.path.join(self.tmp, "no_sph"))
 
+    def test_every_run_failed_is_an_error(self):
+        fake = os.path.join(self.tmp, "sph")
+        with open(fake, "w") as f:
+            f.write("#!/bin/sh\necho 'sph: error: refused' >&2\nexit 1\n")
+        os.chmod(fake, 0o755)
+        rc, _, err = main(study_file("tiny_test.yaml"), "--sph", fake, "--out", os.path.join(self.tmp, "s"))
+        self.assertEqual(rc, 1)
+        self.assertIn("study: every run failed", err)
+
     def test_self_test(self):
         rc, out, _ = main("--self-test")
         self.assertEqual(rc, 0)

@@ -119,6 +119,11 @@ class LoadStudy(TempDirCase):
         self.assertEqual(msg, "study: %s: 'options' must be a mapping" % path)
         msg, path = self.refused("case: c\nsolvers: [wcsph]\nresolutions: [8]\nlevels: [1e-3, -1]\n")
         self.assertEqual(msg, "study: %s: 'levels' must be a list of positive error levels, e.g. [1e-3, 3e-4]" % path)
+        for name in ("../../victim", "/tmp/victim", "..", "a/b", "[1]"):
+            msg, path = self.refused("name: %s\ncase: c\nsolvers: [wcsph]\nresolutions: [8]\n" % name)
+            self.assertIn("'name' must be a plain folder name (no '/', not '.' or '..')", msg)
+            msg, path = self.refused("name: %s\nmatrix: {rows: [{case: c}], columns: [{solver: isph}]}\n" % name)
+            self.assertIn("'name' must be a plain folder name", msg)
         msg, path = self.refused("[1, 2]\n")
         self.assertEqual(msg, "study: %s: expected a mapping at the top level" % path)
 

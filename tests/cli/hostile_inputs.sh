@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# Input that must not take the machine down or touch the user's files: -overwrite removes only what runs
+# wrote (the folder's manifest), a run stopped before -t_end leaves a checkpoint to continue from, and
+# malformed scenes, meshes and option values are refused in one line.   usage: hostile_inputs.sh <sph executable> <source dir>
+set -u
+sph="$1"; src="$2"; tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+fail=0
+source "$(dirname "$0")/lib/expect.sh"
+check() { if eval "$1"; then echo "ok: $2"; else echo "FAIL: $2"; fail=1; fi; }
+small="-case taylor_green -nx 8 -progress 0 -threads 1"
+
+# -overwrite removes the files the runs there wrote, and nothing else: not the user's table, backup or
+# a file whose name looks like an output.
+d="$tmp/run"
+expect_ok $small -t_end 0.02 -output_dir "$d"
+echo "user data" >"$d/my_measurements.csv"; cp "$d/checkpoint.bin" "$d/checkpoint.bin.bak"; echo "x" >"$d/body_mybody.pvd"
+expect_ok $small -t_end 0.02 -output_dir "$d" -overwrite
+check '[ -f "$d/my_measurements.csv" ] && [ -f "$d/checkpoint.bin.bak" ] && [ -f "$d/body_mybody.pvd" ]' \
+  "-overwrite keeps the user's files beside the run"
+check '[ -f "$d/summary.json" ] && grep -qx summary.json "$d/.sph_manifest"' "the new run lists its files in .sph_manifest"
+# A folder whose results no manifest lists (an earlier version's run, or the user's files) is left alone.
+o="$tmp/unlisted"; mkdir -p "$o"; echo "{}" >"$o/summary.json"; echo "mine" >"$o/notes.csv"
+expect_error "holds results \(summary.json\) that no manifest of a run lists" $small -t_end 0.02 -output_dir "$o" -overwrite
+check '[ -f "$o/notes.csv" ] && [ "$(cat "$o/summary.json")" = "{}" ]' "an unlisted folder is untouched by -overwrite"
+
+# A run stopped by -max_steps before -t_end writes its checkpoint, says so, and -restart continues it.
+m="$tmp/steps"
+expect_ok $small -t_end 0.3 -output_interval 0 -max_steps 3 -output_dir "$m"
+expect_json "$m/summary.json" "s['status'] == 'completed' and s['stopped_early']['reason'] == 'max_steps' and s['t_final'] < 0.3" \
+  "-max_steps: summary.json says stopped_early"
+expect_ok $small -t_end 0.3 -output_interval 0 -restart "$m/checkpoint.bin"
+expect_json "$m/summary.json" "abs(s['t_final'] - 0.3) < 1e-12 and 'stopped_early' not in s and len(s['history']) == 2" \
+  "-restart continues a run stopped by -max_steps to -t_end"
+
+# -checkpoints_kept is bounded (each kept one is a copy of the state), and an integer beyond the
+# option's type is refused instead of wrapping.
+expect_error "-checkpoints_kept must be between 1 and 1000" $small -t_end 0.02 -checkpoints_kept 100000000 -output_dir "$tmp/k1"
+expect_error "option -checkpoints_kept has the value '2147483648', beyond the integers it takes" $small -t_end 0.02 -checkpoints_kept 2147483648 -output_dir "$tmp/k2"
+
+# A mesh face naming a vertex the OBJ file does not hold (past the end, or 0: OBJ counts from 1) is
+# refused naming the line, not read out of bounds.
+printf 'v 0.3 0.3 0.2\nv 0.7 0.3 0.2\nv 0.5 0.7 0.2\nv 0.5 0.5 0.6\nf 1 2 3\nf 1 2 4\nf 2 3 4\nf 1 3 99\n' >"$tmp/far.obj"
+sed 's/f 1 3 99/f 1 3 0/' "$tmp/far.obj" >"$tmp/zero.obj"
+for m in far zero; do
+  printf 'dimension: 3\nbox: [0, 1, 0, 1, 0, 1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 1, 0, 1]}\n  - {role: body, name: tet, shape: mesh, file: %s.obj}\n' $m >"$tmp/$m.yaml"
+done
+expect_error "far.obj' line 8: a face names vertex 99 of the 4 the file holds" -case scene -scene_file "$tmp/far.yaml" -nx 10 -output_dir "$tmp/o1"
+expect_error "zero.obj' line 8: a face names vertex 0; OBJ numbers vertices from 1" -case scene -scene_file "$tmp/zero.yaml" -nx 10 -output_dir "$tmp/o2"
+
+# A YAML key given twice in one mapping is refused naming both lines, not settled by the first.
+printf 'dimension: 2\nbox: [0, 1, 0, 1]\ndimension: 3\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5]}\n' >"$tmp/twice.yaml"
+expect_error "line 3: key 'dimension' is given a second time in one mapping \(first on line 1\); keep one" -case scene -scene_file "$tmp/twice.yaml" -nx 10 -output_dir "$tmp/o3"
+printf 'dimension: 2\nbox: [0, 1, 0, 1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5], velocity: [1, 0], velocity: [0, 1]}\n' >"$tmp/twice2.yaml"
+expect_error "line 4: key 'velocity' is given a second time" -case scene -scene_file "$tmp/twice2.yaml" -nx 10 -output_dir "$tmp/o4"
+
+# The memory check comes before the particles exist: a YAML scene counts its lattice first, and a
+# mesh drawn in millimetres for a scene in metres is refused naming the unit (not refined to dx/4 until
+# the memory is gone). Both under a memory limit, so a regression cannot take the machine down.
+python3 - "$tmp/cube_mm.stl" <<'PY'
+import sys
+lo, hi = (300.0, 300.0, 150.0), (700.0, 700.0, 550.0)
+corner = lambda b: tuple(hi[a] if b >> a & 1 else lo[a] for a in range(3))
+with open(sys.argv[1], "w") as f:
+    f.write("solid cube\n")
+    for q in [(0, 2, 6, 4), (1, 5, 7, 3), (0, 4, 5, 1), (2, 3, 7, 6), (0, 1, 3, 2), (4, 6, 7, 5)]:
+        for tri in ((q[0], q[1], q[2]), (q[0], q[2], q[3])):
+            f.write(" facet normal 0 0 0\n  outer loop\n" + "".join("   vertex %g %g %g\n" % corner(b) for b in tri) +
+                    "  endloop\n endfacet\n")
+    f.write("endsolid cube\n")
+PY
+printf 'dimension: 3\nbox: [-0.3, 1.3, -0.3, 1.3, -0.3, 1.3]\ngravity: [0, 0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 1, 0, 0.7]}\n  - {role: body, name: cube, shape: mesh, file: cube_mm.stl}\n' >"$tmp/mm.yaml"
+(ulimit -v 2000000; expect_error "cube_mm.stl' spans 400, 250 times the scene's box \(1.6\); is it in millimetres\? scale it by 0.001" -case scene -scene_file "$tmp/mm.yaml" -nx 12 -output_dir "$tmp/o5"; exit $fail) || fail=1
+(ulimit -v 2000000; expect_error "the scene needs more than [0-9]+ particles; .* lower -nx" -case scene -scene_file "$src/cases/scenes/falling_block.yaml" -nx 20000 -output_dir "$tmp/o6"; exit $fail) || fail=1
+
+# Geometry that gets no particle, or has no area or volume, is refused naming the region: a body
+# smaller than the spacing or outside the box, a fluid region beyond the box, three collinear
+# vertices, a closed STL whose z are all equal.
+scene2() { printf 'dimension: 2\nbox: [0, 1, 0, 1]\ngravity: [0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5]}\n  - %s\n' "$2" >"$tmp/$1.yaml"; }
+scene2 tiny "{role: body, name: tiny, shape: circle, centre: [0.5, 0.25], radius: 0.01}"
+scene2 away "{role: body, name: away, shape: circle, centre: [3, 3], radius: 0.2}"
+scene2 beyond "{role: fluid, shape: box, bounds: [2, 3, 0, 0.5]}"
+scene2 line "{role: fluid, shape: polygon, vertices: [[0.1, 0.6], [0.2, 0.7], [0.3, 0.8]]}"
+expect_error "regions\[1\]: is body 'tiny', which holds no particle at dx = 0.05" -case scene -scene_file "$tmp/tiny.yaml" -nx 20 -output_dir "$tmp/g1"
+expect_error "regions\[1\]: is body 'away', which holds no particle" -case scene -scene_file "$tmp/away.yaml" -nx 20 -output_dir "$tmp/g2"
+expect_error "regions\[1\]: is a fluid region that holds no particle" -case scene -scene_file "$tmp/beyond.yaml" -nx 20 -output_dir "$tmp/g3"
+expect_error "regions\[1\].shape.polygon: encloses no area \(its vertices lie on one line\)" -case scene -scene_file "$tmp/line.yaml" -nx 20 -output_dir "$tmp/g4"
+sed 's/vertex \([^ ]*\) \([^ ]*\) [^ ]*$/vertex \1 \2 0.3/' "$tmp/cube_mm.stl" | sed 's/\b300\b/0.3/g; s/\b700\b/0.7/g' >"$tmp/flat.stl"
+printf 'dimension: 3\nbox: [0, 1, 0, 1, 0, 1]\ngravity: [0, 0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 1, 0, 0.6]}\n  - {role: body, name: plate, shape: mesh, file: flat.stl}\n' >"$tmp/flat.yaml"
+expect_error "flat.stl' encloses no volume" -case scene -scene_file "$tmp/flat.yaml" -nx 10 -output_dir "$tmp/g5"
+
+# The help into a pipe closed early ends quietly, as any printing program does (SIGPIPE), without
+# PETSc's crash report.
+for k in 1 2 3 4 5; do
+  "$sph" -help 2>"$tmp/help_err" | head -c 10 >/dev/null
+  rc=${PIPESTATUS[0]}
+  if [ -s "$tmp/help_err" ] || { [ "$rc" -ne 0 ] && [ "$rc" -ne 141 ]; }; then
+    echo "FAIL: sph -help | head -c 10 -> exit $rc, stderr: $(head -3 "$tmp/help_err")"; fail=1; break
+  fi
+done
+[ "$k" -eq 5 ] && [ "$fail" -eq 0 ] && echo "ok: sph -help | head -c 10 ends quietly (5 tries)"
+exit $fail
