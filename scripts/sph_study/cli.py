@@ -110,7 +110,8 @@ def main(argv=None):
         study["resolutions"] = sorted(set(a.nx))
     mpi, sph, out_dir = study_settings(a, study)
     runs = plan_runs(study, out_dir, sph, mpi)
-    counts = carry_out(a, runs, sph, out_dir, study["metric"])
+    # A metric the study file names is checked against the first completed run; the default one is not.
+    counts = carry_out(a, runs, sph, out_dir, study["metric_spec"] if study["metric_given"] else study["metric"])
     if counts is None:
         return 0
     make_outputs(study, a.study, runs, out_dir, counts, max(1, a.jobs), mpi)
