@@ -37,9 +37,11 @@ def error_names(rows):
     return names
 
 
-def write_csv(path, rows, sweep_keys, errors):
+def write_csv(path, rows, sweep_keys, errors, metric=None):
+    """metric: the name of a time-series metric's column (its value in row["metric_value"]), or None."""
     cols = sweep_keys + ["solver", "nx", "N", "h", "steps", "wall_time_s", "time_per_particle_step_s",
-                         "ksp_iterations_mean", "ksp_iterations_max", "status", "failure", "steady_state_reached"] + errors + ["run_dir"]
+                         "ksp_iterations_mean", "ksp_iterations_max", "status", "failure", "steady_state_reached"] + errors + (
+                             [metric] if metric else []) + ["run_dir"]
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(cols)
@@ -49,6 +51,8 @@ def write_csv(path, rows, sweep_keys, errors):
                      ("solver", "nx", "N", "h", "steps", "wall_time_s", "time_per_particle_step_s",
                       "ksp_iterations_mean", "ksp_iterations_max", "status", "failure", "steady_state_reached")]
             vals += [r["errors"].get(e, "") for e in errors]
+            if metric:
+                vals.append("%.17g" % r["metric_value"] if r.get("metric_value") is not None else "")
             vals.append(os.path.relpath(r["dir"], os.path.dirname(path)))
             w.writerow(vals)
 

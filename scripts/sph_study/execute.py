@@ -12,6 +12,7 @@ import threading
 import time
 
 from .common import REPO, read_json, write_json
+from .metric import check_metric, metric_label, metric_value
 
 
 def failure_message(stderr, returncode):
@@ -151,13 +152,33 @@ def run_all(runs, jobs, timeout, force, retry_failed, metric):
             skipped.append(r)
         else:
             todo.append(r)
+    # A metric given in the study file is checked on the first completed run (one already there, else
+    # the first to finish): a misspelled name stops the study before it spends hours on runs.
+    spec = metric if isinstance(metric, dict) else None
+    column = spec if spec and spec["kind"] == "column" else None
+    metric = metric_label(metric) if isinstance(metric, dict) else metric
+    refusal = [None]
+    if spec:
+        for r in skipped:
+            if (read_json(os.path.join(r["dir"], "summary.json")) or {}).get("status") == "completed":
+                refusal[0] = check_metric(spec, r["dir"])
+                spec = None
+                break
+        if refusal[0]:
+            sys.exit("study: " + refusal[0])
     lock = threading.Lock()
     done = [0]
     failed = [0]
 
     def one(r):
+        nonlocal spec
+        if refusal[0]:
+            return
         rec = execute(r, timeout, jobs)
         with lock:
+            if spec and rec["status"] != "failed":
+                refusal[0] = check_metric(spec, r["dir"])
+                spec = None
             done[0] += 1
             if rec["status"] == "failed":
                 failed[0] += 1
@@ -168,6 +189,9 @@ def run_all(runs, jobs, timeout, force, retry_failed, metric):
                 m = r.get("metric") or metric
                 shown = [m] if m in errs else list(errs)[:1]
                 what = "%.1f s" % rec["elapsed_s"] + "".join(", %s %.3g" % (k, errs[k]) for k in shown)
+                if column and not refusal[0]:
+                    v, why = metric_value(column, {"status": "completed", "dir": r["dir"]})
+                    what += ", %s %s" % (metric, "%.4g" % v if v is not None else why)
             where = r["label"] if "row" in r else "%s nx=%d" % (r["label"], r["nx"])
             print("[%d/%d] %s: %s" % (done[0], len(todo), where, what), flush=True)
 
@@ -181,6 +205,8 @@ def run_all(runs, jobs, timeout, force, retry_failed, metric):
         with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
             for f in [pool.submit(one, r) for r in todo]:
                 f.result()
+    if refusal[0]:
+        sys.exit("study: " + refusal[0])
     print("ran %d runs (%d failed), skipped %d runs (up to date)" % (len(todo), failed[0], len(skipped)), flush=True)
     return len(todo), len(skipped), failed[0]
 

@@ -92,3 +92,74 @@ def pareto_table(lines, levels=None):
         speedup = reached[1][0] / reached[0][0] if len(reached) > 1 else None
         rows.append({"level": level, "times": times, "best": best, "runner_up": runner, "speedup": speedup})
     return rows
+
+
+def three_grid_order(h, f):
+    """Observed order of a quantity with no exact value from three resolutions: h = (h1, h2, h3) fine to
+    coarse, f their values. Solves p ln r21 = ln(e32/e21) + ln((r21^p - s)/(r32^p - s)), e32 = f3 - f2,
+    e21 = f2 - f1, s = sign(e32/e21), r21 = h2/h1, r32 = h3/h2 (Celik et al. 2008, Roache's GCI), which
+    is exact for f = f0 + C h^p. Returns (p, s), or (None, s) when undefined (equal values, equal h, no
+    converging solution); p < 0 when the differences grow with refinement."""
+    try:
+        (h1, h2, h3), (f1, f2, f3) = [float(v) for v in h], [float(v) for v in f]
+    except (TypeError, ValueError):
+        return None, 0
+    if not all(math.isfinite(v) for v in (h1, h2, h3, f1, f2, f3)) or not 0 < h1 < h2 < h3:
+        return None, 0
+    e21, e32 = f2 - f1, f3 - f2
+    if e21 == 0 or e32 == 0:
+        return None, 0
+    s = 1 if e32 / e21 > 0 else -1
+    r21, r32 = h2 / h1, h3 / h2
+    base = math.log(abs(e32 / e21))
+    p = base / math.log(r21)
+    for _ in range(200):  # fixed point; one step when r21 == r32 (then q = 0)
+        try:
+            q = math.log((r21 ** p - s) / (r32 ** p - s))
+        except (ValueError, ZeroDivisionError, OverflowError):
+            return None, s
+        new = (base + q) / math.log(r21)
+        if abs(new - p) <= 1e-15 * max(1.0, abs(new)):
+            return new, s
+        p = new
+    return None, s
+
+
+def richardson(h, f, assumed_order=None):
+    """Richardson extrapolation of a quantity to h -> 0 with the uncertainty of Roache's grid convergence
+    index. h, f: the resolutions' h and values (any order). With three or more resolutions the finest three
+    give the observed order p and the factor of safety is 1.25; with two, p is assumed_order and the
+    factor is 3. Returns {value, uncertainty (absolute, Fs |f1 - f2| / (r21^p - 1)), gci (relative to the
+    finest value, None if it is 0), order, observed, safety, oscillating, h}, or {reason} when there is
+    no estimate. Where the finest three oscillate (the differences change sign) nothing is extrapolated:
+    the value is the finest run's and the uncertainty half the range of the three."""
+    pts = sorted((float(a), float(b)) for a, b in zip(h, f) if a is not None and b is not None
+                 and math.isfinite(float(a)) and math.isfinite(float(b)))
+    if len(pts) < 2:
+        return {"reason": "fewer than two resolutions with a value"}
+    oscillating = False
+    if len(pts) >= 3:
+        (h1, f1), (h2, f2), (h3, f3) = pts[:3]
+        p, s = three_grid_order((h1, h2, h3), (f1, f2, f3))
+        if p is None:
+            return {"reason": "no observed order (equal values at two resolutions)"}
+        if p <= 0:
+            return {"reason": "the differences grow with refinement (order %.2f): not converging" % p, "order": p}
+        if s < 0:  # oscillating: no extrapolation; the finest value, uncertain by half the range (Stern et al. 2001)
+            return {"value": f1, "uncertainty": (max(f1, f2, f3) - min(f1, f2, f3)) / 2.0,
+                    "gci": (max(f1, f2, f3) - min(f1, f2, f3)) / 2.0 / abs(f1) if f1 else None, "order": p,
+                    "observed": True, "safety": None, "oscillating": True, "h": [h1, h2, h3]}
+        oscillating, observed, safety = False, True, 1.25
+    else:
+        if not assumed_order:
+            return {"reason": "two resolutions and no assumed order"}
+        (h1, f1), (h2, f2) = pts
+        p, observed, safety = float(assumed_order), False, 3.0
+    if h2 <= h1:
+        return {"reason": "equal h at the two finest resolutions"}
+    denom = (h2 / h1) ** p - 1
+    value = f1 + (f1 - f2) / denom
+    unc = safety * abs(f1 - f2) / denom
+    return {"value": value, "uncertainty": unc, "gci": unc / abs(f1) if f1 else None, "order": p,
+            "observed": observed, "safety": safety, "oscillating": oscillating, "h": [h1, h2] + (
+                [pts[2][0]] if observed else [])}

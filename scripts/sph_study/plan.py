@@ -7,6 +7,8 @@ import os
 import re
 import sys
 
+from .metric import metric_label, parse_metric
+
 
 def load_study(path):
     with open(path) as f:
@@ -61,7 +63,13 @@ def load_study(path):
                 sys.exit("study: %s: %s '%s' needs one value per resolution (%d), got %s" % (
                     path, where, key, len(study["resolutions"]), values))
             table[key] = [values[i] for i in order]  # follow the resolutions into increasing nx
-    study.setdefault("metric", "l1_velocity")
+    # A metric given and missing from the runs is refused; the default one falls back to their first error.
+    study["metric_given"] = "metric" in study
+    try:
+        study["metric_spec"] = parse_metric(study.get("metric", "l1_velocity"), path)
+    except ValueError as e:
+        sys.exit("study: %s" % e)
+    study["metric"] = metric_label(study["metric_spec"])
     levels = study.get("levels")
     if levels is not None:
         def positive(v):  # YAML 1.1 reads 1e-3 (no dot) as a string

@@ -134,6 +134,40 @@ def figure_error_vs_h(plt, groups, metric, title):
     return fig
 
 
+def figure_metric_vs_h(plt, estimates, metric, title):
+    """A time-series metric against h (linear axes, down to h = 0), one line per solver/sweep, each with its
+    Richardson estimate at h = 0 (error bar: the GCI uncertainty) and the curve f0 + C h^p through the finest
+    run that the estimate assumes. estimates: {label: (points, orders, estimate)} of metric.line_estimates."""
+    fig, ax = plt.subplots(figsize=(7.5, 4.5))
+    drawn = False
+    for i, (label, (pts, _, est)) in enumerate(estimates.items()):
+        xy = [(h, v) for _, h, v, _ in pts if v is not None and h]
+        if not xy:
+            continue
+        st = style(i)
+        ax.plot([h for h, _ in xy], [v for _, v in xy], label=label, lw=1.6, ms=6, **st)
+        drawn = True
+        if "value" in est:
+            f0, p, h1 = est["value"], est["order"], est["h"][0]
+            f1 = [v for h, v in xy if h == h1][0]
+            hs = [max(h for h, _ in xy) * k / 50.0 for k in range(51)]
+            if not est["oscillating"]:  # the curve the extrapolation assumes
+                ax.plot(hs, [f0 + (f1 - f0) * (h / h1) ** p for h in hs], ":", color=st["color"], lw=1.0)
+            ax.errorbar([0.0], [f0], yerr=[est["uncertainty"]], color=st["color"], marker=st["marker"], mfc="white",
+                        capsize=4, ls="none", label="%s, %s: %.4g ± %.2g" % (
+                            label, "oscillates, finest" if est["oscillating"] else "h → 0", f0, est["uncertainty"]))
+    if not drawn:
+        plt.close(fig)
+        return None
+    ax.set_xlim(left=-0.02 * ax.get_xlim()[1])
+    ax.set_xlabel("smoothing length h")
+    ax.set_ylabel(metric)
+    ax.set_title(title)
+    outside_legend(ax)
+    fig.tight_layout()
+    return fig
+
+
 def figure_all_errors_vs_h(plt, groups, errors, title):
     n = len(errors)
     if n < 2:

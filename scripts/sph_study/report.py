@@ -6,10 +6,11 @@ import sys
 
 from .collect import collect, completed, error_names, groups_of, write_csv
 from .common import NOISE_WALL_S, REPO, noisy_wall
+from .metric import check_metric, line_estimates, metric_label, metric_words, metric_value, parse_metric
 from .orders import observed_order, pareto_table
 from .plan import option_args, option_value
-from .plots import (figure_all_errors_vs_h, figure_centrelines, figure_error_vs_h, figure_ksp, figure_pareto,
-                    plotting, save)
+from .plots import (figure_all_errors_vs_h, figure_centrelines, figure_error_vs_h, figure_ksp, figure_metric_vs_h,
+                    figure_pareto, plotting, save)
 
 NOISE_MARK = "†"
 NOISE_NOTE = "%s wall time < %g s: timer noise, not a measure of speed." % (NOISE_MARK, NOISE_WALL_S)
@@ -53,8 +54,90 @@ def noted(table):
     return table + ("\n\n" + NOISE_NOTE if NOISE_MARK in table else "")
 
 
-def write_report(path, study, study_file, rows, groups, errors, metric, plots, pareto, counts, jobs, mpi, notes):
+def h_of(row):
+    """A run's smoothing length (summary.json), else 1/nx: the refinement ratios are the same."""
+    return row["h"] if isinstance(row.get("h"), (int, float)) and row["h"] > 0 else (1.0 / row["nx"] if row["nx"] else None)
+
+
+def fmt_value(v):
+    return "–" if v is None else "%.6g" % v
+
+
+def estimate_text(est):
+    """The Richardson estimate in words: value ± GCI uncertainty, the order and factor of safety used."""
+    if "value" not in est:
+        return "no Richardson estimate: %s" % est["reason"]
+    if est["oscillating"]:
+        return "none: the finest three oscillate (observed order %.2f); the finest value %s ± %s (half the range " \
+            "of the three)" % (est["order"], fmt_value(est["value"]), "%.2g" % est["uncertainty"])
+    return "%s ± %s (GCI %s, %s order %.2f, factor of safety %g%s)" % (
+        fmt_value(est["value"]), "%.2g" % est["uncertainty"],
+        "%.2g %%" % (100 * est["gci"]) if est["gci"] is not None else "–",
+        "observed" if est["observed"] else "assumed", est["order"], est["safety"], "")
+
+
+def metric_section(m, groups):
+    """Lines of report.md for a time-series metric: per line its value by resolution, the observed order
+    of each three successive resolutions and the Richardson estimate; then every line in one table."""
+    label = metric_label(m)
+    L = ["## Metric `%s`" % label, "",
+         "%s, per run. Observed order p from three successive resolutions (in the row of the finest), "
+         "solving p ln r₂₁ = ln(e₃₂/e₂₁) + ln((r₂₁ᵖ − s)/(r₃₂ᵖ − s)) for any refinement ratios r = h_coarse/h_fine "
+         "(e: the differences between successive values, s their sign ratio). Richardson extrapolation "
+         "to h → 0 from the finest three, with the uncertainty of Roache's grid convergence index "
+         "(GCI = Fs |f₁ − f₂| / (r₂₁ᵖ − 1), factor of safety Fs 1.25); from two resolutions with an assumed "
+         "order (%g%s) and Fs 3." % (metric_words(m)[0].upper() + metric_words(m)[1:], m.get("order") or 1,
+                                      "" if m.get("order") else ", `order:` in the metric sets it"), ""]
+    results = {}
+    for name, g in groups.items():
+        pts, orders, est = line_estimates(g, m, h_of)
+        results[name] = (pts, orders, est)
+        body = []
+        prev = None
+        for (r, h, v, why), p in zip(pts, orders):
+            change = fmt_value(v - prev) if v is not None and prev is not None else ""
+            body.append([r["nx"], fmt(h), fmt_value(v) if v is not None else "– (%s)" % why.replace("|", "\\|"),
+                         change, fmt(p, "%.2f")])
+            prev = v if v is not None else prev
+        L += ["### %s" % name, "", md_table(["nx", "h", label, "change", "observed order"], body), "",
+              "Richardson estimate: %s." % estimate_text(est), ""]
+    if len(groups) > 1:
+        names = list(groups)
+        L += ["### %s against each other" % " and ".join(names), ""]
+        nxs = sorted({r["nx"] for pts, _, _ in results.values() for r, _, _, _ in pts})
+        body = []
+        for nx in nxs:
+            cells = ["nx = %d" % nx]
+            for n in names:
+                v = [v for r, _, v, _ in results[n][0] if r["nx"] == nx]
+                cells.append(fmt_value(v[0]) if v else "")
+            body.append(cells)
+        ests = [results[n][2] for n in names]
+        body.append(["observed order (finest three)"] + [
+            "– (assumed %g)" % e["order"] if e.get("observed") is False else fmt(e.get("order"), "%.2f") or "–"
+            for e in ests])
+        body.append(["Richardson estimate (h → 0)"] + [
+            "none: oscillates (finest %s)" % fmt_value(e["value"]) if e.get("oscillating") else fmt_value(e.get("value"))
+            for e in ests])
+        body.append(["uncertainty (±: GCI, or half the range where it oscillates)"] + ["%.2g" % e["uncertainty"] if "value" in e else "– (%s)" % e["reason"]
+                                                for e in ests])
+        body.append(["relative uncertainty (of the finest run)"] + ["%.2g %%" % (100 * e["gci"]) if e.get("gci") is not None else "–"
+                                                 for e in ests])
+        L += [md_table([label] + names, body), ""]
+        good = [(n, e) for n, e in zip(names, ests) if "value" in e]
+        for (a, ea), (b, eb) in zip(good, good[1:]):
+            d = abs(ea["value"] - eb["value"])
+            both = ea["uncertainty"] + eb["uncertainty"]
+            L += ["The estimates of `%s` and `%s` are %s apart: %s the sum of their uncertainties (%.2g)." % (
+                a, b, "%.2g" % d, "within" if d <= both else "**beyond**", both)]
+        L += [""]
+    return L, results
+
+
+def write_report(path, study, study_file, rows, groups, errors, metric, plots, pareto, counts, jobs, mpi, notes,
+                 metric_lines=None):
     name = study["name"]
+    spec = study.get("metric_spec") or {"kind": "summary"}
     L = ["# Study `%s`" % name, ""]
     if study.get("description"):
         L += [str(study["description"]).strip(), ""]
@@ -81,13 +164,14 @@ def write_report(path, study, study_file, rows, groups, errors, metric, plots, p
     ran, skipped, failed = counts
     n_ok = len(completed(rows))
     # A scene has no reference solution: its runs report no error norm, and the report says so.
-    measured = any(r["errors"] for r in rows)
+    measured = any(r["errors"] for r in rows) and spec["kind"] == "summary"
     L += ["", "Runs: %d in all, %d completed, %d failed (the last invocation ran %d and found %d up to date). " %
           (len(rows), n_ok, len([r for r in rows if r["status"] == "failed"]), ran, skipped) +
           ("Error metric of the plots and the speed comparison: `%s`. Observed order between successive "
            "resolutions: p = log(e₁/e₂) / log(h₁/h₂), shown in the row of the finer run." % metric if measured else
-           "The runs report no error norm (a scene has no reference solution): the tables give their status, "
-           "steps, wall time and KSP iterations."), ""]
+           ("Metric: %s (section below)." % metric_words(spec) if spec["kind"] == "column" else
+            "The runs report no error norm (a scene has no reference solution): the tables give their status, "
+            "steps, wall time and KSP iterations.")), ""]
     if jobs > 1:
         L += ["Note: runs were made %d at a time, so wall times include contention for the cores." % jobs, ""]
     # One run at a time: other work on more than half a core at a run's start. Several at a time: the
@@ -100,8 +184,9 @@ def write_report(path, study, study_file, rows, groups, errors, metric, plots, p
         L += ["Note: %s started while other work kept up to %.1f of the %d cores busy: wall times may be "
               "inflated." % (which, max(r["load"] for r in busy), busy[0]["cpus"]), ""]
 
+    L += metric_lines or []
     # Observed orders at a glance: finest pair of every line and norm.
-    L += ["## Observed orders (finest pair of resolutions)", ""]
+    L += ["## Observed orders (finest pair of resolutions)", ""] if errors else []
     hdr = ["solver / sweep", "nx pair"] + errors
     body = []
     for label, g in groups.items():
@@ -113,7 +198,7 @@ def write_report(path, study, study_file, rows, groups, errors, metric, plots, p
         body.append([label, "%d→%d" % (a["nx"], b["nx"])] +
                     [fmt(observed_order(a["errors"].get(e), b["errors"].get(e), a["h"], b["h"]), "%.2f")
                      for e in errors])
-    L += [md_table(hdr, body), ""]
+    L += [md_table(hdr, body), ""] if errors else []
     remarks = []
     for label, g in groups.items():
         ok = [r for r in completed(g) if isinstance(r["errors"].get(metric), (int, float)) and r["h"]]
@@ -172,7 +257,9 @@ def write_report(path, study, study_file, rows, groups, errors, metric, plots, p
         L += [""]
 
     L += ["## Speed against accuracy", ""]
-    if pareto:
+    if spec["kind"] == "column":
+        L += ["The metric `%s` is not an error against a reference: no speed-against-accuracy table." % metric, ""]
+    elif pareto:
         labels = [l for l in groups if any(l in row["times"] for row in pareto)]
         L += ["Wall time each line needs to reach a `%s` level, interpolated log-log between successive "
               "resolutions (≤: already reached by the coarsest run; –: not reached):" % metric, ""]
@@ -214,13 +301,15 @@ def write_report(path, study, study_file, rows, groups, errors, metric, plots, p
         f.write("\n".join(L))
 
 
-def write_figures(plt, study, groups, errors, metric, out_dir, notes):
+def write_figures(plt, study, groups, errors, metric, out_dir, notes, estimates=None):
     """Every figure there is something to draw, as PNG and PDF; returns [(caption, PNG file name)]."""
     title = study["name"] if study["case"] in study["name"] else "%s: %s" % (study["name"], study["case"])
     centrelines, note = figure_centrelines(plt, groups, study["case"], study["options"], title)
     if note:
         notes.append("centreline plot: " + note)
     figures = [
+        ("%s against h, extrapolated to h → 0" % metric, "metric_vs_h.png",
+         figure_metric_vs_h(plt, estimates, metric, title)) if estimates else ("", "", None),
         ("%s against h" % metric, "error_vs_h.png", figure_error_vs_h(plt, groups, metric, title)),
         ("Every error norm against h", "errors_vs_h.png", figure_all_errors_vs_h(plt, groups, errors, title)),
         ("%s against wall time (speed–accuracy)" % metric, "pareto.png",
@@ -241,8 +330,17 @@ def make_outputs(study, study_file, runs, out_dir, counts, jobs, mpi):
     rows = collect(runs)
     errors = error_names(rows)
     metric = study["metric"]
+    spec = study.get("metric_spec")
+    if not spec or metric_label(spec) != metric:
+        spec = study["metric_spec"] = parse_metric(metric, study_file)
     notes = []
-    if errors and metric not in errors:
+    first = next((r for r in rows if r["status"] == "completed"), None)
+    # A metric the study file names must exist: refused, naming what the runs have (not silently replaced).
+    if first and (spec["kind"] == "column" or study.get("metric_given")):
+        refusal = check_metric(spec, first["dir"])
+        if refusal:
+            sys.exit("study: " + refusal)
+    if errors and metric not in errors and spec["kind"] == "summary":
         notes.append("metric `%s` is not among the errors of the runs (%s); using `%s`" %
                      (metric, ", ".join(errors), errors[0]))
         print("study: metric %s not found; using %s" % (metric, errors[0]), file=sys.stderr)
@@ -252,7 +350,13 @@ def make_outputs(study, study_file, runs, out_dir, counts, jobs, mpi):
         for k in r["sweep"]:
             if k not in sweep_keys:
                 sweep_keys.append(k)
-    write_csv(os.path.join(out_dir, "results.csv"), rows, sweep_keys, errors)
+    metric_lines, estimates = [], {}
+    if spec["kind"] == "column":
+        for r in rows:
+            r["metric_value"] = metric_value(spec, r)[0]
+        metric_lines, estimates = metric_section(spec, groups_of(rows))
+    write_csv(os.path.join(out_dir, "results.csv"), rows, sweep_keys, errors,
+              metric if spec["kind"] == "column" else None)
     errors = [metric] + [e for e in errors if e != metric] if metric in errors else errors
     groups = groups_of(rows)
     lines = {}
@@ -265,9 +369,9 @@ def make_outputs(study, study_file, runs, out_dir, counts, jobs, mpi):
     plots = []
     plt = plotting()
     if plt is not None:
-        plots = write_figures(plt, study, groups, errors, metric, out_dir, notes)
+        plots = write_figures(plt, study, groups, errors, metric, out_dir, notes, estimates)
     else:
         notes.append("plots skipped: matplotlib is not available to this Python")
     write_report(os.path.join(out_dir, "report.md"), study, study_file, rows, groups, errors, metric, plots,
-                 pareto, counts, jobs, mpi, notes)
+                 pareto, counts, jobs, mpi, notes, metric_lines)
     return rows

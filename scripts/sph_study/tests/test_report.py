@@ -263,8 +263,16 @@ class MakeOutputs(SyntheticStudy):
         # automatic levels: 1-2-5 values between the smallest error and the largest coarsest-run error
         self.assertIn("| 0.02 | 2 s | 1 s | wcsph | 2.00× |", text)
 
-    def test_unknown_metric_falls_back_to_the_first_error(self):
+    def test_unknown_metric_named_in_the_study_is_refused(self):
         self.study["metric"] = "l2_nothing"
+        with self.assertRaises(SystemExit) as cm:
+            make_outputs(self.study, self.study_file, self.runs, self.out, (0, 6, 0), 1, 0)
+        self.assertEqual(str(cm.exception), "study: metric 'l2_nothing' is not an error of the runs; their errors: "
+                         "l1_velocity, linf_velocity")
+
+    def test_unknown_default_metric_falls_back_to_the_first_error(self):
+        self.study["metric"] = "l2_nothing"
+        self.study["metric_given"] = False
         err = io.StringIO()
         with contextlib.redirect_stderr(err):
             make_outputs(self.study, self.study_file, self.runs, self.out, (0, 6, 0), 1, 0)
