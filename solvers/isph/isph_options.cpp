@@ -15,7 +15,7 @@ const char* const surface_condition_names[] = {"node", "particle"};
 struct RawOptions {
   PetscReal cfl, particle_divergence_rate;
   PetscInt gradient, operators, viscous_laplacian, projection_corrections, wall_velocity, surface_condition;
-  PetscBool wall_impact, wall_impact_set;
+  PetscBool wall_impact, wall_impact_set, wall_bounding, wall_bounding_set;
 };
 
 PetscErrorCode read_options(RawOptions* o) {
@@ -55,8 +55,13 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscCall(option_bool(PetscOptionsObject, "-ppe_wall_impact",
                         "Walls stop the free surface that comes at them within the step: their pressure rows add "
                         "rho u_n (r . n) / tau for a surface particle's predicted velocity u_n towards them "
-                        "(default: on in scenes with a free surface, off in closed ones)",
+                        "(default off: once per step, it fed the flow energy as the step fell; -wall_bounding "
+                        "stops such fluid instead)",
                         o->wall_impact, &o->wall_impact, &o->wall_impact_set, OptionLevel::expert));
+  PetscCall(option_bool(PetscOptionsObject, "-wall_bounding",
+                        "Put fluid particles found behind a wall's face back on it, their velocity into the "
+                        "wall removed: a stop that only takes energy away (default: on with a free surface)",
+                        o->wall_bounding, &o->wall_bounding, &o->wall_bounding_set));
   PetscCall(option_choice(PetscOptionsObject, "-free_surface_condition",
                           "Where p = 0 holds: node (at the surface, dx/2 beyond each surface particle, which "
                           "keeps its continuity equation) or particle (on the surface particles, Lind et al. 2012)",
@@ -77,6 +82,8 @@ template <int D> void IsphSolver<D>::set_from_options() {
                source_walls_at_rest_ ? 1 : 0,
                static_cast<PetscInt>(surface_condition_),
                PETSC_FALSE,
+               PETSC_FALSE,
+               wall_bounding_option_ > 0 ? PETSC_TRUE : PETSC_FALSE,
                PETSC_FALSE};
   SPH_PETSC(read_options(&o));
   require(o.cfl > 0 && o.cfl <= 1.0, kAdvectiveCfl, "in (0, 1]", o.cfl);
@@ -89,6 +96,7 @@ template <int D> void IsphSolver<D>::set_from_options() {
   projection_corrections_ = o.projection_corrections, source_walls_at_rest_ = o.wall_velocity == 1;
   surface_condition_ = static_cast<SurfaceCondition>(o.surface_condition);
   wall_impact_option_ = o.wall_impact_set ? (o.wall_impact ? 1 : 0) : -1;
+  if (o.wall_bounding_set) wall_bounding_option_ = o.wall_bounding ? 1 : 0;
   shifting_model_.set_from_options();
   free_surface_model_.set_from_options();
   ppe_.expect_nonsymmetric(operators_ == OperatorSet::Consistent);
@@ -114,6 +122,7 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
     models["free_surface"]["condition"] = surface_condition_names[static_cast<int>(surface_condition_)];
     models["free_surface"]["model"] = surface_condition_ == SurfaceCondition::Node ? "SurfaceNodes" : "LindFreeSurface";
   }
+  if (bound_to_walls_) models["walls"]["bounding"] = {{"moves", bounded_}};  // particle-steps
   if (wall_impact_) models["walls"]["impact"] = "rho u_n (r . n) / tau for surface particles moving towards a wall";
   models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];
   if (phys.viscous())

@@ -38,10 +38,12 @@ template <int D> void IsphSolver<D>::setup(Discretisation<D>& disc) {
   // The last step's mean pressure pm moves with its particle (migration, checkpoints).
   mean_pressure_ = P.fields.declare_scalar("mean_step_pressure", kCarried, P.size());
   free_surface_model_.setup(P, disc.physics.free_surface);
-  // In a closed domain fluid meets walls at the speed of its flow along them, not head on, and the
-  // impact term only adds the noise of the walls' normals at corners (docs/verification/free_surface.md,
-  // "Design measurements").
-  wall_impact_ = walls_ && (wall_impact_option_ < 0 ? disc.physics.free_surface : wall_impact_option_ > 0);
+  // The impact term only if asked for: in a closed domain it adds the noise of the walls' normals at
+  // corners ("Design measurements"), and with a free surface, a pressure applied once per step, it fed
+  // the flow energy as the step fell. There the bounding, which only takes energy away, stops the fluid
+  // that comes at a wall (docs/verification/free_surface.md, "The time step moves ISPH's answer").
+  wall_impact_ = walls_ && wall_impact_option_ > 0;
+  bound_to_walls_ = walls_ && (wall_bounding_option_ < 0 ? disc.physics.free_surface : wall_bounding_option_ > 0);
   disc.neighbourhood.update(P, true);
 }
 
@@ -323,13 +325,26 @@ template <int D> StepReport IsphSolver<D>::step(double dt) {
   opening_kick_and_drift(dt, s);
   closing_kick_without_pressure(dt, s);
   const StepReport report = project_and_update_pressure(dt, s);
+  const Particles<D>& P = disc_->particles;
   if (shifting_model_.enabled) {
-    const Particles<D>& P = disc_->particles;
     const auto before = energy_.energies(P);
     shift(dt);
     energy_.add_change(EnergyCause::Shifting, before, energy_.energies(P));
   }
+  if (bound_to_walls_) bound_to_walls();
   return report;
+}
+
+// Fluid found behind a wall's face is put back on it and its velocity into the wall removed
+// (src/boundary/wall_bounding.hpp): a stop that can only take kinetic energy away. The pressures move
+// with nothing: the particle keeps its own.
+template <int D> void IsphSolver<D>::bound_to_walls() {
+  Particles<D>& P = disc_->particles;
+  disc_->neighbourhood.update(P);
+  const auto before = energy_.energies(P);
+  bounded_ += wall_bounding_.apply(P, disc_->neighbourhood, disc_->kernel, disc_->dx, disc_->physics.rho0,
+                                   disc_->bodies.any());
+  energy_.add_change(EnergyCause::WallBounding, before, energy_.energies(P));
 }
 
 // Opening kick with a^n at x^n, then the drift to x^{n+1}. Before the first projection there is no

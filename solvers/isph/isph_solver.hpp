@@ -50,6 +50,7 @@
 // Density stays at rho0 (the divergence-free variant); the time step obeys the advective CFL and the
 // viscous limit only: no sound speed, which is ISPH's advantage over WCSPH.
 #include "solvers/isph/pressure_poisson.hpp"
+#include "src/boundary/wall_bounding.hpp"
 #include "src/run/solver.hpp"
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/energy_budget.hpp"
@@ -124,6 +125,7 @@ template <int D> class IsphSolver : public Solver<D> {
   // The factors are taken: freed once the system is assembled.
   StepReport project(const std::vector<Vector<D>>& u_star, double tau, std::vector<LaplacianCorrection<D>> corrections);
   void shift(double dt);
+  void bound_to_walls();
   void credit_velocity_update(double dt, const StepState& s);
   double max_speed() const;
 
@@ -143,8 +145,12 @@ template <int D> class IsphSolver : public Solver<D> {
   FreeSurface<D> free_surface_model_;
   SurfaceCondition surface_condition_ = SurfaceCondition::Node;
   SurfaceNodes<D> nodes_;        // the free-surface nodes at the current positions (empty: none)
-  int wall_impact_option_ = -1;  // -ppe_wall_impact: -1 unset (on with a free surface), 0 off, 1 on
+  int wall_impact_option_ = -1;  // -ppe_wall_impact: -1 unset (off), 0 off, 1 on
   bool wall_impact_ = false;
+  int wall_bounding_option_ = -1;  // -wall_bounding: -1 unset (on with a free surface), 0 off, 1 on
+  bool bound_to_walls_ = false;
+  WallBounding<D> wall_bounding_;
+  long bounded_ = 0;     // fluid particles put back on a wall's face, summed over the steps
   EnergyBudget energy_;  // since the run's start (kept in checkpoints)
 };
 
