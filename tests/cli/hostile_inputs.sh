@@ -88,6 +88,17 @@ sed 's/vertex \([^ ]*\) \([^ ]*\) [^ ]*$/vertex \1 \2 0.3/' "$tmp/cube_mm.stl" |
 printf 'dimension: 3\nbox: [0, 1, 0, 1, 0, 1]\ngravity: [0, 0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 1, 0, 0.6]}\n  - {role: body, name: plate, shape: mesh, file: flat.stl}\n' >"$tmp/flat.yaml"
 expect_error "flat.stl' encloses no volume" -case scene -scene_file "$tmp/flat.yaml" -nx 10 -output_dir "$tmp/g5"
 
+# A .vtp scene's spacing (field data dx or -scene_dx) far from its particles' own would run with
+# particles that never interact: refused naming the measured spacing. A 3-component 'kind' is named
+# as such, not as missing.
+"$src/scripts/make-scene" cavity --nx 12 -o "$tmp/cavity.vtp" >/dev/null || { echo "FAIL: make-scene cavity"; fail=1; }
+for d in dx_tiny kind_3; do /usr/bin/python3 "$(dirname "$0")/lib/bad_scene.py" "$tmp/cavity.vtp" "$tmp/$d.vtp" $d || { echo "FAIL: bad_scene.py $d"; fail=1; }; done
+vtp="-case scene -max_steps 2 -progress 0"
+expect_error "dx_tiny.vtp': its particles lie 0.0833333 apart \(median nearest-neighbour distance\), but its field data dx 1e-06 says otherwise; set field data dx to 0.0833333" $vtp -scene_file "$tmp/dx_tiny.vtp" -output_dir "$tmp/v1"
+expect_error "cavity.vtp': its particles lie 0.0833333 apart .*, but -scene_dx 0.04 is given; pass -scene_dx 0.0833333 or leave it out" $vtp -scene_file "$tmp/cavity.vtp" -scene_dx 0.04 -output_dir "$tmp/v2"
+expect_ok $vtp -scene_file "$tmp/cavity.vtp" -output_dir "$tmp/v3"
+expect_error "kind_3.vtp': point array 'kind' has 3 components; give one" $vtp -scene_file "$tmp/kind_3.vtp" -output_dir "$tmp/v4"
+
 # The help into a pipe closed early ends quietly, as any printing program does (SIGPIPE), without
 # PETSc's crash report.
 for k in 1 2 3 4 5; do
