@@ -84,6 +84,11 @@ expect_error "regions\[1\]: is body 'tiny', which holds no particle at dx = 0.05
 expect_error "regions\[1\]: is body 'away', which holds no particle" -case scene -scene_file "$tmp/away.yaml" -nx 20 -output_dir "$tmp/g2"
 expect_error "regions\[1\]: is a fluid region that holds no particle" -case scene -scene_file "$tmp/beyond.yaml" -nx 20 -output_dir "$tmp/g3"
 expect_error "regions\[1\].shape.polygon: encloses no area \(its vertices lie on one line\)" -case scene -scene_file "$tmp/line.yaml" -nx 20 -output_dir "$tmp/g4"
+# A body whose thin parts fall between the lattice's rows keeps a fraction of its shape: refused when
+# it holds under a quarter of what its area holds at dx^2 (a hub kept, five strips 0.8 dx thick lost).
+strips=""; for y in 0.48 0.58 0.68 0.78 0.88; do strips="$strips, {box: [0.05, 0.95, $y, $(python3 -c "print(round($y + 0.04, 2))")]}"; done
+printf 'dimension: 2\nbox: [0, 1, 0, 1]\ngravity: [0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.4]}\n  - {role: body, name: comb, shape: union, of: [{circle: {centre: [0.5, 0.7], radius: 0.12}}%s]}\n' "$strips" >"$tmp/comb.yaml"
+expect_error "regions\[1\]: is body 'comb', which holds 16 particles at dx = 0.05, under a quarter of the 82 its area .* holds: parts of it thinner than the spacing are lost" -case scene -scene_file "$tmp/comb.yaml" -nx 20 -output_dir "$tmp/g6"
 sed 's/vertex \([^ ]*\) \([^ ]*\) [^ ]*$/vertex \1 \2 0.3/' "$tmp/cube_mm.stl" | sed 's/\b300\b/0.3/g; s/\b700\b/0.7/g' >"$tmp/flat.stl"
 printf 'dimension: 3\nbox: [0, 1, 0, 1, 0, 1]\ngravity: [0, 0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 1, 0, 0.6]}\n  - {role: body, name: plate, shape: mesh, file: flat.stl}\n' >"$tmp/flat.yaml"
 expect_error "flat.stl' encloses no volume" -case scene -scene_file "$tmp/flat.yaml" -nx 10 -output_dir "$tmp/g5"
