@@ -102,6 +102,12 @@ vtp="-case scene -max_steps 2 -progress 0"
 expect_error "dx_tiny.vtp': its particles lie 0.0833333 apart \(median nearest-neighbour distance\), but its field data dx 1e-06 says otherwise; set field data dx to 0.0833333" $vtp -scene_file "$tmp/dx_tiny.vtp" -output_dir "$tmp/v1"
 expect_error "cavity.vtp': its particles lie 0.0833333 apart .*, but -scene_dx 0.04 is given; pass -scene_dx 0.0833333 or leave it out" $vtp -scene_file "$tmp/cavity.vtp" -scene_dx 0.04 -output_dir "$tmp/v2"
 expect_ok $vtp -scene_file "$tmp/cavity.vtp" -output_dir "$tmp/v3"
+# A list option with an empty or malformed component is refused naming the option (PETSc dropped the
+# empty one, and named no option for 0,-1x).
+expect_error "option -gravity has the value '0,,-1', whose component 2 is empty" $vtp -scene_file "$tmp/cavity.vtp" -gravity 0,,-1 -output_dir "$tmp/v5"
+expect_error "option -gravity has the value '0,-1,', whose component 3 is empty" $vtp -scene_file "$tmp/cavity.vtp" -gravity 0,-1, -output_dir "$tmp/v6"
+expect_error "option -gravity has the value '0,-1x', whose component 2 \('-1x'\) is not a number" $vtp -scene_file "$tmp/cavity.vtp" -gravity 0,-1x -output_dir "$tmp/v7"
+expect_ok $vtp -scene_file "$tmp/cavity.vtp" -gravity 0,-1e-3 -output_dir "$tmp/v8"
 expect_error "kind_3.vtp': point array 'kind' has 3 components; give one" $vtp -scene_file "$tmp/kind_3.vtp" -output_dir "$tmp/v4"
 
 # The help into a pipe closed early ends quietly, as any printing program does (SIGPIPE), without
