@@ -9,6 +9,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <algorithm>
 #include <nanoflann.hpp>
@@ -78,6 +79,10 @@ void check_array_names(const SceneFile& s, vtkPointData* pd) {
 SceneFile read_scene_file(const std::string& path) {
   SceneFile s;
   s.path = path;
+  // A folder opens as a stream on Linux and fails at the first read, naming no file.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw Error(s.error("is a folder, not a scene file; give -scene_file the path of a .vtp or .yaml file"));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(s.error("cannot be opened; check the path given to -scene_file"));
   s.checksum = fnv1a_file(in);

@@ -129,6 +129,10 @@ class Reader {
   }
 
   YAML::Node parse() {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path_, ec))
+      throw Error("scene file '" + path_ +
+                  "': is a folder, not a scene file; give -scene_file the path of a .vtp or .yaml file");
     std::ifstream in(path_, std::ios::binary);
     if (!in) throw Error("scene file '" + path_ + "': cannot be opened; check the path given to -scene_file");
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -279,6 +283,10 @@ class Reader {
       if (!v.IsScalar() || v.Scalar().empty()) fail(v, k, "needs a file name: mesh: surface.stl");
       std::filesystem::path file(v.Scalar());
       if (file.is_relative()) file = dir_ / file;
+      std::error_code ec;
+      if (std::filesystem::is_directory(file, ec))
+        fail(v, k, "'" + file.string() + "' is a folder, not a mesh; give an .stl, .obj or .vtp file (paths are "
+                   "relative to the scene file)");
       try {
         ShapePtr mesh = make_mesh(file.string());
         meshes.push_back({v, k, file.string(), mesh->bounds()});
@@ -345,6 +353,11 @@ class Reader {
     if (!m["file"].IsDefined() || !m["file"].IsScalar()) fail(m, key, "of type table needs file: motion.csv");
     std::filesystem::path file(m["file"].Scalar());
     if (file.is_relative()) file = dir_ / file;
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec))
+      fail(m["file"], key + ".file",
+           "'" + file.string() + "' is a folder, not a file; give the motion table, a CSV with the header t,x,y "
+           "(paths are relative to the scene file)");
     std::ifstream in(file, std::ios::binary);
     if (!in) fail(m["file"], key + ".file", "cannot be opened ('" + file.string() + "'; paths are relative to the scene file)");
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

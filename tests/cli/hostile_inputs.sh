@@ -93,6 +93,13 @@ sed 's/vertex \([^ ]*\) \([^ ]*\) [^ ]*$/vertex \1 \2 0.3/' "$tmp/cube_mm.stl" |
 printf 'dimension: 3\nbox: [0, 1, 0, 1, 0, 1]\ngravity: [0, 0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 1, 0, 0.6]}\n  - {role: body, name: plate, shape: mesh, file: flat.stl}\n' >"$tmp/flat.yaml"
 expect_error "flat.stl' encloses no volume" -case scene -scene_file "$tmp/flat.yaml" -nx 10 -output_dir "$tmp/g5"
 
+# A folder where a file belongs (the scene, a motion table) is named as a folder, not reported as a
+# failed read ("basic_filebuf::underflow").
+mkdir -p "$tmp/folder.yaml" "$tmp/table"
+printf 'dimension: 2\nbox: [0, 1, 0, 1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.4]}\n  - {role: body, name: b, shape: circle, centre: [0.5, 0.7], radius: 0.15, motion: {type: table, file: table}}\n' >"$tmp/moving.yaml"
+expect_error "scene file '$tmp/folder.yaml': is a folder, not a scene file; give -scene_file the path of a .vtp or .yaml file" -case scene -scene_file "$tmp/folder.yaml" -output_dir "$tmp/f1"
+expect_error "regions\[1\].motion.file: '$tmp/table' is a folder, not a file; give the motion table" -case scene -scene_file "$tmp/moving.yaml" -nx 20 -output_dir "$tmp/f2"
+
 # A .vtp scene's spacing (field data dx or -scene_dx) far from its particles' own would run with
 # particles that never interact: refused naming the measured spacing. A 3-component 'kind' is named
 # as such, not as missing.
