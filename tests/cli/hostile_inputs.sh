@@ -72,6 +72,13 @@ printf 'dimension: 3\nbox: [-0.3, 1.3, -0.3, 1.3, -0.3, 1.3]\ngravity: [0, 0, -1
 (ulimit -v 2000000; expect_error "cube_mm.stl' spans 400, 250 times the scene's box \(1.6\); is it in millimetres\? scale it by 0.001" -case scene -scene_file "$tmp/mm.yaml" -nx 12 -output_dir "$tmp/o5"; exit $fail) || fail=1
 (ulimit -v 2000000; expect_error "the scene needs more than [0-9]+ particles; .* lower -nx" -case scene -scene_file "$src/cases/scenes/falling_block.yaml" -nx 20000 -output_dir "$tmp/o6"; exit $fail) || fail=1
 
+# An allocation that fails past the memory check (here a limit below the machine's) is reported as
+# running out of memory, with the fix, not as an internal error.
+(ulimit -v 1000000; expect_error "ran out of memory \(an allocation failed\): .* lower -nx|the scene needs more than" -case scene -scene_file "$src/cases/scenes/falling_block.yaml" -nx 2000 -max_steps 1 -output_dir "$tmp/o7"; exit $fail) || fail=1
+# -options_file without its file name: one line, not PETSc's traceback.
+expect_error "option -options_file was given without a file name; give the path of an options file" $small -options_file
+expect_error "option -options_file was given without a file name" -options_file -case taylor_green
+
 # Geometry that gets no particle, or has no area or volume, is refused naming the region: a body
 # smaller than the spacing or outside the box, a fluid region beyond the box, three collinear
 # vertices, a closed STL whose z are all equal.
