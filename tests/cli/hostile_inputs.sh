@@ -32,6 +32,13 @@ expect_ok $small -t_end 0.3 -output_interval 0 -restart "$m/checkpoint.bin"
 expect_json "$m/summary.json" "abs(s['t_final'] - 0.3) < 1e-12 and 'stopped_early' not in s and len(s['history']) == 2" \
   "-restart continues a run stopped by -max_steps to -t_end"
 
+# A restart from a scene edited since is refused naming the input, not an option that does not exist
+# (-scene_checksum).
+printf 'dimension: 2\nbox: [0, 1, 0, 1]\ngravity: [0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5]}\n' >"$tmp/edited.yaml"
+expect_ok -case scene -scene_file "$tmp/edited.yaml" -nx 10 -max_steps 2 -progress 0 -output_dir "$tmp/e1"
+echo "# edited" >>"$tmp/edited.yaml"
+expect_error "was written with scene_checksum = .*: the case's input changed since \(a scene file edited, or another version of sph\); restart with the input it was written from" -case scene -scene_file "$tmp/edited.yaml" -nx 10 -max_steps 4 -progress 0 -restart "$tmp/e1/checkpoint.bin"
+
 # -checkpoints_kept is bounded (each kept one is a copy of the state), and an integer beyond the
 # option's type is refused instead of wrapping.
 expect_error "-checkpoints_kept must be between 1 and 1000" $small -t_end 0.02 -checkpoints_kept 100000000 -output_dir "$tmp/k1"
