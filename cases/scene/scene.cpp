@@ -312,8 +312,10 @@ template <int D> void SceneCase<D>::resolve_parameters() {
   if (!(physics_.U > 0))
     throw Error(opt_.U_set || file_.field.count("U")
                     ? "the reference speed U must be positive (got " + number(physics_.U) + ")"
-                    : file_.error("sets no reference speed and nothing moves (no velocity, no "
-                                  "gravity); add field data 'U' or pass -U"));
+                    : file_.error(std::string("sets no reference speed and nothing moves (no velocity, no "
+                                              "gravity); ") +
+                                  (yaml_ ? "add U: (a reference speed) to the file" : "add field data 'U'") +
+                                  " or pass -U"));
 }
 
 // Walls keep their place: a moving wall (kind 2) only slides along itself, its velocity the no-slip
