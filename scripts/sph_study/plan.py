@@ -108,8 +108,6 @@ def check_types(study, path, solvers):
     mpi = study.get("mpi")
     if mpi is not None and (isinstance(mpi, bool) or not isinstance(mpi, int) or mpi < 0):
         refuse("mpi", "a number of MPI ranks (0: no mpirun)", "mpi: 2")
-    if not isinstance(study.get("metric", ""), str):
-        refuse("metric", "a column of summary.json's errors", "metric: l1_velocity")
     for key in ("solver_options", "solver_sweeps"):
         table = study.get(key) or {}
         if isinstance(table, dict):
