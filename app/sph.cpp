@@ -8,8 +8,10 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -117,9 +119,17 @@ std::string options_file_problem(const std::string& path, const std::string& opt
 // PETSc reads -options_file during initialisation, before a quiet error handler can be installed:
 // check the files first so a wrong path or a malformed line gets one line instead of a PETSc traceback.
 bool options_files_valid(int argc, char** argv) {
-  for (int k = 1; k + 1 < argc; ++k) {
+  for (int k = 1; k < argc; ++k) {
     const std::string opt = argv[k];
     if (opt != "-options_file" && opt != "-options_file_yaml") continue;
+    // Without a file name PETSc prints a 20-line traceback; the next word is a name as PETSc reads it
+    // unless it is an option (a '-' not starting a number).
+    const char* next = k + 1 < argc ? argv[k + 1] : nullptr;
+    if (!next || (next[0] == '-' && !std::isdigit(static_cast<unsigned char>(next[1])) && next[1] != '.')) {
+      std::fprintf(stderr, "sph: error: option %s was given without a file name; give the path of an options file "
+                   "(e.g. %s cases/taylor_green.opts) or leave it out\n", opt.c_str(), opt.c_str());
+      return false;
+    }
     std::vector<std::string> chain;
     std::string problem;
     if (opt == "-options_file") problem = options_file_problem(argv[k + 1], opt, chain);
@@ -181,6 +191,12 @@ int main(int argc, char** argv) {
     status = 128 + i.signal;
   } catch (const sph::Error& e) {
     PetscFPrintf(PETSC_COMM_WORLD, stderr, "sph: error: %s\n", e.what());
+    status = 1;
+  } catch (const std::bad_alloc&) {
+    // Past the memory check (a memory limit below the machine's, or a peak it did not foresee).
+    PetscFPrintf(PETSC_COMM_WORLD, stderr,
+                 "sph: error: ran out of memory (an allocation failed): the run needs more than this machine or its "
+                 "memory limit (ulimit -v) gives; lower -nx (fewer particles)\n");
     status = 1;
   } catch (const std::exception& e) {
     PetscFPrintf(PETSC_COMM_WORLD, stderr, "sph: internal error: %s\n", e.what());

@@ -210,6 +210,20 @@ template <int D> void SceneCase<D>::resolve_parameters() {
   if (!opt_.dx_set && !file_.field.count("dx"))
     throw Error(file_.error("gives no particle spacing; add field data 'dx' or pass -scene_dx"));
   require(dx_ > 0, opt_.dx_set ? "-scene_dx" : "the scene's field data dx", "positive", dx_);
+  // A .vtp scene's particles are fixed: a spacing far from theirs gives a kernel that reaches no
+  // neighbour (or all of them), and the run goes on without its particles interacting.
+  if (!yaml_) {
+    const double measured = median_spacing(file_);
+    if (measured > 0 && (dx_ < 0.5 * measured || dx_ > 2.0 * measured)) {
+      const std::string given = opt_.dx_set ? "-scene_dx " + number(dx_) : "its field data dx " + number(dx_);
+      throw Error(file_.error("its particles lie " + number(measured) +
+                              " apart (median nearest-neighbour distance), but " + given +
+                              (opt_.dx_set ? " is given" : " says otherwise") + "; " +
+                              (opt_.dx_set ? "pass -scene_dx " + number(measured) + " or leave it out"
+                                           : "set field data dx to " + number(measured) + " or pass -scene_dx " +
+                                                 number(measured))));
+    }
+  }
 
   // Box: option, field data, or the particles' bounding box grown by half a spacing.
   const std::vector<double>* box = nullptr;
@@ -298,8 +312,10 @@ template <int D> void SceneCase<D>::resolve_parameters() {
   if (!(physics_.U > 0))
     throw Error(opt_.U_set || file_.field.count("U")
                     ? "the reference speed U must be positive (got " + number(physics_.U) + ")"
-                    : file_.error("sets no reference speed and nothing moves (no velocity, no "
-                                  "gravity); add field data 'U' or pass -U"));
+                    : file_.error(std::string("sets no reference speed and nothing moves (no velocity, no "
+                                              "gravity); ") +
+                                  (yaml_ ? "add U: (a reference speed) to the file" : "add field data 'U'") +
+                                  " or pass -U"));
 }
 
 // Walls keep their place: a moving wall (kind 2) only slides along itself, its velocity the no-slip

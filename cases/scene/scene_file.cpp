@@ -9,7 +9,10 @@
 
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <algorithm>
+#include <nanoflann.hpp>
 #include <sstream>
 
 #include "src/core/error.hpp"
@@ -76,6 +79,10 @@ void check_array_names(const SceneFile& s, vtkPointData* pd) {
 SceneFile read_scene_file(const std::string& path) {
   SceneFile s;
   s.path = path;
+  // A folder opens as a stream on Linux and fails at the first read, naming no file.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw Error(s.error("is a folder, not a scene file; give -scene_file the path of a .vtp or .yaml file"));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(s.error("cannot be opened; check the path given to -scene_file"));
   s.checksum = fnv1a_file(in);
@@ -95,9 +102,12 @@ SceneFile read_scene_file(const std::string& path) {
 
   vtkPointData* pd = poly->GetPointData();
   vtkDataArray* kind = pd->GetArray("kind");
-  if (!kind || kind->GetNumberOfComponents() != 1)
+  if (!kind)
     throw Error(
         s.error("has no point array 'kind' (one value per particle: 0 fluid, 1 fixed wall, 2 moving wall); add it"));
+  if (kind->GetNumberOfComponents() != 1)
+    throw Error(s.error("point array 'kind' has " + std::to_string(kind->GetNumberOfComponents()) +
+                        " components; give one (0 fluid, 1 fixed wall, 2 moving wall per particle)"));
   check_array_names(s, pd);
   vtkDataArray* vel = pd->GetArray("velocity");
   if (vel && (vel->GetNumberOfComponents() < 2 || vel->GetNumberOfComponents() > 3))
@@ -163,6 +173,34 @@ SceneFile read_scene_file(const std::string& path) {
       for (int c = 0; c < a->GetNumberOfComponents(); ++c) values.push_back(a->GetComponent(t, c));
   }
   return s;
+}
+
+namespace {
+struct SceneCloud {
+  const std::vector<std::array<double, 3>>& pts;
+  std::size_t kdtree_get_point_count() const { return pts.size(); }
+  double kdtree_get_pt(std::size_t i, std::size_t a) const { return pts[i][a]; }
+  template <class BBox> bool kdtree_get_bbox(BBox&) const { return false; }
+};
+}  // namespace
+
+double median_spacing(const SceneFile& s) {
+  if (s.x.size() < 2) return 0.0;
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, SceneCloud>, SceneCloud, 3,
+                                                   std::uint32_t>;
+  const SceneCloud cloud{s.x};
+  Tree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  // A strided sample of the particles is enough for a median, and keeps a huge scene's check short.
+  const std::size_t stride = std::max<std::size_t>(1, s.x.size() / 20000);
+  std::vector<double> nearest;
+  for (std::size_t i = 0; i < s.x.size(); i += stride) {
+    std::uint32_t index[2];
+    double d2[2];
+    if (tree.knnSearch(s.x[i].data(), 2, index, d2) == 2) nearest.push_back(std::sqrt(d2[1]));
+  }
+  if (nearest.empty()) return 0.0;
+  std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
+  return nearest[nearest.size() / 2];
 }
 
 }  // namespace sph

@@ -44,4 +44,8 @@ inline std::uint64_t fnv1a(std::uint64_t h, const void* data, std::size_t n) {
 // 1 on free-slip wall particles (src/boundary/moving_bodies.hpp), 0 elsewhere. Throws sph::Error otherwise.
 SceneFile read_scene_file(const std::string& path);
 
+// The particles' spacing as they lie: the median distance to each particle's nearest neighbour
+// (a sample of at most about 20000 particles); 0 for fewer than two particles or most of them coincident.
+double median_spacing(const SceneFile& s);
+
 }  // namespace sph

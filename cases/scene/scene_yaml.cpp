@@ -129,6 +129,10 @@ class Reader {
   }
 
   YAML::Node parse() {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path_, ec))
+      throw Error("scene file '" + path_ +
+                  "': is a folder, not a scene file; give -scene_file the path of a .vtp or .yaml file");
     std::ifstream in(path_, std::ios::binary);
     if (!in) throw Error("scene file '" + path_ + "': cannot be opened; check the path given to -scene_file");
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -279,6 +283,10 @@ class Reader {
       if (!v.IsScalar() || v.Scalar().empty()) fail(v, k, "needs a file name: mesh: surface.stl");
       std::filesystem::path file(v.Scalar());
       if (file.is_relative()) file = dir_ / file;
+      std::error_code ec;
+      if (std::filesystem::is_directory(file, ec))
+        fail(v, k, "'" + file.string() + "' is a folder, not a mesh; give an .stl, .obj or .vtp file (paths are "
+                   "relative to the scene file)");
       try {
         ShapePtr mesh = make_mesh(file.string());
         meshes.push_back({v, k, file.string(), mesh->bounds()});
@@ -345,6 +353,11 @@ class Reader {
     if (!m["file"].IsDefined() || !m["file"].IsScalar()) fail(m, key, "of type table needs file: motion.csv");
     std::filesystem::path file(m["file"].Scalar());
     if (file.is_relative()) file = dir_ / file;
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec))
+      fail(m["file"], key + ".file",
+           "'" + file.string() + "' is a folder, not a file; give the motion table, a CSV with the header t,x,y "
+           "(paths are relative to the scene file)");
     std::ifstream in(file, std::ios::binary);
     if (!in) fail(m["file"], key + ".file", "cannot be opened ('" + file.string() + "'; paths are relative to the scene file)");
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -658,23 +671,69 @@ void check_mesh_units(const Reader& r, const Point3& box_lo, const Point3& box_h
 }
 
 // A fluid region or a body that got no particle would silently be missing from the run (a body smaller
-// than the spacing, outside the box, or thinner than dx; fluid beyond the box): refused, naming it.
+// than the spacing, outside the box, or thinner than dx; fluid beyond the box): refused, naming it. One
+// that got under a quarter of what its kept area (volume) holds, area / dx^D, lost most of its shape
+// between the lattice's rows (thin parts): refused too. `kept` is that area per region: its shape
+// within the box, less what the regions after it cover.
 void check_regions_filled(const Reader& r, const std::vector<Region>& fluids, const std::vector<Region>& solids,
                           const std::vector<Region>& plates, const std::vector<std::string>& bodies,
-                          std::map<const Region*, long>& taken, double dx) {
+                          std::map<const Region*, long>& taken, std::map<const Region*, double>& kept, double dx) {
   const std::string fix = " at dx = " + number_text(dx) +
                           ": it is smaller or thinner than the spacing, outside the box, or covered by the "
                           "regions after it; refine (a larger -nx), enlarge it or move it into the box";
-  for (const Region& f : fluids)
+  const double cell = std::pow(dx, r.dim);
+  const std::string measure = r.dim == 2 ? "area" : "volume";
+  auto too_few = [&](const Region& at, const std::string& what, long n, double area) {
+    const double expected = area / cell;
+    if (n > 0 && n < 0.25 * expected)
+      r.fail(at.at, at.key,
+             what + " holds " + std::to_string(n) + " particle" + (n == 1 ? "" : "s") + " at dx = " + number_text(dx) +
+                 ", under a quarter of the " + number_text(std::round(expected)) + " its " + measure + " (" +
+                 number_text(area) + ", less what the regions after it cover) holds: parts of it thinner than "
+                 "the spacing are lost between the lattice's rows; refine (a larger -nx) or thicken them");
+  };
+  for (const Region& f : fluids) {
     if (taken[&f] == 0) r.fail(f.at, f.key, "is a fluid region that holds no particle" + fix);
+    too_few(f, "is a fluid region that", taken[&f], kept[&f]);
+  }
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     long n = 0;
+    double area = 0;
     const Region* first = nullptr;
+    bool plate = false;
     for (const Region& w : solids)
-      if (w.body == static_cast<int>(b)) n += taken[&w], first = first ? first : &w;
-    for (const Region& p : plates) n += p.body == static_cast<int>(b);  // a plate's layers come later
-    if (n == 0 && first) r.fail(first->at, first->key, "is body '" + bodies[b] + "', which holds no particle" + fix);
+      if (w.body == static_cast<int>(b)) n += taken[&w], area += kept[&w], first = first ? first : &w;
+    for (const Region& p : plates) plate = plate || p.body == static_cast<int>(b);  // its layers come later
+    if (n == 0 && first && !plate) r.fail(first->at, first->key, "is body '" + bodies[b] + "', which holds no particle" + fix);
+    if (first && !plate) too_few(*first, "is body '" + bodies[b] + "', which", n, area);
   }
+}
+
+// The area (volume) of the region's shape within [lo, hi] that the region keeps (holds(x)), from a
+// Halton sample of its bounds: 0 where too few sample points fall in it to tell.
+template <class Holds>
+double kept_measure(const Shape& shape, const Point3& box_lo, const Point3& box_hi, int dim, const Holds& holds) {
+  const Bounds b = shape.bounds();
+  Point3 lo = Point3::Zero(), hi = Point3::Zero();
+  double volume = 1;
+  for (int a = 0; a < dim; ++a) {
+    lo[a] = std::max(b.lo[a], box_lo[a]), hi[a] = std::min(b.hi[a], box_hi[a]);
+    if (!std::isfinite(lo[a]) || !std::isfinite(hi[a]) || !(hi[a] > lo[a])) return 0.0;
+    volume *= hi[a] - lo[a];
+  }
+  constexpr int kSamples = 1024, kEnough = 16;
+  const int base[3] = {2, 3, 5};
+  int hits = 0;
+  for (int k = 1; k <= kSamples; ++k) {
+    Point3 x = Point3::Zero();
+    for (int a = 0; a < dim; ++a) {
+      double f = 1.0, u = 0.0;
+      for (int i = k; i > 0; i /= base[a]) f /= base[a], u += f * (i % base[a]);
+      x[a] = lo[a] + u * (hi[a] - lo[a]);
+    }
+    hits += holds(x);
+  }
+  return hits >= kEnough ? volume * hits / kSamples : 0.0;
 }
 
 // Lattice points (i + 1/2) dx of one axis within [lo, hi] ([lo, hi) when periodic), as index range.
@@ -963,7 +1022,13 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
            "hold no fluid particle at dx = " + number_text(dx) +
                ": no lattice point lies inside a fluid region, outside the solids and inside the box; refine "
                "(a larger -nx) or move the fluid regions");
-  check_regions_filled(r, fluids, solids, plates, out.bodies, taken, dx);
+  std::map<const Region*, double> kept;  // per fluid region and body region: the area (volume) it keeps
+  for (const Region& f : fluids)
+    kept[&f] = kept_measure(*f.shape, box_lo, box_hi, D, [&](const Point3& x) { return fill(x).fluid == &f; });
+  for (const Region& w : solids)
+    if (w.role == Role::Body)
+      kept[&w] = kept_measure(*w.shape, box_lo, box_hi, D, [&](const Point3& x) { return fill(x).holder == &w; });
+  check_regions_filled(r, fluids, solids, plates, out.bodies, taken, kept, dx);
 
   // Each body's surface, sampled at a quarter of the spacing (an eighth of the body across at least in
   // 2D, at most 200 steps along an edge in 3D), within the box.

@@ -97,7 +97,11 @@ def main(argv=None):
         ap.error("a study file is needed (or --self-test)")
     if not os.path.exists(a.study):
         ap.error("no study file %s" % a.study)
-    study = load_study(a.study)
+    try:
+        study = load_study(a.study)
+    except (TypeError, ValueError, AttributeError, KeyError) as e:  # a wrong type no check above named
+        sys.exit("study: %s: a key holds a value of the wrong type (%s: %s); see the keys in scripts/study --help"
+                 % (a.study, type(e).__name__, e))
     if "matrix" in study:
         return main_matrix(a, study)
     if a.nx:

@@ -14,14 +14,22 @@ def load_study(path):
     with open(path) as f:
         text = f.read()
     if path.endswith(".json"):
-        study = json.loads(text)
+        try:
+            study = json.loads(text)
+        except ValueError as e:
+            sys.exit("study: %s: not valid JSON (%s); fix the file" % (path, e))
     else:
         try:
             import yaml
         except ImportError:
             sys.exit("study: PyYAML is needed for YAML study files (Debian: apt-get install python3-yaml; "
                      "run the script with /usr/bin/python3)")
-        study = yaml.safe_load(text)
+        try:
+            study = yaml.safe_load(text)
+        except yaml.YAMLError as e:
+            where = getattr(e, "problem_mark", None)
+            sys.exit("study: %s:%s not valid YAML (%s); fix the file" % (
+                path, " line %d:" % (where.line + 1) if where else "", getattr(e, "problem", None) or e))
     if not isinstance(study, dict):
         sys.exit("study: %s: expected a mapping at the top level" % path)
     if "matrix" in study:
@@ -39,6 +47,7 @@ def load_study(path):
     solvers = study.get("solvers", study.get("solver"))
     if solvers is None:
         sys.exit("study: %s: missing 'solvers'" % path)
+    check_types(study, path, solvers)
     study["solvers"] = [solvers] if isinstance(solvers, str) else list(solvers)
     given = [int(n) for n in study["resolutions"]]
     order = sorted(range(len(given)), key=lambda i: given[i])
@@ -82,6 +91,44 @@ def load_study(path):
             sys.exit("study: %s: 'levels' must be a list of positive error levels, e.g. [1e-3, 3e-4]" % path)
         study["levels"] = sorted(values, reverse=True)
     return study
+
+
+def is_scalar(v):
+    return v is None or isinstance(v, (str, int, float, bool))
+
+
+def check_types(study, path, solvers):
+    """A key of the wrong type is refused in one line naming it and what it takes, before it fails
+    deeper down as a Python error."""
+    def refuse(key, want, example):
+        sys.exit("study: %s: '%s' must be %s, got %r; e.g. %s" % (path, key, want, study.get(key), example))
+    if not isinstance(study["case"], str) or not study["case"]:
+        refuse("case", "a case name", "case: taylor_green")
+    if not (isinstance(solvers, str) or (isinstance(solvers, list) and solvers and
+                                         all(isinstance(x, str) for x in solvers))):
+        sys.exit("study: %s: 'solvers' must be a solver name or a list of them, got %r; e.g. solvers: [isph, wcsph]"
+                 % (path, solvers))
+    n = study["resolutions"]
+    if not isinstance(n, list) or not n or not all(
+            not isinstance(x, bool) and (isinstance(x, int) or (isinstance(x, str) and x.isdigit())) and int(x) > 0
+            for x in n):
+        refuse("resolutions", "a list of positive integers (nx)", "resolutions: [16, 32, 64]")
+    mpi = study.get("mpi")
+    if mpi is not None and (isinstance(mpi, bool) or not isinstance(mpi, int) or mpi < 0):
+        refuse("mpi", "a number of MPI ranks (0: no mpirun)", "mpi: 2")
+    for key in ("solver_options", "solver_sweeps"):
+        table = study.get(key) or {}
+        if isinstance(table, dict):
+            for solver, value in table.items():
+                if value is not None and not isinstance(value, dict):
+                    sys.exit("study: %s: '%s: %s' must be a mapping of options, got %r; e.g. %s: {%s: {cfl: %s}}"
+                             % (path, key, solver, value, key, solver, "[0.1, 0.2]" if "sweeps" in key else "0.2"))
+    options = study.get("options") or {}
+    if isinstance(options, dict):
+        for name, value in options.items():
+            if not is_scalar(value):
+                sys.exit("study: %s: option '%s' must be one value, got %r; a list of values is a sweep "
+                         "(sweeps: {%s: [...]})" % (path, name, value, name))
 
 
 def check_name(study, path):
@@ -219,6 +266,8 @@ def load_matrix(study, path):
     if unknown:
         sys.exit("study: %s: matrix: unknown key(s) %s (known: columns, metric, options, rows)" % (path, ", ".join(unknown)))
     m["options"] = m.get("options") or {}
+    if not isinstance(m["options"], dict):
+        sys.exit("study: %s: matrix: 'options' must be a mapping of options, got %r" % (path, m["options"]))
     for what, need, allowed in (("rows", "case", {"label", "case", "scene", "options", "solver_options", "metric"}),
                                 ("columns", "solver", {"label", "solver", "options"})):
         items = m.get(what)

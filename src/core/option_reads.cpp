@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
+#include <string>
 
 #include "src/core/options.hpp"
 
@@ -43,13 +44,21 @@ PetscErrorCode refuse_non_finite(PetscOptionItems* block, const char* name, cons
   PetscFunctionReturn(0);
 }
 
+// The option's text as given; null when it is absent or has no value.
+PetscErrorCode given_value(PetscOptionItems* block, const char* name, const char** given) {
+  PetscFunctionBeginUser;
+  PetscBool found = PETSC_FALSE;
+  PetscCall(PetscOptionsFindPair(block->options, block->prefix, name, given, &found));
+  if (!found) *given = nullptr;
+  PetscFunctionReturn(0);
+}
+
 // PETSc wraps an integer beyond its int type (2147483648 reads as a negative number): refused, named.
 PetscErrorCode refuse_out_of_range(PetscOptionItems* block, const char* name) {
   PetscFunctionBeginUser;
   const char* given = nullptr;
-  PetscBool found = PETSC_FALSE;
-  PetscCall(PetscOptionsFindPair(block->options, block->prefix, name, &given, &found));
-  if (!found || !given) PetscFunctionReturn(0);
+  PetscCall(given_value(block, name, &given));
+  if (!given) PetscFunctionReturn(0);
   char* end = nullptr;
   errno = 0;
   const long long v = std::strtoll(given, &end, 10);
@@ -57,6 +66,34 @@ PetscErrorCode refuse_out_of_range(PetscOptionItems* block, const char* name) {
   PetscCheck(!integer || (errno != ERANGE && v >= PETSC_MIN_INT && v <= PETSC_MAX_INT), block->comm,
              PETSC_ERR_USER_INPUT, "option %s has the value '%s', beyond the integers it takes (%d to %d)", name, given,
              PETSC_MIN_INT, PETSC_MAX_INT);
+  PetscFunctionReturn(0);
+}
+
+// PETSc reads "0,,-1" and "0,-1," as [0, -1] and names no option for "0,-1x": each component must be
+// a whole number, refused naming the option otherwise.
+PetscErrorCode refuse_malformed_list(PetscOptionItems* block, const char* name) {
+  PetscFunctionBeginUser;
+  const char* given = nullptr;
+  PetscCall(given_value(block, name, &given));
+  if (!given) PetscFunctionReturn(0);
+  const std::string list = given;
+  std::size_t start = 0;
+  for (int k = 1;; ++k) {
+    const std::size_t comma = list.find(',', start);
+    const std::string item = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    PetscCheck(!item.empty(), block->comm, PETSC_ERR_USER_INPUT,
+               "option %s has the value '%s', whose component %d is empty; give a number in each place, "
+               "separated by commas",
+               name, given, k);
+    char* end = nullptr;
+    std::strtod(item.c_str(), &end);
+    PetscCheck(end != item.c_str() && *end == '\0', block->comm, PETSC_ERR_USER_INPUT,
+               "option %s has the value '%s', whose component %d ('%s') is not a number; give a number in each "
+               "place, separated by commas",
+               name, given, k, item.c_str());
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -146,6 +183,7 @@ PetscErrorCode option_reals(PetscOptionItems* block, const char* name, const cha
   PetscFunctionBeginUser;
   record(name);
   PetscCall(refuse_missing_value(block, name, ""));
+  PetscCall(refuse_malformed_list(block, name));
   PetscBool given = PETSC_FALSE;
   PetscCall(PetscOptionsRealArray_Private(block, name, text(help, level).c_str(), "", values, n, &given));
   if (given) PetscCall(refuse_non_finite(block, name, values, *n));

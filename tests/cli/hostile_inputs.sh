@@ -32,6 +32,17 @@ expect_ok $small -t_end 0.3 -output_interval 0 -restart "$m/checkpoint.bin"
 expect_json "$m/summary.json" "abs(s['t_final'] - 0.3) < 1e-12 and 'stopped_early' not in s and len(s['history']) == 2" \
   "-restart continues a run stopped by -max_steps to -t_end"
 
+# A YAML scene where nothing moves is told to add U: to its file, not "field data 'U'" (a .vtp term).
+printf 'dimension: 2\nbox: [0, 1, 0, 1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5]}\n' >"$tmp/still.yaml"
+expect_error "still.yaml': sets no reference speed and nothing moves \(no velocity, no gravity\); add U: \(a reference speed\) to the file or pass -U" -case scene -scene_file "$tmp/still.yaml" -nx 10 -output_dir "$tmp/u1"
+
+# A restart from a scene edited since is refused naming the input, not an option that does not exist
+# (-scene_checksum).
+printf 'dimension: 2\nbox: [0, 1, 0, 1]\ngravity: [0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5]}\n' >"$tmp/edited.yaml"
+expect_ok -case scene -scene_file "$tmp/edited.yaml" -nx 10 -max_steps 2 -progress 0 -output_dir "$tmp/e1"
+echo "# edited" >>"$tmp/edited.yaml"
+expect_error "was written with scene_checksum = .*: the case's input changed since \(a scene file edited, or another version of sph\); restart with the input it was written from" -case scene -scene_file "$tmp/edited.yaml" -nx 10 -max_steps 4 -progress 0 -restart "$tmp/e1/checkpoint.bin"
+
 # -checkpoints_kept is bounded (each kept one is a copy of the state), and an integer beyond the
 # option's type is refused instead of wrapping.
 expect_error "-checkpoints_kept must be between 1 and 1000" $small -t_end 0.02 -checkpoints_kept 100000000 -output_dir "$tmp/k1"
@@ -72,6 +83,13 @@ printf 'dimension: 3\nbox: [-0.3, 1.3, -0.3, 1.3, -0.3, 1.3]\ngravity: [0, 0, -1
 (ulimit -v 2000000; expect_error "cube_mm.stl' spans 400, 250 times the scene's box \(1.6\); is it in millimetres\? scale it by 0.001" -case scene -scene_file "$tmp/mm.yaml" -nx 12 -output_dir "$tmp/o5"; exit $fail) || fail=1
 (ulimit -v 2000000; expect_error "the scene needs more than [0-9]+ particles; .* lower -nx" -case scene -scene_file "$src/cases/scenes/falling_block.yaml" -nx 20000 -output_dir "$tmp/o6"; exit $fail) || fail=1
 
+# An allocation that fails past the memory check (here a limit below the machine's) is reported as
+# running out of memory, with the fix, not as an internal error.
+(ulimit -v 1000000; expect_error "ran out of memory \(an allocation failed\): .* lower -nx|the scene needs more than" -case scene -scene_file "$src/cases/scenes/falling_block.yaml" -nx 2000 -max_steps 1 -output_dir "$tmp/o7"; exit $fail) || fail=1
+# -options_file without its file name: one line, not PETSc's traceback.
+expect_error "option -options_file was given without a file name; give the path of an options file" $small -options_file
+expect_error "option -options_file was given without a file name" -options_file -case taylor_green
+
 # Geometry that gets no particle, or has no area or volume, is refused naming the region: a body
 # smaller than the spacing or outside the box, a fluid region beyond the box, three collinear
 # vertices, a closed STL whose z are all equal.
@@ -84,9 +102,38 @@ expect_error "regions\[1\]: is body 'tiny', which holds no particle at dx = 0.05
 expect_error "regions\[1\]: is body 'away', which holds no particle" -case scene -scene_file "$tmp/away.yaml" -nx 20 -output_dir "$tmp/g2"
 expect_error "regions\[1\]: is a fluid region that holds no particle" -case scene -scene_file "$tmp/beyond.yaml" -nx 20 -output_dir "$tmp/g3"
 expect_error "regions\[1\].shape.polygon: encloses no area \(its vertices lie on one line\)" -case scene -scene_file "$tmp/line.yaml" -nx 20 -output_dir "$tmp/g4"
+# A body whose thin parts fall between the lattice's rows keeps a fraction of its shape: refused when
+# it holds under a quarter of what its area holds at dx^2 (a hub kept, five strips 0.8 dx thick lost).
+strips=""; for y in 0.48 0.58 0.68 0.78 0.88; do strips="$strips, {box: [0.05, 0.95, $y, $(python3 -c "print(round($y + 0.04, 2))")]}"; done
+printf 'dimension: 2\nbox: [0, 1, 0, 1]\ngravity: [0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.4]}\n  - {role: body, name: comb, shape: union, of: [{circle: {centre: [0.5, 0.7], radius: 0.12}}%s]}\n' "$strips" >"$tmp/comb.yaml"
+expect_error "regions\[1\]: is body 'comb', which holds 16 particles at dx = 0.05, under a quarter of the 82 its area .* holds: parts of it thinner than the spacing are lost" -case scene -scene_file "$tmp/comb.yaml" -nx 20 -output_dir "$tmp/g6"
 sed 's/vertex \([^ ]*\) \([^ ]*\) [^ ]*$/vertex \1 \2 0.3/' "$tmp/cube_mm.stl" | sed 's/\b300\b/0.3/g; s/\b700\b/0.7/g' >"$tmp/flat.stl"
 printf 'dimension: 3\nbox: [0, 1, 0, 1, 0, 1]\ngravity: [0, 0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 1, 0, 0.6]}\n  - {role: body, name: plate, shape: mesh, file: flat.stl}\n' >"$tmp/flat.yaml"
 expect_error "flat.stl' encloses no volume" -case scene -scene_file "$tmp/flat.yaml" -nx 10 -output_dir "$tmp/g5"
+
+# A folder where a file belongs (the scene, a motion table) is named as a folder, not reported as a
+# failed read ("basic_filebuf::underflow").
+mkdir -p "$tmp/folder.yaml" "$tmp/table"
+printf 'dimension: 2\nbox: [0, 1, 0, 1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.4]}\n  - {role: body, name: b, shape: circle, centre: [0.5, 0.7], radius: 0.15, motion: {type: table, file: table}}\n' >"$tmp/moving.yaml"
+expect_error "scene file '$tmp/folder.yaml': is a folder, not a scene file; give -scene_file the path of a .vtp or .yaml file" -case scene -scene_file "$tmp/folder.yaml" -output_dir "$tmp/f1"
+expect_error "regions\[1\].motion.file: '$tmp/table' is a folder, not a file; give the motion table" -case scene -scene_file "$tmp/moving.yaml" -nx 20 -output_dir "$tmp/f2"
+
+# A .vtp scene's spacing (field data dx or -scene_dx) far from its particles' own would run with
+# particles that never interact: refused naming the measured spacing. A 3-component 'kind' is named
+# as such, not as missing.
+"$src/scripts/make-scene" cavity --nx 12 -o "$tmp/cavity.vtp" >/dev/null || { echo "FAIL: make-scene cavity"; fail=1; }
+for d in dx_tiny kind_3; do /usr/bin/python3 "$(dirname "$0")/lib/bad_scene.py" "$tmp/cavity.vtp" "$tmp/$d.vtp" $d || { echo "FAIL: bad_scene.py $d"; fail=1; }; done
+vtp="-case scene -max_steps 2 -progress 0"
+expect_error "dx_tiny.vtp': its particles lie 0.0833333 apart \(median nearest-neighbour distance\), but its field data dx 1e-06 says otherwise; set field data dx to 0.0833333" $vtp -scene_file "$tmp/dx_tiny.vtp" -output_dir "$tmp/v1"
+expect_error "cavity.vtp': its particles lie 0.0833333 apart .*, but -scene_dx 0.04 is given; pass -scene_dx 0.0833333 or leave it out" $vtp -scene_file "$tmp/cavity.vtp" -scene_dx 0.04 -output_dir "$tmp/v2"
+expect_ok $vtp -scene_file "$tmp/cavity.vtp" -output_dir "$tmp/v3"
+# A list option with an empty or malformed component is refused naming the option (PETSc dropped the
+# empty one, and named no option for 0,-1x).
+expect_error "option -gravity has the value '0,,-1', whose component 2 is empty" $vtp -scene_file "$tmp/cavity.vtp" -gravity 0,,-1 -output_dir "$tmp/v5"
+expect_error "option -gravity has the value '0,-1,', whose component 3 is empty" $vtp -scene_file "$tmp/cavity.vtp" -gravity 0,-1, -output_dir "$tmp/v6"
+expect_error "option -gravity has the value '0,-1x', whose component 2 \('-1x'\) is not a number" $vtp -scene_file "$tmp/cavity.vtp" -gravity 0,-1x -output_dir "$tmp/v7"
+expect_ok $vtp -scene_file "$tmp/cavity.vtp" -gravity 0,-1e-3 -output_dir "$tmp/v8"
+expect_error "kind_3.vtp': point array 'kind' has 3 components; give one" $vtp -scene_file "$tmp/kind_3.vtp" -output_dir "$tmp/v4"
 
 # The help into a pipe closed early ends quietly, as any printing program does (SIGPIPE), without
 # PETSc's crash report.

@@ -127,6 +127,25 @@ class LoadStudy(TempDirCase):
         msg, path = self.refused("[1, 2]\n")
         self.assertEqual(msg, "study: %s: expected a mapping at the top level" % path)
 
+    def test_wrong_types(self):
+        """A key of the wrong type is one line naming it, not a Python traceback."""
+        base = "case: c\nsolvers: [wcsph]\nresolutions: [8]\n"
+        for text, expected in (
+                ("case: c\nsolvers: [wcsph]\nresolutions: 8\n", "'resolutions' must be a list of positive integers"),
+                ("case: c\nsolvers: [wcsph]\nresolutions: [a, 8]\n", "'resolutions' must be a list of positive"),
+                ("case: c\nsolvers: 5\nresolutions: [8]\n", "'solvers' must be a solver name or a list of them"),
+                ("case: c\nsolvers: [[wcsph]]\nresolutions: [8]\n", "'solvers' must be a solver name"),
+                ("case: [c]\nsolvers: [wcsph]\nresolutions: [8]\n", "'case' must be a case name"),
+                (base + "mpi: two\n", "'mpi' must be a number of MPI ranks"),
+                (base + "solver_options: {wcsph: 3}\n", "'solver_options: wcsph' must be a mapping of options"),
+                (base + "options: {nx: [1, 2]}\n", "option 'nx' must be one value, got [1, 2]; a list of values is a sweep"),
+                ("case: c\nsolvers: [wcsph\n", "line 3: not valid YAML"),
+                ("matrix: {rows: [{case: c}], columns: [{solver: isph}], options: [1]}\n",
+                 "matrix: 'options' must be a mapping of options")):
+            msg, path = self.refused(text)
+            self.assertIn(expected, msg)
+            self.assertTrue(msg.startswith("study: %s: " % path) and "\n" not in msg, msg)
+
 
 class ResolutionOptions(TempDirCase):
     REFINED = ("name: tiny_refined\ncase: taylor_green\nsolvers: [wcsph, isph]\nresolutions: [12, 8]\n"

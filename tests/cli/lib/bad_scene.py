@@ -3,7 +3,7 @@
 
 usage: bad_scene.py GOOD.vtp OUT.vtp DEFECT   (DEFECT: no_kind, kind_5, nan, outside, no_fluid, no_dx,
        Velocity, velocity_text, velocity_1, lid_normal, dx_inf, t_end_negative, free_slip_fluid,
-       free_slip_2)
+       free_slip_2, dx_tiny, kind_3)
 """
 import sys
 
@@ -44,8 +44,8 @@ elif defect == "lid_normal":  # the lid pushed down into the fluid instead of sl
     for i in range(kind.GetNumberOfTuples()):
         if kind.GetValue(i) == 2:
             v.SetTuple3(i, 0.0, -1.0, 0.0)
-elif defect in ("dx_inf", "t_end_negative"):
-    name, value = ("dx", float("inf")) if defect == "dx_inf" else ("t_end", -1.0)
+elif defect in ("dx_inf", "t_end_negative", "dx_tiny"):
+    name, value = {"dx_inf": ("dx", float("inf")), "dx_tiny": ("dx", 1e-6), "t_end_negative": ("t_end", -1.0)}[defect]
     poly.GetFieldData().RemoveArray(name)
     a = vtk.vtkDoubleArray()
     a.SetName(name)
@@ -59,6 +59,14 @@ elif defect in ("free_slip_fluid", "free_slip_2"):  # a slip flag on a fluid par
     fluid = next(i for i in range(kind.GetNumberOfTuples()) if kind.GetValue(i) == 0)
     wall = next(i for i in range(kind.GetNumberOfTuples()) if kind.GetValue(i) == 1)
     a.SetValue(fluid, 1) if defect == "free_slip_fluid" else a.SetValue(wall, 2)
+    poly.GetPointData().AddArray(a)
+elif defect == "kind_3":  # kind as a vector, e.g. written by a tool that pads every array to 3
+    a = vtk.vtkDoubleArray()
+    a.SetNumberOfComponents(3)
+    for i in range(kind.GetNumberOfTuples()):
+        a.InsertNextTuple3(kind.GetValue(i), 0.0, 0.0)
+    poly.GetPointData().RemoveArray("kind")
+    a.SetName("kind")
     poly.GetPointData().AddArray(a)
 else:
     sys.exit(f"bad_scene.py: unknown defect {defect}")
