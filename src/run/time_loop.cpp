@@ -98,6 +98,7 @@ template <int D> class TimeLoop {
   void describe_run();
   void set_start_state();
   void advance();
+  void refuse_endless_run(double dt) const;
   void write_due_outputs();
   void remove_escaped_fluid();
   // Whether fluid can be taken out of this run (a side of the box is not periodic, -box_exit not stop).
@@ -263,6 +264,20 @@ template <int D> void TimeLoop<D>::restore_order_and_lists() {
   s_.nh.refresh(P);
 }
 
+// A step so small that the run cannot end (-cfl 1e-30 gave an ETA of 1e27 s) is refused at the first
+// step, before anything is spent on it.
+template <int D> void TimeLoop<D>::refuse_endless_run(double dt) const {
+  constexpr double kMostSteps = 1e9;
+  const double steps = (opt_.t_end - t_) / dt;
+  if (steps <= kMostSteps) return;
+  std::ostringstream msg;
+  msg << "the time step " << dt << " leaves " << steps << " steps to -t_end " << opt_.t_end << " (more than "
+      << kMostSteps << "): "
+      << (opt_.dt > 0 ? std::string("-dt is far too small; raise it or leave it out")
+                      : solver_.courant_option() + " is far too small; raise it");
+  throw Error(msg.str());
+}
+
 template <int D> std::string TimeLoop<D>::dt_above_limit(double stable, double t_now) const {
   std::ostringstream msg;
   msg << "-dt " << opt_.dt << " exceeds the scheme's stability limit " << stable << " at t = " << t_now;
@@ -404,6 +419,7 @@ template <int D> void TimeLoop<D>::advance() {
   double dt = opt_.dt > 0 ? opt_.dt : stable;
   if (opt_.dt > stable) warn_dt(stable);
   dt = step_to_end(t_, opt_.t_end, dt);
+  if (step_ == resumed_.step) refuse_endless_run(dt);
   LogEventScope log_step(LogEvent::Step);
   failing_step_ = step_ + 1;
   const StepReport report = solver_.step(dt);

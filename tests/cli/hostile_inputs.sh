@@ -32,6 +32,12 @@ expect_ok $small -t_end 0.3 -output_interval 0 -restart "$m/checkpoint.bin"
 expect_json "$m/summary.json" "abs(s['t_final'] - 0.3) < 1e-12 and 'stopped_early' not in s and len(s['history']) == 2" \
   "-restart continues a run stopped by -max_steps to -t_end"
 
+# A step so small that the run cannot end is refused at once, naming the option (it ran with an ETA of
+# 1e27 s).
+expect_error "the time step .* leaves .* steps to -t_end 0.3 \(more than 1e\+09\): -cfl is far too small; raise it" \
+  $small -t_end 0.3 -cfl 1e-30 -output_dir "$tmp/tiny_cfl"
+expect_error "-dt is far too small; raise it or leave it out" $small -t_end 0.3 -dt 1e-20 -output_dir "$tmp/tiny_dt"
+
 # A YAML scene where nothing moves is told to add U: to its file, not "field data 'U'" (a .vtp term).
 printf 'dimension: 2\nbox: [0, 1, 0, 1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5]}\n' >"$tmp/still.yaml"
 expect_error "still.yaml': sets no reference speed and nothing moves \(no velocity, no gravity\); add U: \(a reference speed\) to the file or pass -U" -case scene -scene_file "$tmp/still.yaml" -nx 10 -output_dir "$tmp/u1"
