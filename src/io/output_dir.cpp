@@ -85,7 +85,11 @@ PetscMPIInt rank() {
 // Takes the directory's lock without waiting; on failure returns -1 and says why in `error`.
 int lock_directory(const std::string& dir, std::string* error) {
   std::error_code ec;
-  fs::create_directories(dir, ec);
+  // Said here: left to the lock file's open, a read-only file system read as "No such file".
+  if (!fs::create_directories(dir, ec) && ec) {
+    *error = "cannot create the output directory " + dir + " (" + ec.message() + "); choose a writable -output_dir";
+    return -1;
+  }
   const std::string path = (fs::path(dir) / ".sph.lock").string();
   const int fd = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd < 0) {

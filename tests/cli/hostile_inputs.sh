@@ -38,6 +38,12 @@ expect_error "the time step .* leaves .* steps to -t_end 0.3 \(more than 1e\+09\
   $small -t_end 0.3 -cfl 1e-30 -output_dir "$tmp/tiny_cfl"
 expect_error "-dt is far too small; raise it or leave it out" $small -t_end 0.3 -dt 1e-20 -output_dir "$tmp/tiny_dt"
 
+# An output folder that cannot be made is named with the reason (a read-only file system read as "No
+# such file" when the lock file's open said it instead); here its parent is a file.
+echo x >"$tmp/a_file"
+expect_error "cannot create the output directory .*a_file/sub \(Not a directory\); choose a writable -output_dir" \
+  $small -t_end 0.02 -output_dir "$tmp/a_file/sub"
+
 # A YAML scene where nothing moves is told to add U: to its file, not "field data 'U'" (a .vtp term).
 printf 'dimension: 2\nbox: [0, 1, 0, 1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5]}\n' >"$tmp/still.yaml"
 expect_error "still.yaml': sets no reference speed and nothing moves \(no velocity, no gravity\); add U: \(a reference speed\) to the file or pass -U" -case scene -scene_file "$tmp/still.yaml" -nx 10 -output_dir "$tmp/u1"
