@@ -830,6 +830,21 @@ void add_outline(const PlateSpec& p, SurfaceMesh& surface) {
   surface.closed = false;
   for (long c = 0; c < 4; ++c) surface.cells.push_back({first + c, first + (c + 1) % 4});
 }
+
+// The share of the lattice's points in `range` that `keeps` keeps, from a sample of about 2^16 of
+// them: the scene's particle count before any particle exists.
+template <class Keeps>
+double share_of_lattice_kept(const std::array<std::pair<long, long>, 3>& range, int D, const Keeps& keeps) {
+  std::array<long, 3> stride{1, 1, 1};
+  const long per_axis = static_cast<long>(std::ceil(std::pow(65536.0, 1.0 / D)));
+  for (int a = 0; a < D; ++a) stride[a] = std::max(1L, (range[a].second - range[a].first + 1) / per_axis);
+  double sampled = 0, kept = 0;
+  std::array<long, 3> i{};
+  for (i[2] = D == 3 ? range[2].first : 0; i[2] <= (D == 3 ? range[2].second : 0); i[2] += stride[2])
+    for (i[1] = range[1].first; i[1] <= range[1].second; i[1] += stride[1])
+      for (i[0] = range[0].first; i[0] <= range[0].second; i[0] += stride[0]) sampled += 1, kept += keeps(i);
+  return sampled > 0 ? kept / sampled : 0.0;
+}
 }  // namespace
 
 YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
@@ -973,22 +988,13 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
     for (int a = 0; a < D; ++a) x[a] = std::clamp((i[a] + 0.5) * dx, box_lo[a], box_hi[a]);
     return x;
   };
-  // The memory check before the particles exist: their count estimated from a sample of the lattice
-  // (about 2^16 points), so a scene far too large is refused in well under a second.
-  {
-    std::array<long, 3> stride{1, 1, 1};
-    const long per_axis = static_cast<long>(std::ceil(std::pow(65536.0, 1.0 / D)));
-    double sampled = 0, kept = 0;
-    for (int a = 0; a < D; ++a) stride[a] = std::max(1L, (range[a].second - range[a].first + 1) / per_axis);
-    std::array<long, 3> i{};
-    for (i[2] = D == 3 ? range[2].first : 0; i[2] <= (D == 3 ? range[2].second : 0); i[2] += stride[2])
-      for (i[1] = range[1].first; i[1] <= range[1].second; i[1] += stride[1])
-        for (i[0] = range[0].first; i[0] <= range[0].second; i[0] += stride[0]) {
-          const Fill f = fill(lattice_point(i));
-          sampled += 1, kept += f.holder || f.fluid;
-        }
-    if (sampled > 0 && kept / sampled * points > static_cast<double>(particle_budget().limit)) refuse_over_budget();
-  }
+  // The memory check before the particles exist, so a scene far too large is refused in well under a
+  // second.
+  const double share_kept = share_of_lattice_kept(range, D, [&](const std::array<long, 3>& i) {
+    const Fill f = fill(lattice_point(i));
+    return f.holder || f.fluid;
+  });
+  if (share_kept * points > static_cast<double>(particle_budget().limit)) refuse_over_budget();
   long fluid = 0;
   std::map<const Region*, long> taken;  // particles per fluid region and per solid region
   std::array<long, 3> i{};
