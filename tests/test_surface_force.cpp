@@ -1,7 +1,8 @@
 // The pressure force from a body's surface (src/sph/surface_force.hpp) on disordered fluid particles:
 // exact zero for a uniform pressure (a closed surface's area normals sum to zero), exactly the weight
-// of the enclosed water for a hydrostatic (linear) pressure, in 2D and 3D; and the surfaces YAML scenes
-// give their bodies (cases/scene/body_surface.cpp) are closed with their normals pointing out.
+// of the enclosed water for a hydrostatic (linear) pressure, in 2D and 3D; a thin plate's two faces
+// each fitted from their own side, and no pressure on faces above a free surface; and the surfaces YAML
+// scenes give their bodies (cases/scene/body_surface.cpp) are closed with their normals pointing out.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -116,6 +117,66 @@ TEST(SurfaceForce, HydrostaticPressureOnATriangulatedCubeIn3D) {
   const double volume = 8 * a * a * a;
   EXPECT_NEAR(S.force[2] / (rho_g * volume), 1.0, 1e-11);
   EXPECT_LT(std::hypot(S.force[0], S.force[1]), 1e-11 * rho_g * volume);
+}
+
+// A zero-thickness plate at x = 0.5 across the whole fluid, a different linear pressure on each side
+// (fluid_around's lattice leaves dx/2 either side of it): its two faces lie on one line, and each must
+// be fitted from its own side's fluid only, so the force is the integral of p_left - p_right exactly.
+struct PlateFaces {
+  std::vector<sph::Vector<2>> centre, area_normal;
+};
+PlateFaces plate_faces(double x0, double y0, double y1, int pieces) {
+  PlateFaces f;
+  const double a = (y1 - y0) / pieces;
+  for (int k = 0; k < pieces; ++k) {
+    const double y = y0 + (k + 0.5) * a;
+    f.centre.emplace_back(x0, y), f.area_normal.emplace_back(-a, 0.0);  // the left face, looking left
+    f.centre.emplace_back(x0, y), f.area_normal.emplace_back(a, 0.0);   // the right face
+  }
+  return f;
+}
+
+TEST(SurfaceForce, PlateFacesTakeTheirOwnSidesPressure) {
+  const double dx = 1.0 / 40;
+  const auto p = [](const sph::Vector<2>& x) { return x[0] < 0.5 ? 5.0 + 2.0 * (1.0 - x[1]) : 1.0 + 3.0 * (1.0 - x[1]); };
+  const sph::Particles<2> P = fluid_around<2>(dx, 0.0, p);
+  const sph::Kernel<2> K(sph::KernelType::WendlandC2, 1.5 * dx);
+  const sph::Screens<2> screens({{sph::Vector<2>(0.5, -0.2), sph::Vector<2>(0.5, 1.2)}}, {});
+  const PlateFaces f = plate_faces(0.5, 0.0, 1.0, 160);
+  const sph::Vector<2> about(0.5, 0.0);
+  const auto S = sph::surface_pressure_force(P, K, f.centre, f.area_normal, P.p, about, &screens);
+  // The integral over y in [0, 1] of (5 + 2 (1 - y)) - (1 + 3 (1 - y)) = 3 + y (exact face by face for
+  // a linear integrand), and its moment about (0.5, 0), -y (3 + y) in the z direction, summed at the
+  // faces' centres as the force is applied there.
+  EXPECT_NEAR(S.force[0], 3.5, 1e-11);
+  EXPECT_NEAR(S.force[1], 0.0, 1e-11);
+  double moment = 0.0;
+  for (std::size_t q = 0; q < f.centre.size(); q += 2) moment -= f.centre[q][1] * (3.0 + f.centre[q][1]) / 160;
+  EXPECT_NEAR(S.moment[2], moment, 1e-11);
+  EXPECT_NEAR(moment, -(1.5 + 1.0 / 3.0), 1e-5);  // the integral, to the midpoint rule's error
+  // Without the screens each fit mixes the two sides' fluid.
+  const auto mixed = sph::surface_pressure_force(P, K, f.centre, f.area_normal, P.p, about);
+  EXPECT_GT(std::abs(mixed.force[0] - 3.5), 0.5);
+}
+
+// With a free surface, the plate's faces above the water carry no pressure: still water 0.6 deep on
+// the left and 0.3 on the right of a plate 1 tall, each hydrostatic (p = 0 at the level, dx/2 above
+// the top particles): the force is rho g (0.6^2 - 0.3^2) / 2, however far the fits reach into the air.
+TEST(SurfaceForce, DryFacesAboveAFreeSurfaceCarryNoPressure) {
+  const double dx = 1.0 / 40, rho_g = 9810.0;
+  sph::Particles<2> P;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j) {
+      const sph::Vector<2> x((i + 0.5) * dx, (j + 0.5) * dx);
+      const double level = x[0] < 0.5 ? 0.6 : 0.3;
+      if (x[1] < level) P.add(x, sph::Vector<2>::Zero(), dx * dx, 1000.0, rho_g * (level - x[1]), sph::kFluid);
+    }
+  const sph::Kernel<2> K(sph::KernelType::WendlandC2, 1.5 * dx);
+  const sph::Screens<2> screens({{sph::Vector<2>(0.5, -0.2), sph::Vector<2>(0.5, 1.2)}}, {});
+  const PlateFaces f = plate_faces(0.5, 0.0, 1.0, 160);
+  const auto S = sph::surface_pressure_force(P, K, f.centre, f.area_normal, P.p, sph::Vector<2>(0.5, 0.0), &screens,
+                                             true);
+  EXPECT_NEAR(S.force[0] / (rho_g * (0.36 - 0.09) / 2), 1.0, 1e-12);
 }
 
 // The surface a YAML scene gives a circular body: closed, each face's normal pointing away from the

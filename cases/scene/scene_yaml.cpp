@@ -782,10 +782,21 @@ bool in_plate_gap(const std::vector<Region>& plates, const Point3& x, double dx)
 // that part (on an axis-aligned plate, the lattice's own points), from the face inwards through the
 // plate and on, layer after layer, into the other side; each particle labelled with its face (+1 the
 // side the normal points to, -1 the other) for the neighbour lists (src/neighbours/screens.hpp).
-void add_plate_layers(const std::vector<Region>& plates, int wall_layers, double dx, const Point3& box_lo,
-                      const Point3& box_hi, YamlScene& out) {
+// Where an end stands on a wall (`solids`), the layers and the screen go on through that wall, as
+// deep as its layers: a wall particle beside the plate's foot would otherwise see the fluid of both
+// sides, and its pressure, extrapolated from both, let the two sides' pressures meet under the plate
+// (still water at two levels either side of a plate lost a fifth of its force); screened without the
+// layers, the fluid in the corner would miss the wall beyond the plate from its support
+// (docs/verification/thin_plate.md).
+void add_plate_layers(const std::vector<Region>& plates, const std::vector<Region>& solids, int wall_layers,
+                      double dx, const Point3& box_lo, const Point3& box_hi, YamlScene& out) {
   SceneFile& s = out.file;
   out.plate_face.resize(s.x.size(), 0);
+  auto in_a_wall = [&](const Point3& x) {
+    for (const Region& w : solids)
+      if (w.shape->distance(x) <= 0.5 * dx) return true;
+    return false;
+  };
   for (std::size_t k = 0; k < plates.size(); ++k) {
     const PlateSpec& p = plates[k].plate;
     const auto [e, n] = plate_frame(p);
@@ -801,9 +812,11 @@ void add_plate_layers(const std::vector<Region>& plates, int wall_layers, double
     const long rows = std::lround((s1 - s0) / dx);
     if (rows < 1) continue;
     const double step = (s1 - s0) / static_cast<double>(rows);
+    const long before = s0 == 0.0 && in_a_wall(p.a) ? wall_layers : 0,
+               after = s1 == length && in_a_wall(p.b) ? wall_layers : 0;
     for (int face : {1, -1})
       for (int layer = 0; layer < wall_layers; ++layer)
-        for (long m = 0; m < rows; ++m) {
+        for (long m = -before; m < rows + after; ++m) {
           const Point3 x = p.a + (s0 + (m + 0.5) * step) * e + (face * (0.5 * p.thickness - (layer + 0.5) * dx)) * n;
           bool inside = true;
           for (int a = 0; a < 2; ++a) inside = inside && x[a] >= box_lo[a] && x[a] <= box_hi[a];
@@ -813,22 +826,47 @@ void add_plate_layers(const std::vector<Region>& plates, int wall_layers, double
           out.body.push_back(plates[k].body), out.free_slip.push_back(plates[k].free_slip);
           out.plate_face.push_back(static_cast<std::int8_t>(face * static_cast<int>(k + 1)));
         }
-    out.plates.push_back({p.a[0], p.a[1], p.b[0], p.b[1]});
+    const Point3 a = p.a - (before * step) * e, b = p.b + (after * step) * e;
+    out.plates.push_back({a[0], a[1], b[0], b[1]});
   }
 }
 
-// A plate's outline (its two faces, and its ends when it has a thickness) added to a body's surface.
-void add_outline(const PlateSpec& p, SurfaceMesh& surface) {
+// A plate's outline added to a body's surface: its two faces, each in segments no longer than
+// `step`, and its ends when it has a thickness. The outline is closed, and each face's pressure is
+// fitted from the fluid on its own side (src/sph/surface_force.hpp): a zero-thickness plate's faces
+// lie on one line and still take their sides' pressures.
+void add_outline(const PlateSpec& p, double step, SurfaceMesh& surface) {
   const auto [e, n] = plate_frame(p);
   const Point3 h = 0.5 * p.thickness * n;
-  const Point3 corners[4] = {p.a - h, p.b - h, p.b + h, p.a + h};
-  const long first = static_cast<long>(surface.points.size());
-  for (const Point3& c : corners) surface.points.push_back({c[0], c[1], 0.0});
+  const long pieces = std::max(1L, static_cast<long>(std::ceil((p.b - p.a).norm() / step)));
+  const bool first_outline = surface.cells.empty();
   surface.lines = true;
-  // A plate's sides hold different pressures that no fit across it can tell apart: its forces come
-  // from the pairs (src/run/wall_groups.hpp).
-  surface.closed = false;
-  for (long c = 0; c < 4; ++c) surface.cells.push_back({first + c, first + (c + 1) % 4});
+  auto add_point = [&](const Point3& x) {
+    surface.points.push_back({x[0], x[1], 0.0});
+    return static_cast<long>(surface.points.size()) - 1;
+  };
+  // Round the outline a - h -> b - h -> b + h -> a + h -> a - h: each segment's normal, (b - a) turned
+  // clockwise, points out of the plate.
+  const Point3 corners[4] = {p.a - h, p.b - h, p.b + h, p.a + h};
+  const long start = add_point(corners[0]);
+  long last = start;
+  for (int c = 0; c < 4; ++c) {
+    const bool face = c % 2 == 0;
+    if (!face && p.thickness <= 0.0) {  // an end of no length: no face, the points coincide
+      if (c == 3) surface.cells.back()[1] = start;
+      continue;
+    }
+    const long n_pieces = face ? pieces : 1;
+    for (long m = 1; m <= n_pieces; ++m) {
+      const bool closes = c == 3 && m == n_pieces;
+      const Point3 x = corners[c] + (static_cast<double>(m) / n_pieces) * (corners[(c + 1) % 4] - corners[c]);
+      const long next = closes ? start : add_point(x);
+      surface.cells.push_back({last, next});
+      last = next;
+    }
+  }
+  // A body of plates alone is closed; with other parts it is as closed as their surface was.
+  if (first_outline) surface.closed = true;
 }
 
 // The share of the lattice's points in `range` that `keeps` keeps, from a sample of about 2^16 of
@@ -1021,7 +1059,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
         ++fluid;
       }
     }
-  add_plate_layers(plates, wall_layers, dx, box_lo, box_hi, out);
+  add_plate_layers(plates, solids, wall_layers, dx, box_lo, box_hi, out);
   out.plate_face.resize(s.x.size(), 0);
   if (fluid == 0)
     r.fail(list, "regions",
@@ -1058,7 +1096,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
       out.surfaces[b] = body_surface(parts, D, lo, hi, step);
     }
     for (const Region& p : plates)
-      if (p.body == static_cast<int>(b)) add_outline(p.plate, out.surfaces[b]);
+      if (p.body == static_cast<int>(b)) add_outline(p.plate, 0.25 * dx, out.surfaces[b]);
   }
 
   std::uint64_t h = r.checksum;

@@ -74,7 +74,8 @@ template <int D> class WallGroups {
     for (std::size_t b = 0; b < faces_.size() && b < F.size(); ++b) {
       if (faces_[b].centre.empty()) continue;
       const Faces now = moved(b, bodies.time());
-      const SurfaceForce<D> S = surface_pressure_force(P, K, now.centre, now.area_normal, P.p, about_[b]);
+      const SurfaceForce<D> S = surface_pressure_force(P, K, now.centre, now.area_normal, P.p, about_[b],
+                                                          nh.domain().screens.get(), physics.free_surface);
       F[b].moment += S.moment - F[b].pressure_moment;
       F[b].pressure = S.force, F[b].pressure_moment = S.moment;
     }

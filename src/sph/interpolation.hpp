@@ -90,16 +90,23 @@ template <class T, int C> T from_row(const Eigen::Matrix<double, 1, C>& r) {
   if constexpr (std::is_same_v<T, double>) return r(0);
   else return r.transpose();
 }
+// probe_fluid's default: point k sees every fluid particle within reach.
+struct SeesEveryParticle {
+  bool operator()(std::size_t, int) const { return true; }
+};
 }  // namespace detail
 
 // A fluid field (double or Vector<D>, one value per particle) at arbitrary points, by the chosen fit,
 // reduced over all ranks: every rank gets every point's value. For a scalar field and the linear fit,
 // `gradient` (if given) gets the fitted gradient at each point (zero where the fit fell back to
-// Shepard's value), so that a + b.(y - x) serves around x.
-template <int D, class T> std::vector<T> probe_fluid(const Particles<D>& P, const Kernel<D>& K,
-                                                     const std::vector<Vector<D>>& points, ProbeInterpolation fit,
-                                                     const std::vector<T>& field,
-                                                     std::vector<Vector<D>>* gradient = nullptr) {
+// Shepard's value), so that a + b.(y - x) serves around x; `linear` (if given) gets 1 where the linear
+// fit was made, 0 where it fell back. sees(k, i): whether point k may take particle i into its fit (a
+// plate's face fits its own side's fluid only).
+template <int D, class T, class Sees = detail::SeesEveryParticle>
+std::vector<T> probe_fluid(const Particles<D>& P, const Kernel<D>& K, const std::vector<Vector<D>>& points,
+                           ProbeInterpolation fit, const std::vector<T>& field,
+                           std::vector<Vector<D>>* gradient = nullptr, const Sees& sees = Sees{},
+                           std::vector<char>* linear = nullptr) {
   constexpr int m = D + 1;  // basis 1, (y - x)/h
   constexpr int C = std::is_same_v<T, double> ? 1 : D;
   using Moments = Eigen::Matrix<double, m, m>;
@@ -117,7 +124,7 @@ template <int D, class T> std::vector<T> probe_fluid(const Particles<D>& P, cons
     for (const int i : near) {
       const Vector<D> d = P.x[i] - points[k];
       const double r2 = d.squaredNorm();
-      if (r2 >= rc2) continue;
+      if (r2 >= rc2 || !sees(k, i)) continue;
       Eigen::Matrix<double, m, 1> p;
       p << 1.0, d * inv_h;
       const double w = K.W(std::sqrt(r2));
@@ -128,6 +135,7 @@ template <int D, class T> std::vector<T> probe_fluid(const Particles<D>& P, cons
   MPI_Allreduce(MPI_IN_PLACE, buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   std::vector<T> u(n, detail::from_row<T, C>(Eigen::Matrix<double, 1, C>::Zero()));
   if (gradient) gradient->assign(n, Vector<D>::Zero());
+  if (linear) linear->assign(n, 0);
   for (std::size_t k = 0; k < n; ++k) {
     const Eigen::Map<const Moments> M(&buf[k * per_point]);
     const Eigen::Map<const Sums> B(&buf[k * per_point + m * m]);
@@ -139,6 +147,7 @@ template <int D, class T> std::vector<T> probe_fluid(const Particles<D>& P, cons
     const Eigen::LDLT<Moments> ldlt(M);
     if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-10)) continue;
     const Sums coefficients = ldlt.solve(Sums(B));
+    if (linear) (*linear)[k] = 1;
     u[k] = detail::from_row<T, C>(Eigen::Matrix<double, 1, C>(coefficients.row(0)));
     if constexpr (std::is_same_v<T, double>)
       if (gradient) (*gradient)[k] = coefficients.template bottomRows<D>().col(0) * inv_h;
