@@ -61,9 +61,9 @@ PetscErrorCode read_options(RunControl* o) {
                         o->wall_forces, &o->wall_forces, nullptr));
   PetscCall(option_choice(PetscOptionsObject, "-body_pressure_force",
                           "A body's pressure force: surface (the pressure fitted at its surface's faces and "
-                          "integrated over them, so a uniform pressure gives none; bodies of YAML scenes with a "
-                          "closed surface) or pairs (summed over the wall-fluid pairs, as for the walls, plates "
-                          "and bodies of .vtp scenes)",
+                          "integrated over them, so a uniform pressure gives none; bodies of YAML scenes, a plate's "
+                          "faces each from its own side) or pairs (summed over the wall-fluid pairs, as for the "
+                          "walls and the bodies of .vtp scenes)",
                           body_pressure_force_names, 2, body_pressure_force_names[o->body_pressure_force],
                           &o->body_pressure_force, nullptr));
   PetscCall(option_bool(PetscOptionsObject, "-overwrite",
