@@ -810,7 +810,7 @@ void add_plate_layers(const std::vector<Region>& plates, const std::vector<Regio
       s0 = std::max(s0, t0), s1 = std::min(s1, t1);
     }
     const long rows = std::lround((s1 - s0) / dx);
-    if (rows < 1) continue;
+    if (rows < 1) continue;  // no layers: no plate for the screens, whose indices the labels below use
     const double step = (s1 - s0) / static_cast<double>(rows);
     const long before = s0 == 0.0 && in_a_wall(p.a) ? wall_layers : 0,
                after = s1 == length && in_a_wall(p.b) ? wall_layers : 0;
@@ -824,7 +824,7 @@ void add_plate_layers(const std::vector<Region>& plates, const std::vector<Regio
           s.x.push_back({x[0], x[1], 0.0});
           s.v.push_back({0.0, 0.0, 0.0}), s.p.push_back(0.0), s.kind.push_back(kSceneFixedWall);
           out.body.push_back(plates[k].body), out.free_slip.push_back(plates[k].free_slip);
-          out.plate_face.push_back(static_cast<std::int8_t>(face * static_cast<int>(k + 1)));
+          out.plate_face.push_back(static_cast<std::int8_t>(face * (static_cast<int>(out.plates.size()) + 1)));
         }
     const Point3 a = p.a - (before * step) * e, b = p.b + (after * step) * e;
     out.plates.push_back({a[0], a[1], b[0], b[1]});
