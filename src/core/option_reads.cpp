@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <sstream>
 #include <string>
+#include <strings.h>
+#include <vector>
 
 #include "src/core/options.hpp"
 
@@ -51,6 +53,27 @@ PetscErrorCode given_value(PetscOptionItems* block, const char* name, const char
   PetscCall(PetscOptionsFindPair(block->options, block->prefix, name, given, &found));
   if (!found) *given = nullptr;
   PetscFunctionReturn(0);
+}
+
+// A choice that is none of the option's, named with its choices and the nearest of them (PETSc's own
+// message lists them without the nearest). PETSc matches choices ignoring case.
+PetscErrorCode refuse_unknown_choice(PetscOptionItems* block, const char* name, const char* const* choices,
+                                     PetscInt n) {
+  PetscFunctionBeginUser;
+  const char* given = nullptr;
+  PetscCall(given_value(block, name, &given));
+  if (!given) PetscFunctionReturn(0);
+  std::vector<std::string> all;
+  for (PetscInt k = 0; k < n; ++k) {
+    if (strcasecmp(given, choices[k]) == 0) PetscFunctionReturn(0);
+    all.emplace_back(choices[k]);
+  }
+  std::string list;
+  for (const std::string& c : all) list += (list.empty() ? "" : ", ") + c;
+  const std::string best = closest_choice(given, all);
+  const std::string hint = best.empty() ? std::string() : "; did you mean " + best + "?";
+  SETERRQ(block->comm, PETSC_ERR_USER_INPUT, "option %s has the value '%s', which is none of its choices (%s)%s", name,
+          given, list.c_str(), hint.c_str());
 }
 
 // PETSc wraps an integer beyond its int type (2147483648 reads as a negative number): refused, named.
@@ -165,6 +188,7 @@ PetscErrorCode option_choice(PetscOptionItems* block, const char* name, const ch
   PetscFunctionBeginUser;
   record(name);
   PetscCall(refuse_missing_value(block, name, current ? current : ""));
+  PetscCall(refuse_unknown_choice(block, name, choices, n));
   PetscCall(PetscOptionsEList_Private(block, name, text(help, level).c_str(), "", choices, n, current, value, set));
   PetscFunctionReturn(0);
 }

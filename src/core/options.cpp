@@ -218,6 +218,10 @@ std::vector<std::pair<std::string, std::optional<std::string>>> unused_options()
 
 }  // namespace
 
+std::string closest_choice(const std::string& given, const std::vector<std::string>& choices) {
+  return closest(given, choices);
+}
+
 void check_unused_options(const std::vector<OptionOwner>& owners) {
   for (const auto& [name, value] : unused_options()) {
     if (in(petsc_late_options(), name)) continue;

@@ -44,6 +44,8 @@ struct OptionOwner {
 // -ppe_ksp_rtol), with the owner that reads it when it belongs to a case or solver not chosen, else
 // with the closest option there is.
 void check_unused_options(const std::vector<OptionOwner>& owners);
+// The choice within two edits of `given` (a value of a choice option), or "" when none is.
+std::string closest_choice(const std::string& given, const std::vector<std::string>& choices);
 // After the first step: the options the active owners read late must have been read by then.
 void check_late_options(const std::vector<OptionOwner>& owners);
 // End of run: warns about options still unused (those only PETSc's finalisation reads are exempt).

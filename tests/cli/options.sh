@@ -46,7 +46,10 @@ expect_error "option -acoustic_cfl is read by -solver wcsph, -solver compressibl
 expect_error "-acoustic_cfl must be in \(0, 1\]" $small -solver wcsph -acoustic_cfl 2
 expect_error "option -wall_layers is read by -case lid_driven_cavity.*-case poiseuille" $small -wall_layers 4
 expect_error "-lid_corners symmetric is 2D only" -case lid_driven_cavity -dim 3 -nx 8 -lid_corners symmetric -progress 0 -output_dir $tmp/out -overwrite
-expect_error "Unknown option foo for -profile_interpolation" -case lid_driven_cavity -nx 8 -profile_interpolation foo -progress 0 -output_dir $tmp/out -overwrite
+expect_error "option -profile_interpolation has the value 'foo', which is none of its choices \\(shepard, linear\\)$" -case lid_driven_cavity -nx 8 -profile_interpolation foo -progress 0 -output_dir $tmp/out -overwrite
+# A mistyped choice is named with the choices and the nearest of them.
+expect_error "option -case has the value 'dam_brek', which is none of its choices \\(taylor_green, .*\\); did you mean dam_break\\?$" -case dam_brek -progress 0 -output_dir $tmp/out -overwrite
+expect_error "option -solver has the value 'ispf', which is none of its choices \\(isph, wcsph, compressible\\); did you mean isph\\?$" $small -solver ispf
 expect_error "-profile_average_from must be a time >= 0" -case lid_driven_cavity -nx 8 -profile_average_from -2 -progress 0 -output_dir $tmp/out -overwrite
 expect_error "-profile_average_from needs a reference" -case lid_driven_cavity -nx 8 -re 200 -profile_average_from 1 -progress 0 -output_dir $tmp/out -overwrite
 expect_error "-mat_type seqsbaij stores half of a symmetric matrix" $small -mat_type sbaij
