@@ -41,18 +41,19 @@ template <int D> class Screens {
   // The plate's unit normal: its +1 face looks this way.
   Vector<D> normal(std::size_t k) const { return frames_[k].normal; }
 
-  // Which side of each plate a point alongside it lies on, as one number (base 3 per plate: 0 beyond
-  // the plate's ends, 1 on its normal's side, 2 on the other): points with the same view see the same
-  // particles through the plates. A body's surface pressure is fitted per view (surface_force.hpp), so
-  // that a plate's two faces take their pressures from their own sides.
-  long view(const Vector<D>& x) const {
-    long code = 0, weight = 1;
-    for (std::size_t k = 0; k < plates_.size(); ++k, weight *= 3) {
+  // Which side of each plate a point alongside it lies on: 2k for plate k's normal side, 2k + 1 for the
+  // other, none beyond its ends. Points with the same view see the same particles through the plates: a
+  // body's surface pressure is fitted per view (surface_force.hpp), so that a plate's two faces take
+  // their pressures from their own sides.
+  std::vector<int> view(const Vector<D>& x) const {
+    std::vector<int> sides;
+    for (std::size_t k = 0; k < plates_.size(); ++k) {
       const Frame& f = frames_[k];
       const double along = (x - plates_[k].a).dot(f.along);
-      if (along >= 0.0 && along <= f.length) code += weight * ((x - plates_[k].a).dot(f.normal) >= 0.0 ? 1 : 2);
+      if (along >= 0.0 && along <= f.length)
+        sides.push_back(2 * static_cast<int>(k) + ((x - plates_[k].a).dot(f.normal) >= 0.0 ? 0 : 1));
     }
-    return code;
+    return sides;
   }
 
   // Whether particles i and j (positions, permanent ids) see each other. Symmetric in i and j, so the

@@ -53,15 +53,16 @@ template <int D> SurfaceForce<D> surface_pressure_force(const Particles<D>& P, c
     const double norm = n.norm();
     return norm > 0.0 ? Vector<D>(x + (off / norm) * n) : x;
   };
-  std::map<std::pair<std::array<long, D>, long>, std::size_t> bin_of_cube;
+  std::map<std::pair<std::array<long, D>, std::vector<int>>, std::size_t> bin_of_cube;
   std::vector<std::size_t> bin(centre.size());
   std::vector<Vector<D>> fit_at, outward;  // per bin: sum of |a| x, then the centre; sum of a n
   std::vector<double> weight;
   for (std::size_t q = 0; q < centre.size(); ++q) {
     std::array<long, D> cube;
     for (int a = 0; a < D; ++a) cube[a] = static_cast<long>(std::floor(centre[q][a] / h));
-    const long view = screened ? screens->view(outside(centre[q], area_normal[q])) : 0;
-    const auto [it, added] = bin_of_cube.emplace(std::make_pair(cube, view), fit_at.size());
+    std::vector<int> view;
+    if (screened) view = screens->view(outside(centre[q], area_normal[q]));
+    const auto [it, added] = bin_of_cube.emplace(std::make_pair(cube, std::move(view)), fit_at.size());
     if (added) fit_at.push_back(Vector<D>::Zero()), outward.push_back(Vector<D>::Zero()), weight.push_back(0.0);
     bin[q] = it->second;
     const double w = area_normal[q].norm();
