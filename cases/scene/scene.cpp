@@ -114,7 +114,7 @@ template <int D> void SceneCase<D>::set_from_options() {
     Vector<D> xi;
     for (int a = 0; a < D; ++a) xi[a] = file_.x[i][a];
     x.push_back(xi);
-    kind.push_back(file_.kind[i] == kSceneFluid ? kFluid : kWall);
+    kind.push_back(file_.kind[i] == kSceneFluid ? kFluid : kWall);  // a buffer closes the fluid as a wall does
   }
   const PointGrid<D> grid(x, box_, dx_);
   const std::vector<int> count = neighbour_counts(grid, x, dx_);
@@ -184,6 +184,16 @@ template <int D> void SceneCase<D>::read_file() {
     motions_.push_back(m);
   }
   bodies_ = std::move(scene.bodies);
+  for (const OpenBoundarySpec& spec : scene.open) {
+    OpenBoundary<D> b;
+    b.type = spec.inlet ? OpenBoundary<D>::Type::Inlet : OpenBoundary<D>::Type::Outlet;
+    b.axis = spec.axis, b.side = spec.side, b.plane = spec.plane, b.depth = spec.depth, b.pressure = spec.pressure;
+    for (int a = 0; a < D; ++a)
+      b.section_lo[a] = spec.section_lo[a], b.section_hi[a] = spec.section_hi[a], b.inflow.velocity[a] = spec.velocity[a];
+    if (spec.peak > 0) b.inflow.profile = InletVelocity<D>::Profile::Parabolic, b.inflow.peak = spec.peak;
+    b.inflow.ramp = spec.ramp;
+    open_.push_back(b);
+  }
 }
 
 template <int D> void SceneCase<D>::resolve_parameters() {
@@ -308,6 +318,9 @@ template <int D> void SceneCase<D>::resolve_parameters() {
           std::max(reach[static_cast<std::size_t>(body_[i])], (r3 - r3.dot(m.axis) * m.axis).norm());
     }
   for (std::size_t b = 0; b < motions_.size(); ++b) U = std::max(U, motions_[b].top_speed(reach[b]));
+  // Inlets: their full speed.
+  for (const OpenBoundary<D>& b : open_)
+    U = std::max(U, b.inflow.profile == InletVelocity<D>::Profile::Parabolic ? b.inflow.peak : b.inflow.velocity.norm());
   physics_.U = opt_.U_set ? opt_.U : scalar("U", PETSC_FALSE, 0.0, U);
   if (!(physics_.U > 0))
     throw Error(opt_.U_set || file_.field.count("U")
@@ -367,8 +380,14 @@ template <int D> void SceneCase<D>::create(Particles<D>& P, Domain<D>& domain) c
     for (int a = 0; a < D; ++a) x[a] = file_.x[i][a];
     if (file_.kind[i] != kSceneFixedWall)
       for (int a = 0; a < D; ++a) v[a] = file_.v[i][a];
-    all.add(x, v, mass, physics_.rho0, file_.p[i], file_.kind[i] == kSceneFluid ? kFluid : kWall);
+    const int kind = file_.kind[i] == kSceneFluid    ? kFluid
+                     : file_.kind[i] == kSceneInlet  ? kInlet
+                     : file_.kind[i] == kSceneOutlet ? kOutlet
+                                                     : kWall;
+    all.add(x, v, mass, physics_.rho0, file_.p[i], kind);
   }
+  // The inlets' velocity at t = 0 (the time loop prescribes it at every step).
+  OpenBoundaries<D>(open_).prescribe(all, 0.0);
   P = rank_share(all);
   if (!plates_.empty()) domain.screens = std::make_shared<const Screens<D>>(plates_, plate_face_);
 }
@@ -390,7 +409,7 @@ template <int D> std::string SceneCase<D>::thin_walls(double thickness_dx, doubl
 template <int D> nlohmann::json SceneCase<D>::parameters() const {
   char checksum[20];
   std::snprintf(checksum, sizeof checksum, "%016llx", static_cast<unsigned long long>(file_.checksum));
-  long counts[3] = {0, 0, 0};
+  long counts[5] = {0, 0, 0, 0, 0};
   for (int k : file_.kind) ++counts[k];
   std::vector<double> box;
   std::vector<int> periodic;
@@ -415,6 +434,7 @@ template <int D> nlohmann::json SceneCase<D>::parameters() const {
                       {"moving_wall_particles", counts[kSceneMovingWall]},
                       {"wall_thickness_dx", walls_ / dx_}};
   if (!bodies_.empty()) p["bodies"] = bodies;
+  if (!open_.empty()) p["inlet_particles"] = counts[kSceneInlet], p["outlet_particles"] = counts[kSceneOutlet];
   return p;
 }
 

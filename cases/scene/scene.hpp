@@ -55,6 +55,7 @@ template <int D> class SceneCase : public Case<D> {
   std::vector<char> free_slip_of_particles() const override { return free_slip_; }
   std::vector<PrescribedMotion<D>> body_motions() const override { return motions_; }
   std::vector<SurfaceMesh> body_surfaces() const override { return surfaces_; }
+  std::vector<OpenBoundary<D>> open_boundaries() const override { return open_; }
 
  private:
   void read_file();           // the .vtp file, or the YAML file sampled at -nx, -scene_dx or its dx
@@ -69,6 +70,7 @@ template <int D> class SceneCase : public Case<D> {
   std::vector<std::string> bodies_;  // YAML scenes: the names of the bodies
   std::vector<PrescribedMotion<D>> motions_;  // YAML scenes: per body
   std::vector<SurfaceMesh> surfaces_;          // YAML scenes: per body, at t = 0
+  std::vector<OpenBoundary<D>> open_;          // YAML scenes: inlets and outlets
   // YAML scenes: the thin plates (src/neighbours/screens.hpp), and per particle the plate face it
   // stands for (0: none; empty without plates).
   std::vector<typename Screens<D>::Plate> plates_;

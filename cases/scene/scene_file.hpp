@@ -15,7 +15,8 @@
 
 namespace sph {
 
-enum SceneKind : int { kSceneFluid = 0, kSceneFixedWall = 1, kSceneMovingWall = 2 };
+// Inlet and outlet buffer particles come from YAML scenes only (scene_yaml.hpp).
+enum SceneKind : int { kSceneFluid = 0, kSceneFixedWall = 1, kSceneMovingWall = 2, kSceneInlet = 3, kSceneOutlet = 4 };
 
 struct SceneFile {
   std::string path;

@@ -498,13 +498,64 @@ class Reader {
     r.shape = make_polygon({a - half * n, b - half * n, b + half * n, a + half * n});
   }
 
+  // Whether region n is an inlet or an outlet (role: inlet / outlet).
+  static bool is_open_boundary(const YAML::Node& n) {
+    const YAML::Node role = n.IsMap() ? n["role"] : YAML::Node();
+    return role.IsDefined() && role.IsScalar() && (role.Scalar() == "inlet" || role.Scalar() == "outlet");
+  }
+
+  // {role: inlet, side: x-, velocity: [u, v] or {parabolic: U_max}, ramp: T} or {role: outlet, side: x+,
+  // pressure: p}: the side and the condition; the buffer's place and section come with the lattice.
+  OpenBoundarySpec open_boundary(const YAML::Node& n, const std::string& key) const {
+    OpenBoundarySpec b;
+    b.inlet = n["role"].Scalar() == "inlet";
+    if (b.inlet) only_keys(n, key, {"role", "side", "velocity", "ramp"});
+    else only_keys(n, key, {"role", "side", "pressure"});
+    const YAML::Node side = n["side"];
+    const std::string sides = dim == 2 ? "x-, x+, y- or y+" : "x-, x+, y-, y+, z- or z+";
+    if (!side.IsDefined()) fail(n, key, "has no side; add side: one of " + sides + " (the box's side it lies on)");
+    const std::string s = side.IsScalar() ? side.Scalar() : "";
+    const std::size_t axis = s.size() == 2 ? std::string("xyz").find(s[0]) : std::string::npos;
+    if (axis == std::string::npos || axis >= static_cast<std::size_t>(dim) || (s[1] != '-' && s[1] != '+'))
+      fail(side, key + ".side", "is not a side of the box; give one of " + sides);
+    b.axis = static_cast<int>(axis), b.side = s[1] == '-' ? -1 : 1;
+    if (!b.inlet) {
+      if (n["pressure"].IsDefined()) b.pressure = number(n["pressure"], key + ".pressure");
+      return b;
+    }
+    const YAML::Node v = n["velocity"];
+    if (!v.IsDefined())
+      fail(n, key, "is an inlet without a velocity; add velocity: [u, v] or velocity: {parabolic: U_max}");
+    if (v.IsMap()) {
+      only_keys(v, key + ".velocity", {"parabolic"});
+      if (!v["parabolic"].IsDefined()) fail(v, key + ".velocity", "has no parabolic: U_max; give the profile's peak speed");
+      b.peak = number(v["parabolic"], key + ".velocity.parabolic");
+      if (!(b.peak > 0))
+        fail(v["parabolic"], key + ".velocity.parabolic",
+             "is " + number_text(b.peak) + "; the peak speed into the box must be positive");
+    } else {
+      const Point3 u = point(v, key + ".velocity");
+      for (int a = 0; a < 3; ++a) b.velocity[a] = u[a];
+      if (!(-b.side * u[b.axis] > 0))
+        fail(v, key + ".velocity",
+             "points out of the box or along its side (" + std::string(1, "xyz"[b.axis]) + " component " +
+                 number_text(u[b.axis]) + " at side " + s + "); an inlet's velocity must point into the box");
+    }
+    if (n["ramp"].IsDefined()) {
+      b.ramp = number(n["ramp"], key + ".ramp");
+      if (!(b.ramp >= 0)) fail(n["ramp"], key + ".ramp", "is negative; give the time to full speed, 0 or more");
+    }
+    return b;
+  }
+
   Region region(const YAML::Node& n, const std::string& key, std::vector<std::string>& bodies, const Point3& g) {
     only_keys(n, key,
               {"role", "shape",  "velocity", "pressure", "motion", "slip",  "name",   "of",   "bounds", "vertices",
                "file", "centre", "center",   "radius",   "ends",   "point", "normal", "from", "to",     "thickness"});
     Region r;
     const YAML::Node role = n["role"];
-    if (!role.IsDefined()) fail(n, key, "has no role; add role: fluid, role: wall or role: body with name: NAME");
+    if (!role.IsDefined())
+      fail(n, key, "has no role; add role: fluid, wall, inlet, outlet, or role: body with name: NAME");
     std::string body;
     if (role.IsScalar() && role.Scalar() == "fluid") r.role = Role::Fluid;
     else if (role.IsScalar() && role.Scalar() == "wall") r.role = Role::Wall;
@@ -516,7 +567,7 @@ class Reader {
                !role["body"].Scalar().empty()) {
       body = role["body"].Scalar();
     } else {
-      fail(role, key + ".role", "is not fluid, wall or body; give one of those");
+      fail(role, key + ".role", "is not fluid, wall, body, inlet or outlet; give one of those");
     }
     if (!body.empty()) {
       r.role = Role::Body;
@@ -869,6 +920,41 @@ void add_outline(const PlateSpec& p, double step, SurfaceMesh& surface) {
   if (first_outline) surface.closed = true;
 }
 
+// An open boundary's section, the part of its side where the fluid meets it: along each other axis,
+// from the buffer's outermost points to the solids beside them (a channel's walls), or half a spacing
+// beyond them where no solid is within a spacing.
+void place_section(OpenBoundarySpec& b, const std::vector<Point3>& y, const std::vector<Region>& solids, double dx) {
+  auto solid_distance = [&](const Point3& x) {
+    double d = kInf;
+    for (const Region& w : solids) d = std::min(d, w.shape->distance(x));
+    return d;
+  };
+  Point3 centre = Point3::Zero();
+  for (const Point3& p : y) centre += p / static_cast<double>(y.size());
+  for (int a = 0; a < 3; ++a) {
+    if (a == b.axis) continue;
+    // The outermost points nearest the section's middle along the other axes: their nearest solid is
+    // the one across this axis.
+    auto outermost = [&](int sign) {
+      const Point3* best = &y[0];
+      auto further = [&](const Point3& p, const Point3& q) {
+        if (sign * (p[a] - q[a]) > 1e-9 * dx) return true;
+        if (std::abs(p[a] - q[a]) > 1e-9 * dx) return false;
+        Point3 dp = p - centre, dq = q - centre;
+        dp[a] = dq[a] = 0;
+        return dp.norm() < dq.norm();
+      };
+      for (const Point3& p : y)
+        if (further(p, *best)) best = &p;
+      return *best;
+    };
+    const Point3 lo = outermost(-1), hi = outermost(1);
+    const double d_lo = solid_distance(lo), d_hi = solid_distance(hi);
+    b.section_lo[a] = lo[a] - (d_lo < dx ? d_lo : 0.5 * dx);
+    b.section_hi[a] = hi[a] + (d_hi < dx ? d_hi : 0.5 * dx);
+  }
+}
+
 // The share of the lattice's points in `range` that `keeps` keeps, from a sample of about 2^16 of
 // them: the scene's particle count before any particle exists.
 template <class Keeps>
@@ -943,7 +1029,23 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
   std::vector<Region> solids, fluids, plates;
   Bounds reach{Point3::Constant(kInf), Point3::Constant(-kInf)};
   std::vector<char> given;  // per body: its motion was given
+  std::vector<std::pair<YAML::Node, std::string>> open_nodes;  // each open boundary's region and key, for messages
   for (std::size_t k = 0; k < list.size(); ++k) {
+    if (Reader::is_open_boundary(list[k])) {
+      const std::string key = "regions[" + std::to_string(k) + "]";
+      OpenBoundarySpec b = r.open_boundary(list[k], key);
+      const std::string side = std::string(1, "xyz"[b.axis]) + (b.side < 0 ? "-" : "+");
+      if (!has_box) r.fail(list[k], key, "lies on a side of the box, and the scene has none; add box: [...]");
+      if (periodic[b.axis])
+        r.fail(list[k]["side"], key + ".side", "is side " + side + " of a periodic axis; make the axis not periodic");
+      for (const OpenBoundarySpec& o : out.open)
+        if (o.axis == b.axis && o.side == b.side)
+          r.fail(list[k]["side"], key + ".side", "is side " + side + " a second time; one inlet or outlet a side");
+      b.plane = b.side < 0 ? box_lo[b.axis] : box_hi[b.axis];
+      b.depth = wall_layers * dx;  // the kernel's support, as the walls
+      out.open.push_back(b), open_nodes.emplace_back(list[k], key);
+      continue;
+    }
     Region region = r.region(list[k], "regions[" + std::to_string(k) + "]", out.bodies, g);
     region.key = "regions[" + std::to_string(k) + "]", region.at = list[k];
     // A body's motion, given once (on any of its regions).
@@ -966,12 +1068,23 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
   }
 
   if (has_box) check_mesh_units(r, box_lo, box_hi);
+  if (!out.open.empty() && fluids.empty()) r.fail(list, "regions", "has inlets or outlets but no fluid region; add one");
+  // The open boundaries' buffers lie beyond the box's sides: the lattice, and the run's box, grow by them.
+  Point3 lattice_lo = box_lo, lattice_hi = box_hi;
+  for (const OpenBoundarySpec& b : out.open) {
+    (b.side < 0 ? lattice_lo : lattice_hi)[b.axis] = b.plane + b.side * b.depth;
+    (b.side < 0 ? reach.lo : reach.hi)[b.axis] = b.plane + b.side * b.depth;
+  }
+  if (!out.open.empty()) {
+    s.field["box"].clear();
+    for (int a = 0; a < D; ++a) s.field["box"].push_back(lattice_lo[a]), s.field["box"].push_back(lattice_hi[a]);
+  }
 
   // The lattice over the regions' reach, within the box.
   std::array<std::pair<long, long>, 3> range{};
   double points = 1;
   for (int a = 0; a < D; ++a) {
-    const double lo = std::max(reach.lo[a], box_lo[a]), hi = std::min(reach.hi[a], box_hi[a]);
+    const double lo = std::max(reach.lo[a], lattice_lo[a]), hi = std::min(reach.hi[a], lattice_hi[a]);
     if (!std::isfinite(lo) || !std::isfinite(hi))
       r.fail(list, "regions",
              std::string("reach to infinity along ") + "xyz"[a] +
@@ -1023,7 +1136,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
   };
   auto lattice_point = [&](const std::array<long, 3>& i) {
     Point3 x = Point3::Zero();
-    for (int a = 0; a < D; ++a) x[a] = std::clamp((i[a] + 0.5) * dx, box_lo[a], box_hi[a]);
+    for (int a = 0; a < D; ++a) x[a] = std::clamp((i[a] + 0.5) * dx, lattice_lo[a], lattice_hi[a]);
     return x;
   };
   // The memory check before the particles exist, so a scene far too large is refused in well under a
@@ -1035,13 +1148,42 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
   if (share_kept * points > static_cast<double>(particle_budget().limit)) refuse_over_budget();
   long fluid = 0;
   std::map<const Region*, long> taken;  // particles per fluid region and per solid region
+  // The open boundary whose buffer x lies in (beyond its side of the box), or -1.
+  auto open_side = [&](const Point3& x) {
+    for (std::size_t o = 0; o < out.open.size(); ++o)
+      if (out.open[o].side * (x[out.open[o].axis] - out.open[o].plane) > 0) return static_cast<int>(o);
+    return -1;
+  };
+  // Each buffer's points where they meet the box (the first fluid row inside), for its section.
+  std::vector<std::vector<Point3>> sections(out.open.size());
   std::array<long, 3> i{};
   for (i[2] = D == 3 ? range[2].first : 0; i[2] <= (D == 3 ? range[2].second : 0); ++i[2])
     for (i[1] = range[1].first; i[1] <= range[1].second; ++i[1]) {
       if (s.x.size() > particle_budget().limit) refuse_over_budget();
       for (i[0] = range[0].first; i[0] <= range[0].second; ++i[0]) {
         const Point3 x = lattice_point(i);
-        const Fill f = fill(x);
+        Fill f = fill(x);
+        if (const int o = open_side(x); o >= 0) {
+          if (!f.holder) {
+            // A buffer particle where the fluid inside meets the side, with that fluid's start.
+            const OpenBoundarySpec& b = out.open[o];
+            Point3 y = x;
+            y[b.axis] = b.plane - b.side * 0.5 * dx;
+            const Fill inside = fill(y);
+            if (!inside.fluid) continue;
+            const Region& in = *inside.fluid;
+            const double p = !b.inlet ? b.pressure
+                             : in.hydrostatic ? rho0 * g.norm() * depth_below_surface(occupied, y, up, box_top, dx)
+                                              : in.pressure;
+            s.x.push_back({x[0], x[1], x[2]});
+            s.v.push_back({in.velocity[0], in.velocity[1], in.velocity[2]});
+            s.p.push_back(p), s.kind.push_back(b.inlet ? kSceneInlet : kSceneOutlet);
+            out.body.push_back(-1), out.free_slip.push_back(0);
+            sections[o].push_back(y);
+            continue;
+          }
+          f.fluid = nullptr;  // the buffer, not the fluid regions, fills the space beyond an open side
+        }
         if (!f.holder && !f.fluid) continue;
         ++taken[f.holder ? f.holder : f.fluid];
         const std::array<double, 3> xa = {x[0], x[1], x[2]};
@@ -1060,6 +1202,12 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
       }
     }
   add_plate_layers(plates, solids, wall_layers, dx, box_lo, box_hi, out);
+  for (std::size_t o = 0; o < out.open.size(); ++o) {
+    if (sections[o].empty())
+      r.fail(open_nodes[o].first, open_nodes[o].second,
+             "is an inlet or outlet where no fluid region meets the box's side; move it or the fluid");
+    place_section(out.open[o], sections[o], solids, dx);
+  }
   out.plate_face.resize(s.x.size(), 0);
   if (fluid == 0)
     r.fail(list, "regions",

@@ -30,6 +30,12 @@
 // no fluid region and no solid: a tilted surface starts in balance). Walls and bodies: slip: free
 // (no shear on the fluid; default no_slip, src/boundary/moving_bodies.hpp).
 //
+// Open boundaries: {role: inlet, side: x-, velocity: [u, v] or {parabolic: U_max}, ramp: T} and
+// {role: outlet, side: x+, pressure: p} (default 0) on sides of the box (x-, x+, y-, y+, z-, z+). Each
+// has a buffer beyond the side as deep as the walls (the kernel's support), over the section where a
+// fluid region meets the side: the box grows by it. A parabolic inflow spans the section between the
+// solids (a channel's or a duct's walls); a ramp starts it from rest, (1 - cos(pi t / T)) / 2.
+//
 // Sampling: lattice points (i + 1/2) dx within the box (and within the regions' bounds), so a box from
 // 0 to 1 holds 1/dx points per side. A point inside a wall or body is a wall particle when it lies
 // within wall_layers dx of the solids' surface (thick walls do not fill up; a solid may run past the
@@ -60,6 +66,19 @@ struct MotionSpec {
   std::array<std::vector<double>, 3> table_x;
 };
 
+// An inlet or an outlet on a side of the box (src/boundary/open_boundaries.hpp): its buffer lies
+// beyond the side, `depth` deep, over the section where fluid meets the side.
+struct OpenBoundarySpec {
+  bool inlet = true;
+  int axis = 0, side = -1;  // side -1: the box's low side along axis, +1: its high side
+  double plane = 0.0, depth = 0.0;
+  std::array<double, 3> section_lo{}, section_hi{};  // the section's extent along the other axes
+  std::array<double, 3> velocity{};                  // inlet: uniform velocity
+  double peak = 0.0;                                 // inlet: parabolic profile's centre speed (0: uniform)
+  double ramp = 0.0;                                 // inlet: time to full speed from rest
+  double pressure = 0.0;                             // outlet
+};
+
 struct YamlScene {
   SceneFile file;                   // particles and field data, as read_scene_file gives them
   std::vector<int> body;            // per particle: index into bodies, -1 for fluid and walls
@@ -71,6 +90,7 @@ struct YamlScene {
   // (src/neighbours/screens.hpp); each plate's mid-line x0, y0, x1, y1.
   std::vector<std::int8_t> plate_face;
   std::vector<std::array<double, 4>> plates;
+  std::vector<OpenBoundarySpec> open;  // inlets and outlets; their particles are kinds kSceneInlet, kSceneOutlet
 };
 
 // By the extension: .yaml or .yml.

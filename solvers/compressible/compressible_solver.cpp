@@ -39,6 +39,7 @@ double mpi_max(double x) {
 }  // namespace
 
 template <int D> void CompressibleSolver<D>::setup(Discretisation<D>& disc) {
+  refuse_unmodelled_open_boundaries(disc, name(), false);
   disc_ = &disc;
   Particles<D>& P = disc.particles;
   const Physics<D>& phys = disc.physics;

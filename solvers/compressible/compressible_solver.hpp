@@ -31,6 +31,7 @@ template <int D> class CompressibleSolver : public Solver<D> {
   // Measured in 2D; the 3D figure is scaled from WCSPH's, not measured (docs/performance.md,
   // "Memory per particle").
   double bytes_per_particle() const override { return D == 3 ? 2.5e3 : 0.87e3; }
+  double density_at_pressure(double) const override { return 0.0; }  // no open boundaries
   void set_from_options() override;
   void setup(Discretisation<D>& disc) override;
   double stable_dt() const override;

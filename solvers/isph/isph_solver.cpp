@@ -28,13 +28,16 @@ PetscLogEvent ppe_solve_event() {
 
 template <int D> void IsphSolver<D>::setup(Discretisation<D>& disc) {
   refuse_unmodelled(disc.physics, name(), false, false);
+  refuse_unmodelled_open_boundaries(disc, name(), true);
   disc_ = &disc;
   Particles<D>& P = disc.particles;
   // Divergence-free ISPH: density stays at its reference value (walls included).
   for (std::size_t i = 0; i < P.n_owned; ++i) P.rho[i] = disc.physics.rho0;
   walls_ = has_walls(P);
   energy_ = EnergyBudget(disc.physics.gravity, disc.neighbourhood.domain().periodic);
-  ppe_.use_nonsymmetric(walls_ || disc.physics.free_surface || operators_ == OperatorSet::Consistent);
+  // Inlet rows extrapolate as wall rows do; outlet rows hold their pressure.
+  ppe_.use_nonsymmetric(walls_ || disc.physics.free_surface || operators_ == OperatorSet::Consistent ||
+                        disc.open.any());
   // The last step's mean pressure pm moves with its particle (migration, checkpoints).
   mean_pressure_ = P.fields.declare_scalar("mean_step_pressure", kCarried, P.size());
   free_surface_model_.setup(P, disc.physics.free_surface);
@@ -238,10 +241,17 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
     dirichlet = isolated_fluid_particles(P, nh.list(), K);
     for (std::size_t i = 0; i < P.n_owned; ++i) dirichlet[i] = nodes_.is_splash(i) || (dirichlet[i] && !nodes_.has(i));
   }
+  // Outlets hold their pressure: Dirichlet rows beside the surface's.
+  const bool outlets = disc_->open.has_outlet();
+  if (outlets) {
+    if (!nodes) dirichlet = surface_flags ? surface : std::vector<char>(P.n_owned, 0);
+    for (std::size_t i = 0; i < P.n_owned; ++i) dirichlet[i] |= P.kind[i] == kOutlet;
+  }
   // Moving bodies' rows extrapolate with g - a_w (Adami et al. 2012).
   const std::vector<Vector<D>> wall_acceleration = disc_->bodies.accelerations(P, disc_->bodies.time());
   auto assemble = [&] {
-    ppe_.assemble(P, nh, K, phys.gravity, nodes ? &dirichlet : surface_flags, consistent ? &corrections : nullptr,
+    ppe_.assemble(P, nh, K, phys.gravity, nodes || outlets ? &dirichlet : surface_flags,
+                  consistent ? &corrections : nullptr,
                   nodes ? &nodes_ : nullptr, wall_impact_ ? &impact : nullptr,
                   wall_acceleration.empty() ? nullptr : &wall_acceleration);
   };
@@ -384,6 +394,7 @@ template <int D> void IsphSolver<D>::opening_kick_and_drift(double dt, StepState
     P.x[i] += dt * s.u_half[i];  // drift
   }
   energy_.add_change(EnergyCause::Gravity, EnergyForm::Potential, potential_before_drift, energy_.potential_energy(P));
+  disc_->open.drift(P, disc_->bodies.time(), dt);
   disc_->bodies.move_to(P, disc_->bodies.time() + dt);
 }
 
@@ -430,6 +441,10 @@ template <int D> StepReport IsphSolver<D>::project_and_update_pressure(double dt
   credit_velocity_update(dt, s);
   std::vector<double>& mean_pressure = P.fields[mean_pressure_];
   for (std::size_t i = 0; i < n; ++i) {
+    if (P.kind[i] == kOutlet) {  // its own pressure, whatever it held as fluid
+      P.p[i] = mean_pressure[i] = disc_->open.boundary_of(P, i)->pressure;
+      continue;
+    }
     const double mean = s.have_pressure ? 0.5 * (p_start[i] + P.p[i]) : P.p[i];
     P.p[i] = s.have_pressure ? mean + 0.5 * (mean - mean_pressure[i]) : mean;
     mean_pressure[i] = mean;

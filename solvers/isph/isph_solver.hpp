@@ -74,6 +74,7 @@ template <int D> class IsphSolver : public Solver<D> {
   // Measured: the PPE matrix, BoomerAMG's hierarchy and the step's arrays (docs/performance.md,
   // "Memory per particle").
   double bytes_per_particle() const override { return D == 3 ? 3.1e3 : 1.3e3; }
+  double density_at_pressure(double) const override { return disc_->physics.rho0; }
   // The pressure solve, not the list rebuild, sets ISPH's step's cost: a thinner skin saves memory for
   // no time (docs/performance.md, "Memory per particle").
   double neighbour_skin() const override { return 0.1; }

@@ -44,9 +44,9 @@ struct PpeRows {
   std::vector<char> isolated;
 
   // Rows of the owned particles of P. Fluid rows hold the consistent Laplacian when `consistent`
-  // holds its factors, else Cummins & Rudman's; wall rows hold the Adami extrapolation (with
+  // holds its factors, else Cummins & Rudman's; wall and inlet rows hold the Adami extrapolation (with
   // wall_acceleration, per owned particle, where bodies move); rows flagged
-  // in `dirichlet` hold only their diagonal.
+  // in `dirichlet` hold only their diagonal (outlet rows their pressure, P.p, on the right-hand side).
   template <int D> void build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                               const Vector<D>& body_force, const std::vector<char>& dirichlet,
                               const std::vector<LaplacianCorrection<D>>* consistent = nullptr,
@@ -104,7 +104,7 @@ template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<
   // one-entry rows for none. A periodic image of i itself has none (p_i - p_i = 0).
   auto has_entry = [&](int i, int j) {
     if (P.gid[j] == P.gid[i]) return false;
-    if (P.kind[i] == kWall) return P.kind[j] == kFluid;
+    if (extrapolates_pressure(P.kind[i])) return P.kind[j] == kFluid;
     return !dirichlet[i];
   };
 
@@ -131,10 +131,10 @@ template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<
                          : P.m[i] * ppe_pair_coefficient(P.m[j], P.rho[i], P.rho[j], morris_factor(g, K.h()));
     da[di[i]] -= c;
     if (!has_entry(i, j)) return;
-    const double value = P.kind[i] == kWall ? g.W : c;
+    const double value = extrapolates_pressure(P.kind[i]) ? g.W : c;
     if (owned_column(j)) dj[di[i] + dlen_[i]] = P.gid[j] - first, da[di[i] + dlen_[i]++] = value;
     else oj[oi[i] + olen_[i]] = P.gid[j], oa[oi[i] + olen_[i]++] = value;
-    if (P.kind[i] == kWall) {
+    if (extrapolates_pressure(P.kind[i])) {
       // A moving body's wall rows take its acceleration: (g - a_w) . r_wf (Adami et al. 2012).
       double head = wall_acceleration ? (body_force - (*wall_acceleration)[i]).dot(g.rij) : body_force.dot(g.rij);
       // A surface particle predicted to move towards the wall at u_n (beyond the closing kick's tau g,
@@ -159,7 +159,7 @@ template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<
       PetscScalar* d = &da[di[i]];
       PetscScalar* o = &oa[oi[i]];
       const double diag = d[0];
-      if (P.kind[i] == kWall) {
+      if (extrapolates_pressure(P.kind[i])) {
         // Adami et al. (2012), scaled like a fluid row: s (p_w - sum_f w_f p_f) = s sum_f w_f rho_f g.r_wf
         double sumW = 0.0;
         for (PetscInt k = 1; k < dlen_[i]; ++k) sumW += d[k];
@@ -177,6 +177,7 @@ template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<
                            : -P.m[i] * 2.0 * nodes->volume[i] / P.rho[i] * nodes->morris_factor(K.h());
       } else if (dirichlet[i]) {
         d[0] = diag > 0.0 ? diag : 1.0;
+        if (P.kind[i] == kOutlet) rhs[i] = d[0] * P.p[i];  // an outlet holds its pressure
       }
       const PetscInt dn = detail::sort_and_merge(&dj[di[i]], d, dlen_[i], scratch);
       const PetscInt on = detail::sort_and_merge(&oj[oi[i]], o, olen_[i], scratch);

@@ -17,6 +17,7 @@ namespace sph {
 
 template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
   refuse_unmodelled(disc.physics, name(), false, false);
+  refuse_unmodelled_open_boundaries(disc, name(), true);
   disc_ = &disc;
   Particles<D>& P = disc.particles;
   eos_.rho0 = disc.physics.rho0;
@@ -52,6 +53,7 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
     P.rho[i] = rho;
   }
   walls_ = has_walls(P);
+  extrapolated_ = walls_ || disc.open.any();
   acc_ = P.fields.declare_vector("acceleration", kCarried, P.size());
   drho_ = P.fields.declare_scalar("density_rate", kCarried, P.size());
   free_surface_.setup(P, disc.physics.free_surface);
@@ -73,7 +75,11 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
     throw Error(
         "-closed_volume 1 needs a scene without a free surface (a free surface lets the fluid's volume "
         "change); remove the option");
-  closed_volume_ = closed_volume_option_ < 0 ? !disc.physics.free_surface : closed_volume_option_ > 0;
+  if (closed_volume_option_ > 0 && disc.open.any())
+    throw Error("-closed_volume 1 needs a scene without inlets or outlets (they let the fluid's volume change); "
+                "remove the option");
+  closed_volume_ =
+      closed_volume_option_ < 0 ? !disc.physics.free_surface && !disc.open.any() : closed_volume_option_ > 0;
   // The free surface's default kernel sums nearly flat over a wall's particles, which then let fluid
   // through: the bounding holds the walls there (free_surface.md, "A wall that holds without the ripple").
   bound_to_walls_ = wall_bounding_option_ < 0 ? disc.physics.free_surface : wall_bounding_option_ > 0;
@@ -131,14 +137,14 @@ template <int D> double WcsphSolver<D>::speed_scale() {
 template <int D> void WcsphSolver<D>::update_pressure() {
   Particles<D>& P = disc_->particles;
   for (std::size_t i = 0; i < P.size(); ++i) P.p[i] = eos_.pressure(P.rho[i]);  // ghosts too: rho is current there
-  if (!walls_) return;
-  // Adami et al. (2012): wall pressure extrapolated from the fluid, wall density from the EOS.
+  if (!extrapolated_) return;
+  // Adami et al. (2012): wall (and inlet) pressure extrapolated from the fluid, their density from the EOS.
   const Neighbourhood<D>& nh = disc_->neighbourhood;
   const std::vector<Vector<D>> wall_acceleration = disc_->bodies.accelerations(P, disc_->bodies.time());
   AdamiWall<D>::extrapolate_pressure(AdamiWall<D>::stencil(P, nh.list(), disc_->kernel), P, disc_->physics.gravity,
                                      &wall_acceleration);
   for (std::size_t i = 0; i < P.n_owned; ++i)
-    if (P.kind[i] == kWall) P.rho[i] = eos_.density(std::max(P.p[i], -0.9 * eos_.B()));
+    if (extrapolates_pressure(P.kind[i])) P.rho[i] = eos_.density(std::max(P.p[i], -0.9 * eos_.B()));
   nh.halo().update(P.p);
   nh.halo().update(P.rho);
 }
@@ -408,14 +414,18 @@ template <int D> void WcsphSolver<D>::kick_drift_rates_kick(double dt) {
   const std::size_t n = P.n_owned;
   const bool continuity = density_ == DensityMethod::Continuity;
 
-  // Wall particles have zero rates: they keep their prescribed velocity and place.
+  // Wall particles have zero rates: they keep their prescribed velocity and place. So do the open
+  // boundaries' buffers, which may hold the rates they had as fluid.
+  for (std::size_t i = 0; i < n; ++i)
+    if (P.kind[i] != kFluid) acc[i].setZero(), drho[i] = 0.0;
   std::vector<LeapfrogScalar> scalars;
   if (continuity) scalars.push_back({&P.rho, &drho});
-  const double t_end = disc_->bodies.time() + dt;
+  const double t_start = disc_->bodies.time(), t_end = t_start + dt;
   const double potential_before_drift = energy_.potential_energy(P);
   leapfrog_step<D>(
       dt, n, P.x, P.v, acc, scalars, [&](std::size_t i) { return P.kind[i] == kFluid; },
       [&] {
+        disc_->open.drift(P, t_start, dt);
         disc_->bodies.move_to(P, t_end);  // with the fluid's drift
         if (!nh.update(P)) nh.halo().update(P.v);
         nh.halo().update(P.rho);
@@ -426,6 +436,7 @@ template <int D> void WcsphSolver<D>::kick_drift_rates_kick(double dt) {
       });
   energy_.add_change(EnergyCause::Gravity, EnergyForm::Potential, potential_before_drift, energy_.potential_energy(P));
   disc_->bodies.move_to(P, t_end);  // the closing kick left the walls' velocity of the step's start
+  disc_->open.prescribe(P, t_end);  // and the inlets'
   nh.halo().update(P.rho);          // the closing kick's densities, for the shift and the pressures
 }
 

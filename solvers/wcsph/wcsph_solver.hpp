@@ -40,6 +40,7 @@ template <int D> class WcsphSolver : public Solver<D> {
   RenamedOption renamed_option(const std::string& option) const override { return acoustic_cfl_rename(option); }
   // Measured (docs/performance.md, "Memory per particle").
   double bytes_per_particle() const override { return D == 3 ? 1.6e3 : 0.56e3; }
+  double density_at_pressure(double p) const override { return eos_.density(p); }
   void set_from_options() override;
   void setup(Discretisation<D>& disc) override;
   double stable_dt() const override;
@@ -106,6 +107,7 @@ template <int D> class WcsphSolver : public Solver<D> {
   EnergyBudget energy_;  // since the run's start (kept in checkpoints)
   double max_acc_ = 0.0;
   bool walls_ = false;
+  bool extrapolated_ = false;  // walls or inlets: pressures extrapolated from the fluid (update_pressure)
   std::string speed_scale_name_;
   int closed_volume_option_ = -1;      // -closed_volume: -1 unset (on without a free surface), 0 off, 1 on
   bool prepared_start_ = false;        // -prepared_start: the case's slow-manifold velocity added at set-up

@@ -64,7 +64,7 @@ template <int D> struct AdamiWall {
     std::vector<Vector<D>> n = sum_over_pairs(
         P, nl, K, Vector<D>(Vector<D>::Zero()),
         [&](Vector<D>& sum, int, int j, const PairGeometry<D>& pg) {
-          if (P.kind[j] != kFluid) sum += volume(j) * pg.gradW;
+          if (P.kind[j] == kWall) sum += volume(j) * pg.gradW;
         },
         Rows::Walls);
     const double scale = 1e-3 / K.h();  // |grad| of an exposed wall face is O(1/h)
@@ -92,12 +92,13 @@ template <int D> struct AdamiWall {
     return n;
   }
 
-  // Wall pressure from the fluid (for explicit schemes; ISPH puts the same relation into its matrix).
+  // Wall pressure from the fluid (for explicit schemes; ISPH puts the same relation into its matrix),
+  // and an inlet buffer's (src/boundary/open_boundaries.hpp).
   // acceleration: per owned particle, the walls' own a_w (moving bodies); null: every wall at rest.
   static void extrapolate_pressure(const Stencil& s, Particles<D>& P, const Vector<D>& body_force,
                                    const std::vector<Vector<D>>* acceleration = nullptr) {
     for (std::size_t w = 0; w < P.n_owned; ++w) {
-      if (P.kind[w] != kWall) continue;
+      if (!extrapolates_pressure(P.kind[w])) continue;
       const Vector<D> g = acceleration && !acceleration->empty() ? Vector<D>(body_force - (*acceleration)[w]) : body_force;
       double p = 0.0;
       for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) {

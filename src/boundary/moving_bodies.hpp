@@ -165,7 +165,10 @@ template <int D> class MovingBodies {
   // Moves the owned particles of moving bodies from the time they are at to time t, and gives them
   // the body's velocity there. Every rank calls it with the same times.
   void move_to(Particles<D>& P, double t) {
-    if (!any_) return;
+    if (!any_) {
+      t_ = t;  // the run's time, which the open boundaries' inflow follows too
+      return;
+    }
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (const PrescribedMotion<D>* m = motion_of(P, i)) {
         P.x[i] = m->moved(P.x[i], t_, t);

@@ -59,7 +59,7 @@ template <int D> class WallBounding {
     const std::vector<Contact> contact = sum_over_pairs(
         P, nl, K, Contact{},
         [&](Contact& c, int, int w, const PairGeometry<D>& g) {
-          if (P.kind[w] == kFluid) return;
+          if (P.kind[w] != kWall) return;
           c.wall_share += P.m[w] / P.rho[w] * g.W;
           c.nearest = std::min(c.nearest, g.r);
           const double depth = 0.5 * dx - g.rij.dot(normal_[w]);

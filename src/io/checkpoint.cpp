@@ -19,6 +19,7 @@
 #include "src/core/error.hpp"
 #include "src/io/json_file.hpp"
 #include "src/io/output_dir.hpp"
+#include "src/particles/global_indices.hpp"
 
 namespace sph {
 
@@ -72,6 +73,20 @@ template <int D> void transfer(::Vec global, const Particles<D>& P, double* data
   SPH_PETSC(VecScatterDestroy(&scatter));
   SPH_PETSC(ISDestroy(&is));
   SPH_PETSC(VecDestroy(&local));
+}
+
+// Slots for the ids from P.n_global to ids - 1 (particles an inlet made), on rank 0: the checkpoint
+// fills those it holds, and the others come back kRemovedKind.
+template <int D> void add_slots(Particles<D>& P, long ids) {
+  P.set_ghost_count(0);
+  PetscMPIInt rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank == 0)
+    for (long id = static_cast<long>(P.n_global); id < ids; ++id) {
+      P.add(Vector<D>::Zero(), Vector<D>::Zero(), 0.0, 1.0);
+      P.id.back() = static_cast<GlobalIndex>(id);
+    }
+  assign_global_indices(P);
 }
 
 PetscViewer open_viewer(const std::string& path, PetscFileMode mode) {
@@ -299,10 +314,11 @@ nlohmann::json read_checkpoint_header(const std::string& path) {
   return nlohmann::json::parse(text);
 }
 
-template <int D> CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P) {
+template <int D> CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P, bool grows) {
   const nlohmann::json header = read_checkpoint_header(path);
   // The case lays out every particle the run started with; those it took out since are removed after.
   const long ids = header.value("n_ids", header.value("n_global", -1L));
+  if (grows && header.value("dim", 0) == D && ids > static_cast<long>(P.n_global)) add_slots(P, ids);
   if (header.value("dim", 0) != D || ids != static_cast<long>(P.n_global))
     throw Error("checkpoint " + path + " holds " + std::to_string(ids) + " particles in " +
                 std::to_string(header.value("dim", 0)) + "D, this run has " + std::to_string(P.n_global) + " in " +
@@ -355,8 +371,8 @@ std::size_t checkpoint_data_bytes(const std::string& path) {
 template void write_checkpoint<1>(const std::string&, Particles<1>&, const CheckpointState<1>&, int);
 template void write_checkpoint<2>(const std::string&, Particles<2>&, const CheckpointState<2>&, int);
 template void write_checkpoint<3>(const std::string&, Particles<3>&, const CheckpointState<3>&, int);
-template CheckpointState<1> read_checkpoint<1>(const std::string&, Particles<1>&);
-template CheckpointState<2> read_checkpoint<2>(const std::string&, Particles<2>&);
-template CheckpointState<3> read_checkpoint<3>(const std::string&, Particles<3>&);
+template CheckpointState<1> read_checkpoint<1>(const std::string&, Particles<1>&, bool);
+template CheckpointState<2> read_checkpoint<2>(const std::string&, Particles<2>&, bool);
+template CheckpointState<3> read_checkpoint<3>(const std::string&, Particles<3>&, bool);
 
 }  // namespace sph

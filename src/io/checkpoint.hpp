@@ -47,8 +47,10 @@ nlohmann::json read_checkpoint_header(const std::string& path);
 // Reads a checkpoint into particles already created as the run started (any split over ranks); those
 // taken out of the run since come back with kind kRemovedKind, for the caller to remove. A carried
 // field declared kOptional that the checkpoint lacks comes back zero.
+// With open boundaries (`grows`) the checkpoint may hold particles made since the start (ids beyond
+// the case's): rank 0 takes them.
 // Throws sph::Error when the file is damaged or does not match the run (count, fields).
-template <int D> CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P);
+template <int D> CheckpointState<D> read_checkpoint(const std::string& path, Particles<D>& P, bool grows = false);
 
 // Bytes of the field data at the start of a checkpoint file (what two runs' checkpoints share when
 // they reached the same state), or 0 when the file has no valid trailer. Not collective.

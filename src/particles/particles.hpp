@@ -11,7 +11,12 @@
 
 namespace sph {
 
-enum ParticleKind : int { kFluid = 0, kWall = 1 };
+// Inlet and outlet particles fill the buffers of open boundaries (src/boundary/open_boundaries.hpp).
+enum ParticleKind : int { kFluid = 0, kWall = 1, kInlet = 2, kOutlet = 3 };
+
+// The particles whose pressure is extrapolated from the fluid's (Adami et al. 2012): walls, and the
+// inlets' buffers (their velocity is given, their pressure gradient the fluid's).
+inline bool extrapolates_pressure(int kind) { return kind == kWall || kind == kInlet; }
 
 template <int D> struct Particles {
   std::size_t n_owned = 0;

@@ -10,40 +10,10 @@
 
 #include "src/core/domain.hpp"
 #include "src/neighbours/neighbour_list.hpp"
-#include "src/particles/global_indices.hpp"
 #include "src/particles/particles.hpp"
+#include "src/particles/remove_particles.hpp"
 
 namespace sph {
-
-struct RemovedFluid {
-  long long count = 0;  // particles, all ranks
-  double mass = 0.0;
-};
-
-// Removes the owned particles for which gone(i) holds, with their rows of the declared fields, and
-// renumbers the rest; drops the ghosts (the caller rebuilds its neighbourhood). Collective.
-template <int D, class Gone> RemovedFluid remove_particles_if(Particles<D>& P, const Gone& gone) {
-  RemovedFluid removed;
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < P.n_owned; ++i) {
-    if (gone(i)) {
-      ++removed.count, removed.mass += P.m[i];
-      continue;
-    }
-    if (kept != i) {
-      P.x[kept] = P.x[i], P.v[kept] = P.v[i], P.m[kept] = P.m[i], P.rho[kept] = P.rho[i], P.p[kept] = P.p[i];
-      P.kind[kept] = P.kind[i], P.id[kept] = P.id[i];
-      P.fields.copy_row(kept, i);
-    }
-    ++kept;
-  }
-  P.n_owned = kept;
-  P.set_ghost_count(0);
-  assign_global_indices(P);
-  MPI_Allreduce(MPI_IN_PLACE, &removed.count, 1, MPI_LONG_LONG, MPI_SUM, PETSC_COMM_WORLD);
-  MPI_Allreduce(MPI_IN_PLACE, &removed.mass, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-  return removed;
-}
 
 // Whether fluid particle i, outside the box, went through a wall rather than over an open side: where
 // it crossed the box's side (its place clipped to the box) lies in a wall, within half a spacing of a
@@ -55,7 +25,7 @@ bool left_through_wall(const Particles<D>& P, const NeighbourList<D>& nl, const 
   Vector<D> crossing = P.x[i];
   for (int a = 0; a < D; ++a) crossing[a] = std::clamp(crossing[a], domain.lo[a], domain.hi[a]);
   for (const int* j = nl.begin(i); j != nl.end(i); ++j)
-    if (P.kind[*j] != kFluid && (crossing - P.x[*j]).cwiseAbs().maxCoeff() <= 0.6 * dx) return true;
+    if (P.kind[*j] == kWall && (crossing - P.x[*j]).cwiseAbs().maxCoeff() <= 0.6 * dx) return true;
   return false;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "src/boundary/moving_bodies.hpp"
+#include "src/boundary/open_boundaries.hpp"
 #include "src/core/domain.hpp"
 #include "src/core/physics.hpp"
 #include "src/io/surface_writer.hpp"
@@ -48,6 +49,9 @@ template <int D> class Case {
   // By particle id, 1 for a free-slip wall particle (no shear: src/boundary/moving_bodies.hpp); empty
   // when every wall is no-slip.
   virtual std::vector<char> free_slip_of_particles() const { return {}; }
+  // Inlets and outlets (src/boundary/open_boundaries.hpp; empty: none). Their buffer particles are
+  // among create()'s, kinds kInlet and kOutlet.
+  virtual std::vector<OpenBoundary<D>> open_boundaries() const { return {}; }
   // Each body's surface at t = 0, for ParaView (empty: none).
   virtual std::vector<SurfaceMesh> body_surfaces() const { return {}; }
 

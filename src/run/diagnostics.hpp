@@ -87,7 +87,7 @@ template <int D> long fluid_in_walls(const Particles<D>& P, const NeighbourList<
     if (P.kind[i] != kFluid) continue;
     bool inside = false;
     for (const int* j = nl.begin(i); j != nl.end(i) && !inside; ++j)
-      inside = P.kind[*j] != kFluid && (P.x[i] - P.x[*j]).squaredNorm() < r2;
+      inside = P.kind[*j] == kWall && (P.x[i] - P.x[*j]).squaredNorm() < r2;
     count += inside;
   }
   MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPI_LONG, MPI_SUM, PETSC_COMM_WORLD);

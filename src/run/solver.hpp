@@ -5,6 +5,7 @@
 #include <string>
 
 #include "src/boundary/moving_bodies.hpp"
+#include "src/boundary/open_boundaries.hpp"
 #include "src/core/error.hpp"
 #include "src/core/options.hpp"
 #include "src/core/physics.hpp"
@@ -35,6 +36,8 @@ template <int D> struct Discretisation {
   double dx;  // initial particle spacing
   // Bodies with prescribed motion; the solvers move them at their drift (src/boundary/moving_bodies.hpp).
   MovingBodies<D> bodies = {};
+  // Inlets and outlets; the solvers drift their buffers (src/boundary/open_boundaries.hpp).
+  OpenBoundaries<D> open = {};
 };
 
 // A case that asks for a model the solver does not have is refused, not silently run without it.
@@ -46,6 +49,19 @@ void refuse_unmodelled(const Physics<D>& phys, const std::string& solver, bool g
   if (phys.has_external_force() && !external_force)
     throw Error("this case needs a position-dependent body force, which -solver " + solver +
                 " does not model; use -solver compressible");
+}
+
+// Inlets and outlets (src/boundary/open_boundaries.hpp) are built for single-phase flows without a free
+// surface: a scheme or a scene beyond that is refused, not run with a buffer it does not model.
+template <int D> void refuse_unmodelled_open_boundaries(const Discretisation<D>& disc, const std::string& solver,
+                                                       bool modelled) {
+  if (!disc.open.any()) return;
+  if (!modelled)
+    throw Error("-solver " + solver + " has no inlets or outlets; use -solver isph or wcsph, or close the scene");
+  if (disc.physics.free_surface)
+    throw Error(
+        "inlets and outlets with a free surface are not built yet (the outlet would need the level's "
+        "hydrostatic pressure); give free_surface: false or close the scene");
 }
 
 template <int D> class Solver {
@@ -71,6 +87,9 @@ template <int D> class Solver {
   // Peak memory of a run per particle, measured (docs/performance.md, "Memory per particle"): the
   // memory check refuses a run that cannot fit before it is allocated (src/run/memory_budget.hpp).
   virtual double bytes_per_particle() const = 0;
+  // The density of a fluid particle at pressure p, for the particles an outlet takes over (they hold
+  // the outlet's pressure): the reference density where the scheme is incompressible.
+  virtual double density_at_pressure(double p) const = 0;
   // Default Verlet skin (-neighbour_skin) as a fraction of the support: a wider one rebuilds the lists
   // less often and holds more pairs (docs/performance.md, "Memory per particle").
   virtual double neighbour_skin() const { return 0.2; }

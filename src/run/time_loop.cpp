@@ -101,6 +101,7 @@ template <int D> class TimeLoop {
   void refuse_endless_run(double dt) const;
   void write_due_outputs();
   void remove_escaped_fluid();
+  void exchange_open_boundaries();
   // Whether fluid can be taken out of this run (a side of the box is not periodic, -box_exit not stop).
   bool counts_removed_fluid() const {
     bool open = false;
@@ -190,6 +191,8 @@ template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
     throw Error(case_.thin_walls(wall / case_.spacing(), support / case_.spacing()));
   if (!opt_.restarting() && opt_.start_perturbation > 0)
     perturb_fluid(s_.P, opt_.start_perturbation * case_.spacing(), static_cast<std::uint64_t>(opt_.start_seed));
+  s_.disc.open = OpenBoundaries<D>(case_.open_boundaries());
+  s_.disc.open.start_ids(s_.P);
   solver_.setup(s_.disc);
   place_ = s_.P.fields.declare_scalar("storage_index", kCarried | kOptional, s_.P.size());
   x_at_build_ = s_.P.fields.declare_vector("x_at_build", kCarried | kOptional, s_.P.size());
@@ -198,6 +201,7 @@ template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
   s_.disc.bodies =
       MovingBodies<D>(case_.body_motions(), case_.body_of_particles(), resumed_.t, case_.free_slip_of_particles());
   s_.disc.bodies.move_to(s_.P, resumed_.t);
+  s_.disc.open.prescribe(s_.P, resumed_.t);
   check_initial_state(s_.P, resumed_.t);
   if (opt_.dt > 0 && !opt_.dt_force && opt_.dt > solver_.stable_dt())
     throw Error(dt_above_limit(solver_.stable_dt(), resumed_.t) +
@@ -228,7 +232,8 @@ template <int D> nlohmann::json TimeLoop<D>::resumed_run_header() const {
 // rank count, or from a checkpoint without that record, it re-partitions along the curve instead: the
 // same particles in another order, whose sums round differently.
 template <int D> void TimeLoop<D>::resume() {
-  resumed_ = read_checkpoint(opt_.restart, s_.P);
+  resumed_ = read_checkpoint(opt_.restart, s_.P, s_.disc.open.any());
+  s_.disc.open.restore(resumed_run_.value("open_boundaries", nlohmann::json()));
   // The fluid the writing run had taken out of the box (-box_exit auto or remove) goes again.
   remove_particles_if(s_.P, [&](std::size_t i) { return s_.P.kind[i] == kRemovedKind; });
   solver_.restore_scalars(resumed_.scalars);
@@ -352,6 +357,7 @@ template <int D> void TimeLoop<D>::open_outputs() {
   if (surface_column_) columns.push_back("free_surface_share");
   if (walls_column_) columns.push_back("fluid_in_walls");
   if (counts_removed_fluid()) columns.push_back("removed_fluid");
+  if (s_.disc.open.any()) columns.insert(columns.end(), {"inflow_mass", "outflow_mass", "fluid_mass"});
   if (const EnergyBudget* budget = solver_.energy_budget()) {
     const std::vector<std::string> energy = budget->columns();
     columns.insert(columns.end(), energy.begin(), energy.end());
@@ -430,6 +436,7 @@ template <int D> void TimeLoop<D>::advance() {
   stats_.add(report);
   if (step_ == resumed_.step + 1 && run_.after_first_step) run_.after_first_step();
   LogEventScope log_diagnostics(LogEvent::Diagnostics);
+  if (s_.disc.open.any()) exchange_open_boundaries();
   if (opt_.box_exit != 0 && fluid_outside(s_.P, s_.domain)) remove_escaped_fluid();
   check_health(s_.P, s_.domain, ke_bound_, solver_.courant_option(), opt_.box_exit == 2);
   check_neighbours_(s_.P, s_.nh.list(), s_.nh.support_radius());
@@ -446,6 +453,10 @@ template <int D> void TimeLoop<D>::advance() {
   if (surface_column_) row.push_back(fluid_share(s_.P, *s_.P.fields.find_scalar("free_surface", kWritten)));
   if (walls_column_) row.push_back(static_cast<double>(fluid_in_walls(s_.P, s_.nh.list(), case_.spacing())));
   if (counts_removed_fluid()) row.push_back(static_cast<double>(removed_.count));
+  if (s_.disc.open.any()) {
+    const OpenBoundaryFlux& f = s_.disc.open.flux();
+    row.insert(row.end(), {f.in_mass, f.out_mass, fluid_mass(s_.P)});
+  }
   if (const EnergyBudget* budget = solver_.energy_budget()) {
     const std::vector<double> energy = budget->row(budget->totals(s_.P));
     row.insert(row.end(), energy.begin(), energy.end());
@@ -457,6 +468,18 @@ template <int D> void TimeLoop<D>::advance() {
   series_->row(row);
   log_diagnostics.end();
   progress_->update(step_, t_, dt, report.linear_iterations);
+}
+
+// The open boundaries' exchange after a step (src/boundary/open_boundaries.hpp): the energy the fluid
+// brings in and takes out credited to them; the lists rebuilt when a particle came, went or changed kind.
+template <int D> void TimeLoop<D>::exchange_open_boundaries() {
+  EnergyBudget* budget = solver_.energy_budget();
+  const auto before = budget ? budget->energies(s_.P) : std::array<double, EnergyBudget::kForms>{};
+  const bool changed = s_.disc.open.exchange(s_.P, t_, [&](double p) { return solver_.density_at_pressure(p); });
+  if (budget && changed) budget->add_change(EnergyCause::OpenBoundaries, before, budget->energies(s_.P));
+  s_.nh.update(s_.P, changed);
+  s_.disc.open.extrapolate_outlet_velocity(s_.P, s_.nh.list(), s_.kernel);
+  s_.nh.halo().update(s_.P.v);
 }
 
 // Fluid outside the box goes (-box_exit auto: unless it went through a wall, which the health check
@@ -560,6 +583,7 @@ template <int D> void TimeLoop<D>::write_state(const std::string& why) {
                      {"history", history_},
                      {"case_state", case_.accumulated_state()}};
   if (counts_removed_fluid()) run["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
+  if (s_.disc.open.any()) run["open_boundaries"] = s_.disc.open.state();
   if (lists_built) run["order"] = {{"ranks", ranks_}, {"owned", owned}};
   run["history"].push_back(this_segment(why));
   write_checkpoint(checkpoint_path_, s_.P, {t_, step_, solver_.checkpoint_scalars(), run},
@@ -613,6 +637,11 @@ template <int D> void TimeLoop<D>::finish(const std::string& status, const std::
       {"curve", "morton"}, {"interval", opt_.partition_interval}, {"count", partitions_}, {"imbalance", s_.imbalance}};
   add_final_state(j, solver_, case_, s_.P, t_, stats_, *initial_);
   if (counts_removed_fluid()) j["conservation"]["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
+  if (s_.disc.open.any()) {
+    j["conservation"]["open_boundaries"] = s_.disc.open.state();
+    j["conservation"]["open_boundaries"].erase("next_id");
+    j["n_particles_final"] = s_.P.n_global;
+  }
   write_json_file(run_.output_dir + "/summary.json", j);
 }
 

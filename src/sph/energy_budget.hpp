@@ -43,16 +43,18 @@ enum class EnergyCause {
   DensityDiffusion,
   Shifting,
   WallBounding,
-  RemovedFluid
+  RemovedFluid,
+  OpenBoundaries  // what fluid brings in through inlets and takes out through outlets
 };
 enum class EnergyForm { Kinetic, Potential, Internal };
 
 class EnergyBudget {
  public:
-  static constexpr int kCauses = 9, kForms = 3;
+  static constexpr int kCauses = 10, kForms = 3;
   static constexpr const char* kCauseNames[kCauses] = {"gravity",   "body_force",          "pressure",
                                                        "viscous",   "artificial_viscosity", "density_diffusion",
-                                                       "shifting",  "wall_bounding",        "removed_fluid"};
+                                                       "shifting",  "wall_bounding",        "removed_fluid",
+                                                       "open_boundaries"};
   static constexpr const char* kFormNames[kForms] = {"kinetic", "potential", "internal"};
   // A weakly compressible fluid's specific elastic energy e(rho), zero at the rest density, and its
   // slope e'(rho) = p / rho^2.

@@ -30,11 +30,11 @@ inline bool in_support(double r2, double rc2) { return (r2 < rc2) & (r2 != 0.0);
 // (Adami et al. 2012) or prescribed, never computed from an operator, so a loop whose results only
 // fluid particles read can skip the walls' pairs: in a 3D cavity with four wall layers the walls are
 // two thirds of the particles. Skipped particles keep the loop's zero. Rows::Walls: the walls' own
-// loops (their extrapolation stencils).
+// loops (their extrapolation stencils), the inlets' buffers' too (extrapolates_pressure).
 enum class Rows { All, Fluid, Walls };
 
 inline bool visited(Rows rows, int kind) {
-  return rows == Rows::All || (rows == Rows::Fluid ? kind == kFluid : kind == kWall);
+  return rows == Rows::All || (rows == Rows::Fluid ? kind == kFluid : extrapolates_pressure(kind));
 }
 
 namespace detail {

@@ -1,0 +1,250 @@
+#pragma once
+// Open boundaries: inlets and outlets on sides of the box, each a buffer of particles as deep as the
+// kernel's support beyond the side (Lastiwka, Basa & Quinlan 2009; Tafuni et al. 2018). The buffer
+// completes the fluid's kernel supports there, as wall layers do at a wall:
+// - an inlet's particles (kind kInlet) move with the prescribed velocity, and their pressure is
+//   extrapolated from the fluid as a wall's is (Adami et al. 2012: a zero normal gradient but for the
+//   body force's head). One that crosses into the box becomes fluid, and a new inlet particle takes
+//   its place one buffer depth behind it, so the buffer's lattice stays whole;
+// - an outlet's particles (kind kOutlet) hold the outlet's pressure (a Dirichlet condition for ISPH's
+//   pressure system; the density of that pressure for WCSPH) and drift with the velocity they had when
+//   they left the fluid (a zero normal gradient). One that comes back into the box is fluid again; one
+//   that leaves the buffer's far end leaves the run, counted as outflow, never as lost fluid.
+// The particles' count changes during a run: new particles take ids from next_id, which the
+// checkpoint keeps (docs/verification/open_boundaries.md).
+#include <mpi.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "src/neighbours/neighbour_list.hpp"
+#include "src/particles/global_indices.hpp"
+#include "src/particles/particles.hpp"
+#include "src/particles/remove_particles.hpp"
+#include "src/sph/pair_loop.hpp"
+
+namespace sph {
+
+// The velocity an inlet prescribes: uniform, or the parabolic profile of a channel (2D) or a
+// rectangular duct (3D, the product of the two parabolas) across the inlet's section, each times a
+// ramp from rest, (1 - cos(pi t / T)) / 2 up to t = T (none for T = 0).
+template <int D> struct InletVelocity {
+  enum class Profile { Uniform, Parabolic };
+  Profile profile = Profile::Uniform;
+  Vector<D> velocity = Vector<D>::Zero();  // Uniform
+  double peak = 0.0;                       // Parabolic: the speed on the section's centre, along the inward normal
+  double ramp = 0.0;                       // T
+
+  double ramp_factor(double t) const {
+    if (ramp <= 0.0 || t >= ramp) return 1.0;
+    return 0.5 * (1.0 - std::cos(M_PI * std::max(t, 0.0) / ramp));
+  }
+};
+
+template <int D> struct OpenBoundary {
+  enum class Type { Inlet, Outlet };
+  Type type = Type::Inlet;
+  int axis = 0;        // the side's axis
+  int side = -1;       // -1: the box's low side, +1: its high side (the outward normal is side e_axis)
+  double plane = 0.0;  // where the box's side lies along the axis: the buffer begins there
+  double depth = 0.0;  // the buffer's depth beyond the plane
+  Vector<D> section_lo = Vector<D>::Zero(), section_hi = Vector<D>::Zero();  // the section's extent (other axes)
+  InletVelocity<D> inflow;                                                   // Inlet
+  double pressure = 0.0;                                                     // Outlet
+
+  int kind() const { return type == Type::Inlet ? kInlet : kOutlet; }
+  // How far x lies beyond the plane, outwards (negative inside the box).
+  double beyond(const Vector<D>& x) const { return side * (x[axis] - plane); }
+  Vector<D> inward() const {
+    Vector<D> n = Vector<D>::Zero();
+    n[axis] = -side;
+    return n;
+  }
+  Vector<D> velocity_at(const Vector<D>& x, double t) const {
+    const double ramp = inflow.ramp_factor(t);
+    if (inflow.profile == InletVelocity<D>::Profile::Uniform) return ramp * inflow.velocity;
+    double shape = 1.0;
+    for (int a = 0; a < D; ++a) {
+      if (a == axis) continue;
+      const double w = section_hi[a] - section_lo[a], s = std::clamp(x[a] - section_lo[a], 0.0, w);
+      shape *= 4.0 * s * (w - s) / (w * w);
+    }
+    return (ramp * inflow.peak * shape) * inward();
+  }
+};
+
+// What crossed the open boundaries' planes so far (all ranks): particles and mass into the box through
+// inlets, and out of it through outlets (less what came back), so that the fluid's mass is its start's
+// plus in minus out.
+struct OpenBoundaryFlux {
+  long long in_count = 0, out_count = 0;
+  double in_mass = 0.0, out_mass = 0.0;
+};
+
+template <int D> class OpenBoundaries {
+ public:
+  OpenBoundaries() = default;
+  explicit OpenBoundaries(std::vector<OpenBoundary<D>> b) : b_(std::move(b)) {}
+
+  bool any() const { return !b_.empty(); }
+  const std::vector<OpenBoundary<D>>& boundaries() const { return b_; }
+  bool has_outlet() const {
+    return std::any_of(b_.begin(), b_.end(), [](const auto& b) { return b.type == OpenBoundary<D>::Type::Outlet; });
+  }
+
+  // The boundary a buffer particle belongs to: the one of its kind whose buffer it lies in, or the
+  // nearest of its kind.
+  const OpenBoundary<D>* boundary_of(const Particles<D>& P, std::size_t i) const {
+    const OpenBoundary<D>* best = nullptr;
+    double nearest = 0.0;
+    for (const OpenBoundary<D>& b : b_) {
+      if (b.kind() != P.kind[i]) continue;
+      const double d = std::abs(b.beyond(P.x[i]) - 0.5 * b.depth);
+      if (!best || d < nearest) best = &b, nearest = d;
+    }
+    return best;
+  }
+
+  // The inlets' velocity at time t on their owned particles.
+  void prescribe(Particles<D>& P, double t) const {
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      if (P.kind[i] == kInlet)
+        if (const OpenBoundary<D>* b = boundary_of(P, i)) P.v[i] = b->velocity_at(P.x[i], t);
+  }
+
+  // Outlet particles take the kernel-weighted mean velocity of their fluid and outlet neighbours nearer
+  // the box (upwind: nothing comes back from deeper in the buffer): a zero normal gradient, carried a
+  // support outwards a step, so that particles placed in the buffer at rest, or that left while the flow
+  // was slower, do not block the outlet. Positions and velocities current on the ghosts; the caller
+  // refreshes the ghosts' velocities after.
+  void extrapolate_outlet_velocity(Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) const {
+    if (!has_outlet()) return;
+    struct Mean {
+      Vector<D> sum = Vector<D>::Zero();
+      double weight = 0.0;
+    };
+    std::vector<const OpenBoundary<D>*> of(P.n_owned, nullptr);
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      if (P.kind[i] == kOutlet) of[i] = boundary_of(P, i);
+    const std::vector<Mean> mean =
+        sum_over_pairs(P, nl, K, Mean{}, [&](Mean& m, int i, int j, const PairGeometry<D>& g) {
+          const OpenBoundary<D>* b = of[i];
+          if (!b || (P.kind[j] != kFluid && P.kind[j] != kOutlet) || b->beyond(P.x[j]) >= b->beyond(P.x[i])) return;
+          m.sum += g.W * P.v[j], m.weight += g.W;
+        });
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      if (P.kind[i] == kOutlet && mean[i].weight > 0.0) P.v[i] = mean[i].sum / mean[i].weight;
+  }
+
+  // The buffers' drift from t to t + dt: inlet particles at the prescribed velocity of the step's middle
+  // (exact for a uniform inflow), outlet particles at their own; then the inlets' velocity at t + dt.
+  void drift(Particles<D>& P, double t, double dt) const {
+    if (b_.empty()) return;
+    for (std::size_t i = 0; i < P.n_owned; ++i) {
+      if (P.kind[i] == kOutlet) P.x[i] += dt * P.v[i];
+      if (P.kind[i] != kInlet) continue;
+      if (const OpenBoundary<D>* b = boundary_of(P, i)) P.x[i] += dt * b->velocity_at(P.x[i], t + 0.5 * dt);
+    }
+    prescribe(P, t + dt);
+  }
+
+  // After a step: inlet particles inside the box become fluid and a new inlet particle takes each one's
+  // place a buffer depth behind; fluid beyond an outlet's plane becomes outlet (its pressure the
+  // outlet's, its density density_of(pressure)), outlet particles back inside become fluid, and those
+  // beyond the buffer leave. Returns whether any particle changed (the caller rebuilds the lists: the
+  // ghosts' kinds and the count changed). Collective.
+  template <class DensityOf> bool exchange(Particles<D>& P, double t, DensityOf&& density_of) {
+    if (b_.empty()) return false;
+    std::vector<std::size_t> entered;
+    std::vector<char> gone(P.n_owned, 0);
+    int changed = 0;
+    double out[2] = {0.0, 0.0};  // net particles and mass out through the outlets' planes
+    for (std::size_t i = 0; i < P.n_owned; ++i) {
+      if (P.kind[i] == kInlet) {
+        const OpenBoundary<D>* b = boundary_of(P, i);
+        if (b && b->beyond(P.x[i]) < 0.0) entered.push_back(i);
+      } else if (P.kind[i] == kOutlet) {
+        const OpenBoundary<D>* b = boundary_of(P, i);
+        if (!b) continue;
+        if (b->beyond(P.x[i]) > b->depth) gone[i] = 1, changed = 1;
+        else if (b->beyond(P.x[i]) < 0.0) P.kind[i] = kFluid, changed = 1, out[0] -= 1.0, out[1] -= P.m[i];
+      } else if (P.kind[i] == kFluid) {
+        for (const OpenBoundary<D>& b : b_)
+          if (b.type == OpenBoundary<D>::Type::Outlet && b.beyond(P.x[i]) >= 0.0) {
+            P.kind[i] = kOutlet, P.p[i] = b.pressure, P.rho[i] = density_of(b.pressure), changed = 1;
+            out[0] += 1.0, out[1] += P.m[i];
+            break;
+          }
+      }
+    }
+    const std::size_t old_n = P.n_owned;
+    const long long created = static_cast<long long>(entered.size());
+    if (!entered.empty()) changed = 1;
+    MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+    if (!changed) return false;
+    // New inlet particles, one buffer depth behind those that entered, with ids from next_id (the
+    // ranks in order).
+    long long first = 0;
+    MPI_Exscan(&created, &first, 1, MPI_LONG_LONG, MPI_SUM, PETSC_COMM_WORLD);
+    PetscMPIInt rank;
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+    if (rank == 0) first = 0;
+    long long total_created = 0;
+    MPI_Allreduce(&created, &total_created, 1, MPI_LONG_LONG, MPI_SUM, PETSC_COMM_WORLD);
+    P.set_ghost_count(0);
+    double in[2] = {0.0, 0.0};
+    for (std::size_t k = 0; k < entered.size(); ++k) {
+      const std::size_t i = entered[k];
+      const OpenBoundary<D>* b = boundary_of(P, i);
+      const Vector<D> x = P.x[i] - b->depth * b->inward();
+      P.add(x, b->velocity_at(x, t), P.m[i], P.rho[i], P.p[i], kInlet);
+      P.fields.copy_row(P.n_owned - 1, i);
+      P.id.back() = next_id_ + first + static_cast<long long>(k);
+      P.kind[i] = kFluid;
+      in[0] += 1.0, in[1] += P.m[i];
+    }
+    next_id_ += total_created;
+    // Removed in place (the others keep their order), then renumbered.
+    remove_particles_if(P, [&](std::size_t i) { return i < old_n && gone[i]; });
+    double sums[4] = {in[0], in[1], out[0], out[1]};
+    MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    flux_.in_count += static_cast<long long>(sums[0]), flux_.in_mass += sums[1];
+    flux_.out_count += static_cast<long long>(sums[2]), flux_.out_mass += sums[3];
+    return true;
+  }
+
+  const OpenBoundaryFlux& flux() const { return flux_; }
+
+  // The ids new particles take start at the largest id so far + 1 (collective).
+  void start_ids(const Particles<D>& P) {
+    GlobalIndex largest = -1;
+    for (std::size_t i = 0; i < P.n_owned; ++i) largest = std::max(largest, P.id[i]);
+    MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPIU_INT, MPI_MAX, PETSC_COMM_WORLD);
+    next_id_ = static_cast<long long>(largest) + 1;
+  }
+  long long next_id() const { return next_id_; }
+
+  // The state a restart needs: the next id and the fluxes so far.
+  nlohmann::json state() const {
+    return {{"next_id", next_id_},
+            {"inflow", {{"particles", flux_.in_count}, {"mass", flux_.in_mass}}},
+            {"outflow", {{"particles", flux_.out_count}, {"mass", flux_.out_mass}}}};
+  }
+  void restore(const nlohmann::json& s) {
+    if (!s.is_object()) return;
+    next_id_ = s.value("next_id", next_id_);
+    flux_.in_count = s["inflow"].value("particles", 0LL), flux_.in_mass = s["inflow"].value("mass", 0.0);
+    flux_.out_count = s["outflow"].value("particles", 0LL), flux_.out_mass = s["outflow"].value("mass", 0.0);
+  }
+
+ private:
+  std::vector<OpenBoundary<D>> b_;
+  long long next_id_ = 0;
+  OpenBoundaryFlux flux_;
+};
+
+}  // namespace sph

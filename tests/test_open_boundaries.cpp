@@ -1,0 +1,116 @@
+// The open boundaries' bookkeeping (src/boundary/open_boundaries.hpp) on a hand-made channel along x,
+// the box from x = 0 to 1, an inlet buffer beyond x = 0 and an outlet buffer beyond x = 1, both 3 dx
+// deep: what becomes fluid, what is made and with which id, what leaves, and the mass that crossed.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "src/boundary/open_boundaries.hpp"
+#include "src/kernels/kernel_options.hpp"
+#include "src/neighbours/neighbourhood.hpp"
+
+namespace {
+
+using namespace sph;
+using V2 = Vector<2>;
+
+constexpr double kDx = 0.1, kDepth = 3 * kDx;
+
+struct Channel {
+  OpenBoundaries<2> open;
+  Particles<2> P;
+
+  Channel() {
+    OpenBoundary<2> in, out;
+    in.type = OpenBoundary<2>::Type::Inlet, in.axis = 0, in.side = -1, in.plane = 0.0, in.depth = kDepth;
+    in.section_lo = V2(0, 0), in.section_hi = V2(0, 1);
+    in.inflow.profile = InletVelocity<2>::Profile::Parabolic, in.inflow.peak = 1.5;
+    out.type = OpenBoundary<2>::Type::Outlet, out.axis = 0, out.side = 1, out.plane = 1.0, out.depth = kDepth;
+    out.pressure = 2.0;
+    open = OpenBoundaries<2>({in, out});
+  }
+  std::size_t add(const V2& x, int kind, const V2& v = V2::Zero()) {
+    P.add(x, v, kDx * kDx, 1.0, 0.0, kind);
+    assign_global_indices(P);
+    return P.n_owned - 1;
+  }
+  int count(int kind) const { return static_cast<int>(std::count(P.kind.begin(), P.kind.begin() + P.n_owned, kind)); }
+};
+
+TEST(OpenBoundaries, ParabolicInflowPeaksOnTheSectionsMiddleAndRampsFromRest) {
+  Channel c;
+  const OpenBoundary<2>& in = c.open.boundaries()[0];
+  EXPECT_DOUBLE_EQ(in.velocity_at(V2(-0.05, 0.5), 1.0)[0], 1.5);
+  EXPECT_DOUBLE_EQ(in.velocity_at(V2(-0.05, 0.25), 1.0)[0], 1.5 * 4 * 0.25 * 0.75);
+  EXPECT_DOUBLE_EQ(in.velocity_at(V2(-0.05, 0.25), 1.0)[1], 0.0);
+  OpenBoundary<2> ramped = in;
+  ramped.inflow.ramp = 2.0;
+  EXPECT_DOUBLE_EQ(ramped.velocity_at(V2(-0.05, 0.5), 0.0)[0], 0.0);
+  EXPECT_NEAR(ramped.velocity_at(V2(-0.05, 0.5), 1.0)[0], 0.75, 1e-15);
+  EXPECT_DOUBLE_EQ(ramped.velocity_at(V2(-0.05, 0.5), 3.0)[0], 1.5);
+}
+
+TEST(OpenBoundaries, AnInletParticleThatEntersIsFluidAndANewOneTakesItsPlaceADepthBehind) {
+  Channel c;
+  const std::size_t entering = c.add(V2(0.01, 0.45), kInlet);  // just crossed the plane
+  c.add(V2(-0.05, 0.55), kInlet);                              // still in the buffer
+  c.add(V2(0.5, 0.5), kFluid);
+  c.open.start_ids(c.P);
+  const GlobalIndex entered_id = c.P.id[entering];
+  ASSERT_TRUE(c.open.exchange(c.P, 0.0, [](double) { return 1.0; }));
+  EXPECT_EQ(c.count(kFluid), 2);
+  EXPECT_EQ(c.count(kInlet), 2);
+  // The new particle: behind the one that entered by the buffer's depth, the next id, the inflow's velocity.
+  const std::size_t made = c.P.n_owned - 1;
+  EXPECT_EQ(c.P.kind[made], kInlet);
+  EXPECT_NEAR(c.P.x[made][0], 0.01 - kDepth, 1e-15);
+  EXPECT_EQ(c.P.x[made][1], 0.45);
+  EXPECT_EQ(c.P.id[made], 3);
+  EXPECT_NEAR(c.P.v[made][0], 1.5 * 4 * 0.45 * 0.55, 1e-15);
+  EXPECT_EQ(c.P.kind[std::find(c.P.id.begin(), c.P.id.end(), entered_id) - c.P.id.begin()], kFluid);
+  EXPECT_EQ(c.open.flux().in_count, 1);
+  EXPECT_DOUBLE_EQ(c.open.flux().in_mass, kDx * kDx);
+  EXPECT_EQ(c.open.next_id(), 4);
+}
+
+TEST(OpenBoundaries, FluidBeyondAnOutletHoldsItsPressureAndLeavesTheRunPastTheBuffer) {
+  Channel c;
+  const std::size_t crossing = c.add(V2(1.02, 0.5), kFluid, V2(1, 0));
+  c.add(V2(1.0 + kDepth + 0.01, 0.5), kOutlet, V2(1, 0));  // past the buffer's far end
+  c.add(V2(0.98, 0.3), kOutlet, V2(-1, 0));                // came back into the box
+  c.add(V2(0.5, 0.5), kFluid);
+  c.open.start_ids(c.P);
+  ASSERT_TRUE(c.open.exchange(c.P, 0.0, [](double p) { return 1.0 + p / 100.0; }));
+  ASSERT_EQ(c.P.n_owned, 3u);  // the one past the buffer left
+  EXPECT_EQ(c.P.kind[crossing], kOutlet);
+  EXPECT_EQ(c.P.p[crossing], 2.0);
+  EXPECT_EQ(c.P.rho[crossing], 1.02);
+  EXPECT_EQ(c.count(kFluid), 2);
+  // Net out through the outlet's plane: one crossed out, one came back.
+  EXPECT_EQ(c.open.flux().out_count, 0);
+  EXPECT_EQ(c.open.flux().out_mass, 0.0);
+  // Nothing more to do: no change.
+  EXPECT_FALSE(c.open.exchange(c.P, 0.0, [](double) { return 1.0; }));
+}
+
+// Outlet particles placed at rest three layers deep take the fluid's velocity, exactly, within three
+// steps (each carries it at least a layer outwards, and nothing comes back from deeper layers).
+TEST(OpenBoundaries, OutletParticlesTakeTheirFluidNeighboursVelocity) {
+  Channel c;
+  for (int j = 0; j < 10; ++j)
+    for (int i = 0; i < 8; ++i)
+      c.add(V2(0.45 + i * kDx, (j + 0.5) * kDx), i < 5 ? kFluid : kOutlet, V2(i < 5 ? 1.0 : 0.0, 0));
+  Domain<2> box;
+  box.lo = V2(-1, -1), box.hi = V2(2, 2);
+  Kernel<2> K = KernelChoice{}.make<2>(kDx);
+  Neighbourhood<2> nh(box, K.support_radius(), 0.0);
+  nh.update(c.P, true);
+  for (int step = 0; step < 3; ++step) c.open.extrapolate_outlet_velocity(c.P, nh.list(), K);
+  for (std::size_t i = 0; i < c.P.n_owned; ++i) {
+    if (c.P.kind[i] == kOutlet) {
+      EXPECT_NEAR(c.P.v[i][0], 1.0, 1e-14) << "outlet particle " << i;
+    }
+  }
+}
+
+}  // namespace
