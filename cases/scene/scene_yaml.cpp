@@ -506,7 +506,25 @@ class Reader {
 
   // {role: inlet, side: x-, velocity: [u, v] or {parabolic: U_max}, ramp: T} or {role: outlet, side: x+,
   // pressure: p}: the side and the condition; the buffer's place and section come with the lattice.
-  OpenBoundarySpec open_boundary(const YAML::Node& n, const std::string& key) const {
+  // Where it lies: on a side of the box (the box given, the axis not periodic, the side free), with a
+  // buffer `depth` deep.
+  OpenBoundarySpec open_boundary(const YAML::Node& n, const std::string& key, bool has_box, const Point3& box_lo,
+                                 const Point3& box_hi, const std::vector<double>& periodic,
+                                 const std::vector<OpenBoundarySpec>& others, double depth) const {
+    OpenBoundarySpec b = open_boundary_condition(n, key);
+    const std::string side = std::string(1, "xyz"[b.axis]) + (b.side < 0 ? "-" : "+");
+    if (!has_box) fail(n, key, "lies on a side of the box, and the scene has none; add box: [...]");
+    if (periodic[b.axis])
+      fail(n["side"], key + ".side", "is side " + side + " of a periodic axis; make the axis not periodic");
+    for (const OpenBoundarySpec& o : others)
+      if (o.axis == b.axis && o.side == b.side)
+        fail(n["side"], key + ".side", "is side " + side + " a second time; one inlet or outlet a side");
+    b.plane = b.side < 0 ? box_lo[b.axis] : box_hi[b.axis];
+    b.depth = depth;
+    return b;
+  }
+
+  OpenBoundarySpec open_boundary_condition(const YAML::Node& n, const std::string& key) const {
     OpenBoundarySpec b;
     b.inlet = n["role"].Scalar() == "inlet";
     if (b.inlet) only_keys(n, key, {"role", "side", "velocity", "ramp"});
@@ -920,6 +938,19 @@ void add_outline(const PlateSpec& p, double step, SurfaceMesh& surface) {
   if (first_outline) surface.closed = true;
 }
 
+// The open boundaries' buffers lie beyond the box's sides: the lattice, the regions' reach and the
+// run's box (field data `box`) grow by them.
+void grow_by_buffers(const std::vector<OpenBoundarySpec>& open, int D, Point3& lo, Point3& hi, Bounds& reach,
+                     SceneFile& s) {
+  if (open.empty()) return;
+  for (const OpenBoundarySpec& b : open) {
+    (b.side < 0 ? lo : hi)[b.axis] = b.plane + b.side * b.depth;
+    (b.side < 0 ? reach.lo : reach.hi)[b.axis] = b.plane + b.side * b.depth;
+  }
+  s.field["box"].clear();
+  for (int a = 0; a < D; ++a) s.field["box"].push_back(lo[a]), s.field["box"].push_back(hi[a]);
+}
+
 // An open boundary's section, the part of its side where the fluid meets it: along each other axis,
 // from the buffer's outermost points to the solids beside them (a channel's walls), or half a spacing
 // beyond them where no solid is within a spacing.
@@ -1033,17 +1064,9 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
   for (std::size_t k = 0; k < list.size(); ++k) {
     if (Reader::is_open_boundary(list[k])) {
       const std::string key = "regions[" + std::to_string(k) + "]";
-      OpenBoundarySpec b = r.open_boundary(list[k], key);
-      const std::string side = std::string(1, "xyz"[b.axis]) + (b.side < 0 ? "-" : "+");
-      if (!has_box) r.fail(list[k], key, "lies on a side of the box, and the scene has none; add box: [...]");
-      if (periodic[b.axis])
-        r.fail(list[k]["side"], key + ".side", "is side " + side + " of a periodic axis; make the axis not periodic");
-      for (const OpenBoundarySpec& o : out.open)
-        if (o.axis == b.axis && o.side == b.side)
-          r.fail(list[k]["side"], key + ".side", "is side " + side + " a second time; one inlet or outlet a side");
-      b.plane = b.side < 0 ? box_lo[b.axis] : box_hi[b.axis];
-      b.depth = wall_layers * dx;  // the kernel's support, as the walls
-      out.open.push_back(b), open_nodes.emplace_back(list[k], key);
+      // The buffer as deep as the walls: the kernel's support.
+      out.open.push_back(r.open_boundary(list[k], key, has_box, box_lo, box_hi, periodic, out.open, wall_layers * dx));
+      open_nodes.emplace_back(list[k], key);
       continue;
     }
     Region region = r.region(list[k], "regions[" + std::to_string(k) + "]", out.bodies, g);
@@ -1069,16 +1092,8 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
 
   if (has_box) check_mesh_units(r, box_lo, box_hi);
   if (!out.open.empty() && fluids.empty()) r.fail(list, "regions", "has inlets or outlets but no fluid region; add one");
-  // The open boundaries' buffers lie beyond the box's sides: the lattice, and the run's box, grow by them.
   Point3 lattice_lo = box_lo, lattice_hi = box_hi;
-  for (const OpenBoundarySpec& b : out.open) {
-    (b.side < 0 ? lattice_lo : lattice_hi)[b.axis] = b.plane + b.side * b.depth;
-    (b.side < 0 ? reach.lo : reach.hi)[b.axis] = b.plane + b.side * b.depth;
-  }
-  if (!out.open.empty()) {
-    s.field["box"].clear();
-    for (int a = 0; a < D; ++a) s.field["box"].push_back(lattice_lo[a]), s.field["box"].push_back(lattice_hi[a]);
-  }
+  grow_by_buffers(out.open, D, lattice_lo, lattice_hi, reach, s);
 
   // The lattice over the regions' reach, within the box.
   std::array<std::pair<long, long>, 3> range{};

@@ -242,11 +242,8 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
     for (std::size_t i = 0; i < P.n_owned; ++i) dirichlet[i] = nodes_.is_splash(i) || (dirichlet[i] && !nodes_.has(i));
   }
   // Outlets hold their pressure: Dirichlet rows beside the surface's.
-  const bool outlets = disc_->open.has_outlet();
-  if (outlets) {
-    if (!nodes) dirichlet = surface_flags ? surface : std::vector<char>(P.n_owned, 0);
-    for (std::size_t i = 0; i < P.n_owned; ++i) dirichlet[i] |= P.kind[i] == kOutlet;
-  }
+  if (!nodes && surface_flags && disc_->open.has_outlet()) dirichlet = surface;
+  const bool outlets = disc_->open.mark_outlets(P, dirichlet);
   // Moving bodies' rows extrapolate with g - a_w (Adami et al. 2012).
   const std::vector<Vector<D>> wall_acceleration = disc_->bodies.accelerations(P, disc_->bodies.time());
   auto assemble = [&] {

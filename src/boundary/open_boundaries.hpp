@@ -109,6 +109,15 @@ template <int D> class OpenBoundaries {
     return best;
   }
 
+  // Marks the owned outlet particles in `rows` (Dirichlet rows of a pressure system; empty: made, all
+  // zero). Returns whether any boundary is an outlet.
+  bool mark_outlets(const Particles<D>& P, std::vector<char>& rows) const {
+    if (!has_outlet()) return false;
+    rows.resize(P.n_owned, 0);
+    for (std::size_t i = 0; i < P.n_owned; ++i) rows[i] |= P.kind[i] == kOutlet;
+    return true;
+  }
+
   // The inlets' velocity at time t on their owned particles.
   void prescribe(Particles<D>& P, double t) const {
     for (std::size_t i = 0; i < P.n_owned; ++i)
