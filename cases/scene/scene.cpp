@@ -181,8 +181,10 @@ template <int D> void SceneCase<D>::read_file() {
     m.spin_period = spec.spin_period, m.spin_phase = spec.spin_phase_degrees * degree;
     for (int a = 0; a < D; ++a) m.centre[a] = spec.centre[a];
     m.axis = Eigen::Vector3d(spec.axis[0], spec.axis[1], spec.axis[2]);
+    if (spec.type == "free") m = PrescribedMotion<D>{};  // the fluid moves it
     motions_.push_back(m);
   }
+  free_ = free_bodies_of(scene.motions, file_.field["dx"].at(0));
   bodies_ = std::move(scene.bodies);
   for (const OpenBoundarySpec& spec : scene.open) {
     OpenBoundary<D> b;
@@ -194,6 +196,55 @@ template <int D> void SceneCase<D>::read_file() {
     b.inflow.ramp = spec.ramp;
     open_.push_back(b);
   }
+}
+
+// The free bodies' mass, centre of mass and inertia from their particles as laid out, each the centre
+// of a lattice cell of side dx (so a cell's own inertia, m dx^2 / 6 about each axis, adds to m r^2).
+template <int D>
+std::vector<FreeBody<D>> SceneCase<D>::free_bodies_of(const std::vector<MotionSpec>& specs, double dx) const {
+  std::vector<FreeBody<D>> free(specs.size());
+  const double cell = std::pow(dx, D);
+  for (std::size_t b = 0; b < specs.size(); ++b) {
+    const MotionSpec& spec = specs[b];
+    if (spec.type != "free") continue;
+    FreeBody<D>& f = free[b];
+    f.active = true;
+    double volume = 0.0;
+    Vector<D> sum = Vector<D>::Zero();
+    std::vector<Vector<D>> x;
+    for (std::size_t i = 0; i < body_.size(); ++i)
+      if (body_[i] == static_cast<int>(b)) {
+        Vector<D> xi;
+        for (int a = 0; a < D; ++a) xi[a] = file_.x[i][a];
+        x.push_back(xi), sum += xi, volume += cell;
+      }
+    if (x.empty()) continue;  // refused by the scene's geometry check
+    const double density = spec.mass > 0 ? spec.mass / volume : spec.density;
+    const double m = density * cell;
+    f.mass = density * volume, f.volume = volume;
+    f.centre0 = f.centre = sum / static_cast<double>(x.size());
+    for (const Vector<D>& xi : x) {
+      const Eigen::Vector3d r = FreeBody<D>::lift(Vector<D>(xi - f.centre0));
+      f.inertia += m * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+    }
+    const double own = m * dx * dx / 6.0;  // a cell's inertia about its centre: m (dx^2 + dx^2) / 12
+    f.inertia += static_cast<double>(x.size()) * own * Eigen::Matrix3d::Identity();
+    for (int a = 0; a < D; ++a) {
+      f.fixed_translation[a] = spec.fixed_translation[a];
+      f.velocity[a] = spec.fixed_translation[a] ? 0.0 : spec.velocity[a];
+    }
+    f.fixed_rotation = spec.fixed_rotation;
+    for (int a = 0; a < 3; ++a) f.omega[a] = spec.fixed_rotation[a] ? 0.0 : spec.rate3_degrees[a] * M_PI / 180.0;
+    if (D == 2) f.omega[0] = f.omega[1] = 0.0;
+    f.hinged = spec.hinged;
+    if (f.hinged) {
+      for (int a = 0; a < D; ++a) f.hinge[a] = spec.hinge[a];
+      f.hinge_axis = D == 2 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(spec.axis[0], spec.axis[1], spec.axis[2]);
+      f.omega = f.omega.dot(f.hinge_axis) * f.hinge_axis;
+      f.velocity = f.omega.cross(FreeBody<D>::lift(Vector<D>(f.centre - f.hinge))).template head<D>();
+    }
+  }
+  return free;
 }
 
 template <int D> void SceneCase<D>::resolve_parameters() {

@@ -21,6 +21,7 @@
 
 #include "cases/scene/scene_file.hpp"
 #include "cases/scene/scene_geometry.hpp"
+#include "cases/scene/scene_yaml.hpp"
 #include "src/run/case.hpp"
 
 namespace sph {
@@ -54,6 +55,7 @@ template <int D> class SceneCase : public Case<D> {
   std::vector<int> body_of_particles() const override { return body_; }
   std::vector<char> free_slip_of_particles() const override { return free_slip_; }
   std::vector<PrescribedMotion<D>> body_motions() const override { return motions_; }
+  std::vector<FreeBody<D>> free_bodies() const override { return free_; }
   std::vector<SurfaceMesh> body_surfaces() const override { return surfaces_; }
   std::vector<OpenBoundary<D>> open_boundaries() const override { return open_; }
 
@@ -61,6 +63,7 @@ template <int D> class SceneCase : public Case<D> {
   void read_file();           // the .vtp file, or the YAML file sampled at -nx, -scene_dx or its dx
   void resolve_parameters();  // file field data, then the options that override it
   void check_particles_in_box() const;
+  std::vector<FreeBody<D>> free_bodies_of(const std::vector<MotionSpec>& specs, double dx) const;
   void check_moving_walls(const PointGrid<D>& grid, const std::vector<Vector<D>>& x) const;
 
   SceneFile file_;
@@ -69,6 +72,7 @@ template <int D> class SceneCase : public Case<D> {
   std::vector<char> free_slip_;      // per particle, 1 on free-slip walls (empty: none)
   std::vector<std::string> bodies_;  // YAML scenes: the names of the bodies
   std::vector<PrescribedMotion<D>> motions_;  // YAML scenes: per body
+  std::vector<FreeBody<D>> free_;              // YAML scenes: per body, active where the fluid moves it
   std::vector<SurfaceMesh> surfaces_;          // YAML scenes: per body, at t = 0
   std::vector<OpenBoundary<D>> open_;          // YAML scenes: inlets and outlets
   // YAML scenes: the thin plates (src/neighbours/screens.hpp), and per particle the plate face it

@@ -304,6 +304,7 @@ class Reader {
   // {type: fixed}, {type: constant, velocity: [..]} or {type: sinusoidal, amplitude: [..], period: T,
   // phase: degrees (optional)}.
   MotionSpec motion(const YAML::Node& m, const std::string& key) {
+    if (m["type"].IsDefined() && m["type"].IsScalar() && m["type"].Scalar() == "free") return free_motion(m, key);
     only_keys(m, key, {"type", "velocity", "amplitude", "period", "phase", "rotation", "file", "centre", "center", "axis"});
     MotionSpec spec;
     if (m["type"].IsDefined() && m["type"].IsScalar() && m["type"].Scalar() == "table") {
@@ -342,6 +343,55 @@ class Reader {
     } else {
       fail(type, key + ".type", "is '" + spec.type + "'; give fixed, constant, sinusoidal or table");
     }
+    return spec;
+  }
+
+  // {type: free, velocity: [..], rate: deg/s ([..] in 3D), fixed: [x, y, z, rotation, rx, ry, rz],
+  // hinge: [..](, axis: [..] in 3D)}: a body the fluid moves (src/boundary/free_body.hpp); its density
+  // or mass is a key of the region.
+  MotionSpec free_motion(const YAML::Node& m, const std::string& key) const {
+    only_keys(m, key, {"type", "velocity", "rate", "fixed", "hinge", "axis"});
+    MotionSpec spec;
+    spec.type = "free";
+    if (m["velocity"].IsDefined()) {
+      const Point3 v = point(m["velocity"], key + ".velocity");
+      spec.velocity = {v[0], v[1], v[2]};
+    }
+    if (const YAML::Node r = m["rate"]; r.IsDefined()) {
+      if (dim == 2) {
+        if (!r.IsScalar()) fail(r, key + ".rate", "is not a number; a 2D body turns about z at rate: degrees/s");
+        spec.rate3_degrees[2] = number(r, key + ".rate");
+      } else {
+        const Point3 w = point(r, key + ".rate");
+        spec.rate3_degrees = {w[0], w[1], w[2]};
+      }
+    }
+    if (const YAML::Node f = m["fixed"]; f.IsDefined()) {
+      if (!f.IsSequence() || f.size() == 0)
+        fail(f, key + ".fixed", "is not a list of axes; give e.g. fixed: [x, rotation] (x, y, z, rotation, rx, ry, rz)");
+      for (const auto& item : f) {
+        const std::string a = item.IsScalar() ? item.Scalar() : "";
+        const std::size_t t = std::string("xyz").find(a), r = a.size() == 2 && a[0] == 'r' ? std::string("xyz").find(a[1]) : std::string::npos;
+        if (a.size() == 1 && t < static_cast<std::size_t>(dim)) spec.fixed_translation[t] = true;
+        else if (a == "rotation") spec.fixed_rotation = {true, true, true};
+        else if (dim == 3 && r != std::string::npos) spec.fixed_rotation[r] = true;
+        else
+          fail(item, key + ".fixed",
+               "names '" + a + "', which is no axis; give " + (dim == 2 ? "x, y or rotation" : "x, y, z, rotation, rx, ry or rz"));
+      }
+    }
+    if (const YAML::Node h = m["hinge"]; h.IsDefined()) {
+      if (m["fixed"].IsDefined()) fail(h, key + ".hinge", "is given with fixed:; a hinged body only turns about it, remove one");
+      const Point3 p = point(h, key + ".hinge");
+      spec.hinged = true, spec.hinge = {p[0], p[1], p[2]};
+      if (dim == 3) {
+        if (!m["axis"].IsDefined()) fail(m, key, "has a hinge but no axis; a 3D hinge needs axis: [x, y, z]");
+        spec.axis = unit_axis(m["axis"], key + ".axis");
+      }
+    }
+    if (m["axis"].IsDefined() && (dim == 2 || !m["hinge"].IsDefined()))
+      fail(m["axis"], key + ".axis", dim == 2 ? "is given in a 2D scene, where bodies turn about z; remove it"
+                                              : "is given without a hinge; remove it or add hinge: [x, y, z]");
     return spec;
   }
 
@@ -409,6 +459,14 @@ class Reader {
     rotation_axis(m, key, spec, "turns the body (an angle column) but has no centre; give centre: [...]");
   }
 
+  // An axis's direction, made unit.
+  std::array<double, 3> unit_axis(const YAML::Node& n, const std::string& key) const {
+    const Point3 axis = point(n, key);
+    if (axis.norm() == 0) fail(n, key, "is zero; give the direction of the axis");
+    const Point3 unit = axis.normalized();
+    return {unit[0], unit[1], unit[2]};
+  }
+
   // The centre the rotation's axis goes through and, in 3D, its direction (none in 2D: about z).
   void rotation_axis(const YAML::Node& r, const std::string& key, MotionSpec& spec,
                      const std::string& no_centre) const {
@@ -418,10 +476,7 @@ class Reader {
     spec.centre = {centre[0], centre[1], centre[2]};
     if (dim == 3) {
       if (!r["axis"].IsDefined()) fail(r, key, "has no axis; a 3D rotation needs axis: [x, y, z]");
-      const Point3 axis = point(r["axis"], key + ".axis");
-      if (axis.norm() == 0) fail(r["axis"], key + ".axis", "is zero; give the direction of the axis");
-      const Point3 unit = axis.normalized();
-      spec.axis = {unit[0], unit[1], unit[2]};
+      spec.axis = unit_axis(r["axis"], key + ".axis");
     } else if (r["axis"].IsDefined()) {
       fail(r["axis"], key + ".axis", "is given in a 2D scene, where bodies turn about z; remove it");
     }
@@ -568,8 +623,9 @@ class Reader {
 
   Region region(const YAML::Node& n, const std::string& key, std::vector<std::string>& bodies, const Point3& g) {
     only_keys(n, key,
-              {"role", "shape",  "velocity", "pressure", "motion", "slip",  "name",   "of",   "bounds", "vertices",
-               "file", "centre", "center",   "radius",   "ends",   "point", "normal", "from", "to",     "thickness"});
+              {"role",   "shape",  "velocity", "pressure", "motion", "slip",   "name", "of",
+               "bounds", "vertices", "file", "centre",  "center", "radius", "ends", "point",
+               "normal", "from",     "to",   "thickness", "density", "mass"});
     Region r;
     const YAML::Node role = n["role"];
     if (!role.IsDefined())
@@ -632,6 +688,21 @@ class Reader {
       if (r.role != Role::Body)
         fail(m, key + ".motion", "is given for a region that is no body; only role: body moves (fixed walls do not)");
       r.motion = motion(m, key + ".motion");
+    }
+    for (const char* name : {"density", "mass"}) {
+      const YAML::Node v = n[name];
+      if (!v.IsDefined()) continue;
+      if (r.motion.type != "free")
+        fail(v, key + "." + name, "is given for a body the fluid does not move; add motion: {type: free} or remove it");
+      const double x = number(v, key + "." + name);
+      if (!(x > 0)) fail(v, key + "." + name, "is " + number_text(x) + "; give a positive " + name);
+      (name[0] == 'd' ? r.motion.density : r.motion.mass) = x;
+    }
+    if (r.motion.type == "free") {
+      if (n["density"].IsDefined() && n["mass"].IsDefined())
+        fail(n["mass"], key + ".mass", "is given with density:; give one of them");
+      if (!n["density"].IsDefined() && !n["mass"].IsDefined())
+        fail(n["motion"], key + ".motion", "makes a free body with no mass; add density: (kg/m^3) or mass: beside it");
     }
     const YAML::Node p = n["pressure"];
     r.hydrostatic = p.IsDefined() && p.IsScalar() && p.Scalar() == "hydrostatic";
@@ -1092,6 +1163,28 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
 
   if (has_box) check_mesh_units(r, box_lo, box_hi);
   if (!out.open.empty() && fluids.empty()) r.fail(list, "regions", "has inlets or outlets but no fluid region; add one");
+  std::vector<char> free(out.motions.size(), 0);  // per body: the fluid moves it
+  for (const Region& w : solids)
+    if (w.role == Role::Body && out.motions[w.body].type == "free") {
+      free[w.body] = 1;
+      if (fluids.empty())
+        r.fail(w.at, w.key, "makes body '" + out.bodies[w.body] +
+                                "' free in a scene with no fluid region; add the fluid that moves it, or prescribe its motion");
+    }
+  const bool any_free = std::find(free.begin(), free.end(), 1) != free.end();
+  // A free body that starts inside a wall or another body would be pushed out by nothing: refused.
+  auto check_clear = [&](const Point3& x) {
+    const Region* body = nullptr;
+    for (const Region& w : solids)
+      if (w.role == Role::Body && free[w.body] && w.shape->distance(x) < -0.5 * dx) body = &w;
+    if (!body) return;
+    for (const Region& w : solids)
+      if (w.body != body->body && w.shape->distance(x) < -0.5 * dx)
+        r.fail(body->at, body->key,
+               "is free body '" + out.bodies[body->body] + "', which starts inside " + w.key +
+                   (w.role == Role::Body ? " (body '" + out.bodies[w.body] + "')" : " (a wall)") +
+                   "; move it clear");
+  };
   Point3 lattice_lo = box_lo, lattice_hi = box_hi;
   grow_by_buffers(out.open, D, lattice_lo, lattice_hi, reach, s);
 
@@ -1178,6 +1271,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
       for (i[0] = range[0].first; i[0] <= range[0].second; ++i[0]) {
         const Point3 x = lattice_point(i);
         Fill f = fill(x);
+        if (any_free && f.holder) check_clear(x);
         if (const int o = open_side(x); o >= 0) {
           if (!f.holder) {
             // A buffer particle where the fluid inside meets the side, with that fluid's start.

@@ -64,6 +64,14 @@ struct MotionSpec {
   // type table: the rows of t, x, y(, z)(, angle in degrees) of a CSV file (spin "table" with an angle).
   std::vector<double> table_t, table_angle_degrees;
   std::array<std::vector<double>, 3> table_x;
+  // type free (src/boundary/free_body.hpp): the fluid moves the body. Its density or mass (one of them,
+  // the other 0), initial velocity (`velocity`) and rotation rate (degrees/s), the axes held fixed, and
+  // a hinge (a fixed point, and in 3D its axis in `axis`).
+  double density = 0.0, mass = 0.0;
+  std::array<double, 3> rate3_degrees{};
+  std::array<bool, 3> fixed_translation{}, fixed_rotation{};
+  bool hinged = false;
+  std::array<double, 3> hinge{};
 };
 
 // An inlet or an outlet on a side of the box (src/boundary/open_boundaries.hpp): its buffer lies

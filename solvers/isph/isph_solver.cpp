@@ -129,7 +129,6 @@ template <int D> std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences
   // vortex's weakness (docs/verification/lid_driven_cavity.md, "Why the best corner depends on Re").
   // A moving body's normal velocity is what the constraint is about: it keeps it.
   const Vector<D> g = disc_->physics.gravity;
-  const double t = disc_->bodies.time();
   std::vector<std::vector<Vector<D>>> at_rest;
   std::vector<const std::vector<Vector<D>>*> us = fields;
   if (source_walls_at_rest_ && walls_) {
@@ -138,8 +137,8 @@ template <int D> std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences
       at_rest.push_back(*fields[f]);
       for (std::size_t i = 0; i < at_rest[f].size(); ++i) {
         if (P.kind[i] != kWall) continue;
-        const PrescribedMotion<D>* body = disc_->bodies.motion_of(P, i);
-        const Vector<D> a = body ? body->point_acceleration(P.x[i], t) : Vector<D>::Zero();
+        const bool body = disc_->bodies.moves(P, i);
+        const Vector<D> a = body ? disc_->bodies.point_acceleration(P, i, P.x[i]) : Vector<D>::Zero();
         const Vector<D> head = f == 0 ? Vector<D>(tau * (g - a)) : Vector<D>::Zero();
         at_rest[f][i] = (body ? Vector<D>(P.v[i]) : Vector<D>::Zero()) + head;
       }

@@ -78,6 +78,9 @@ template <int D> class IsphSolver : public Solver<D> {
   // The pressure solve, not the list rebuild, sets ISPH's step's cost: a thinner skin saves memory for
   // no time (docs/performance.md, "Memory per particle").
   double neighbour_skin() const override { return 0.1; }
+  // The projection's pressure answers a body's acceleration in the same step: an explicit coupling
+  // oscillates at the step's period unless it anticipates the added mass (free_body.hpp).
+  double free_body_added_mass() const override { return 1.0; }
   void set_from_options() override;
   void setup(Discretisation<D>& disc) override;
   double stable_dt() const override;

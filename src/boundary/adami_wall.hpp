@@ -143,9 +143,11 @@ template <int D> struct AdamiWall {
   static Vector<D> mirror_velocity(const Particles<D>& P, std::size_t w, const Vector<D>& u_f, const Vector<D>& r,
                                    const MovingBodies<D>* bodies) {
     if (bodies && bodies->free_slip(P, w)) return u_f;
-    const PrescribedMotion<D>* m = bodies ? bodies->motion_of(P, w) : nullptr;
-    if (!m || m->spin == PrescribedMotion<D>::Type::Fixed) return 2.0 * P.v[w] - u_f;
-    return 2.0 * m->point_velocity(Vector<D>(P.x[w] - 0.5 * r), bodies->time()) - u_f;
+    if (!bodies) return 2.0 * P.v[w] - u_f;
+    const PrescribedMotion<D>* m = bodies->motion_of(P, w);
+    if (bodies->free_of(P, w) || (m && m->spin != PrescribedMotion<D>::Type::Fixed))
+      return 2.0 * bodies->point_velocity(P, w, Vector<D>(P.x[w] - 0.5 * r)) - u_f;
+    return 2.0 * P.v[w] - u_f;
   }
 };
 

@@ -7,11 +7,14 @@
 // (g - a_w), the continuity equation (WCSPH) and the pressure source (ISPH) the wall's velocity.
 // Membership is by permanent particle id, as for the force groups (src/run/wall_groups.hpp). The same
 // object says which wall particles are free-slip (free_slip()), the other wall condition a case may
-// ask of its wall particles.
+// ask of its wall particles. A body may instead be free (src/boundary/free_body.hpp): the fluid moves it,
+// and its state travels in the checkpoint (state(), restore()).
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include "src/boundary/free_body.hpp"
 #include "src/boundary/motion_table.hpp"
 #include "src/particles/particles.hpp"
 
@@ -137,20 +140,57 @@ template <int D> class MovingBodies {
   // label: by particle id, the body's index into motions (-1: none); t: the time the particles are at;
   // free_slip: by particle id, 1 for a free-slip wall particle (empty: every wall is no-slip).
   MovingBodies(std::vector<PrescribedMotion<D>> motions, std::vector<int> label, double t,
-               std::vector<char> free_slip = {})
-      : motions_(std::move(motions)), label_(std::move(label)), free_slip_(std::move(free_slip)), t_(t) {
+               std::vector<char> free_slip = {}, std::vector<FreeBody<D>> free = {})
+      : motions_(std::move(motions)),
+        label_(std::move(label)),
+        free_slip_(std::move(free_slip)),
+        free_(std::move(free)),
+        t_(t) {
     for (const auto& m : motions_) any_ |= m.moves();
+    for (const auto& f : free_) any_free_ |= f.active;
+    any_ |= any_free_;
   }
 
   bool any() const { return any_; }
-  // The motion of particle i (owned or ghost), or nullptr when it is in no moving body.
-  const PrescribedMotion<D>* motion_of(const Particles<D>& P, std::size_t i) const {
-    if (!any_ || P.kind[i] != kWall) return nullptr;
+  bool any_free() const { return any_free_; }
+  // Body b's free state (nullptr when its motion is prescribed).
+  const FreeBody<D>* free_body(std::size_t b) const { return b < free_.size() && free_[b].active ? &free_[b] : nullptr; }
+  FreeBody<D>* free_body(std::size_t b) { return b < free_.size() && free_[b].active ? &free_[b] : nullptr; }
+  std::size_t count() const { return std::max(motions_.size(), free_.size()); }
+
+  // The body index of particle i (owned or ghost), -1 for none.
+  int body_of(const Particles<D>& P, std::size_t i) const {
+    if (P.kind[i] != kWall) return -1;
     const GlobalIndex id = P.id[i];
-    if (id < 0 || static_cast<std::size_t>(id) >= label_.size() || label_[static_cast<std::size_t>(id)] < 0)
-      return nullptr;
-    const PrescribedMotion<D>& m = motions_[static_cast<std::size_t>(label_[static_cast<std::size_t>(id)])];
+    if (id < 0 || static_cast<std::size_t>(id) >= label_.size()) return -1;
+    return label_[static_cast<std::size_t>(id)];
+  }
+  // The prescribed motion of particle i (owned or ghost), or nullptr when it is in no moving body or
+  // in a free one.
+  const PrescribedMotion<D>* motion_of(const Particles<D>& P, std::size_t i) const {
+    if (!any_) return nullptr;
+    const int b = body_of(P, i);
+    if (b < 0 || free_body(static_cast<std::size_t>(b))) return nullptr;
+    const PrescribedMotion<D>& m = motions_[static_cast<std::size_t>(b)];
     return m.moves() ? &m : nullptr;
+  }
+  const FreeBody<D>* free_of(const Particles<D>& P, std::size_t i) const {
+    if (!any_free_) return nullptr;
+    const int b = body_of(P, i);
+    return b < 0 ? nullptr : free_body(static_cast<std::size_t>(b));
+  }
+  // Whether particle i moves with a body (prescribed or free).
+  bool moves(const Particles<D>& P, std::size_t i) const { return motion_of(P, i) || free_of(P, i); }
+  // The velocity and acceleration of the body point at x, for particle i of a moving body.
+  Vector<D> point_velocity(const Particles<D>& P, std::size_t i, const Vector<D>& x) const {
+    if (const FreeBody<D>* f = free_of(P, i)) return f->point_velocity(x);
+    if (const PrescribedMotion<D>* m = motion_of(P, i)) return m->point_velocity(x, t_);
+    return Vector<D>::Zero();
+  }
+  Vector<D> point_acceleration(const Particles<D>& P, std::size_t i, const Vector<D>& x) const {
+    if (const FreeBody<D>* f = free_of(P, i)) return f->point_acceleration(x);
+    if (const PrescribedMotion<D>* m = motion_of(P, i)) return m->point_acceleration(x, t_);
+    return Vector<D>::Zero();
   }
 
   // Whether wall particle i (owned or ghost) is free-slip: the viscous term then sees the fluid's own
@@ -163,18 +203,47 @@ template <int D> class MovingBodies {
   }
 
   // Moves the owned particles of moving bodies from the time they are at to time t, and gives them
-  // the body's velocity there. Every rank calls it with the same times.
+  // the body's velocity there; free bodies drift with their current velocities. Every rank calls it
+  // with the same times.
   void move_to(Particles<D>& P, double t) {
     if (!any_) {
       t_ = t;  // the run's time, which the open boundaries' inflow follows too
       return;
     }
-    for (std::size_t i = 0; i < P.n_owned; ++i)
-      if (const PrescribedMotion<D>* m = motion_of(P, i)) {
+    std::vector<typename FreeBody<D>::Map> drift;
+    for (FreeBody<D>& f : free_) drift.push_back(f.drift(t - t_));  // none when t == t_
+    for (std::size_t i = 0; i < P.n_owned; ++i) {
+      if (const FreeBody<D>* f = free_of(P, i)) {
+        P.x[i] = drift[static_cast<std::size_t>(body_of(P, i))](P.x[i]);
+        P.v[i] = f->point_velocity(P.x[i]);
+      } else if (const PrescribedMotion<D>* m = motion_of(P, i)) {
         P.x[i] = m->moved(P.x[i], t_, t);
         P.v[i] = m->point_velocity(P.x[i], t);
       }
+    }
     t_ = t;
+  }
+  // Free bodies: the accelerations from each body's fluid force and moment (about its centre of
+  // mass) and gravity; the half kick of their velocities; their particles' velocities after it.
+  void set_loads(const std::vector<Vector<D>>& force, const std::vector<Eigen::Vector3d>& moment, const Vector<D>& g) {
+    for (std::size_t b = 0; b < free_.size(); ++b)
+      if (free_[b].active) free_[b].set_load(force[b], moment[b], g);
+  }
+  void kick(Particles<D>& P, double half_dt) {
+    if (!any_free_) return;
+    for (FreeBody<D>& f : free_)
+      if (f.active) f.kick(half_dt);
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      if (const FreeBody<D>* f = free_of(P, i)) P.v[i] = f->point_velocity(P.x[i]);
+  }
+  nlohmann::json state() const {
+    nlohmann::json j = nlohmann::json::array();
+    for (const FreeBody<D>& f : free_) j.push_back(f.active ? f.state() : nlohmann::json());
+    return j;
+  }
+  void restore(const nlohmann::json& j) {
+    for (std::size_t b = 0; b < free_.size() && b < j.size(); ++b)
+      if (free_[b].active) free_[b].restore(j[b]);
   }
   double time() const { return t_; }
 
@@ -184,7 +253,8 @@ template <int D> class MovingBodies {
     if (!any_) return {};
     std::vector<Vector<D>> a(P.n_owned, Vector<D>::Zero());
     for (std::size_t i = 0; i < P.n_owned; ++i)
-      if (const PrescribedMotion<D>* m = motion_of(P, i)) a[i] = m->point_acceleration(P.x[i], t);
+      if (const FreeBody<D>* f = free_of(P, i)) a[i] = f->point_acceleration(P.x[i]);
+      else if (const PrescribedMotion<D>* m = motion_of(P, i)) a[i] = m->point_acceleration(P.x[i], t);
     return a;
   }
 
@@ -194,7 +264,7 @@ template <int D> class MovingBodies {
   std::vector<Vector<D>> wall_velocities(const Particles<D>& P, const Vector<D>& fixed) const {
     std::vector<Vector<D>> u(P.size(), Vector<D>::Zero());
     for (std::size_t i = 0; i < P.size(); ++i)
-      if (P.kind[i] == kWall) u[i] = motion_of(P, i) ? Vector<D>(P.v[i]) : fixed;
+      if (P.kind[i] == kWall) u[i] = moves(P, i) ? Vector<D>(P.v[i]) : fixed;
     return u;
   }
 
@@ -202,8 +272,9 @@ template <int D> class MovingBodies {
   std::vector<PrescribedMotion<D>> motions_;
   std::vector<int> label_;
   std::vector<char> free_slip_;
+  std::vector<FreeBody<D>> free_;  // per body; inactive where the motion is prescribed
   double t_ = 0.0;
-  bool any_ = false;
+  bool any_ = false, any_free_ = false;
 };
 
 }  // namespace sph

@@ -46,6 +46,9 @@ template <int D> class Case {
   virtual std::vector<int> body_of_particles() const { return {}; }
   // Each body's prescribed motion, in the order of body_names() (empty: all fixed).
   virtual std::vector<PrescribedMotion<D>> body_motions() const { return {}; }
+  // Per body, in the same order: its free state where the fluid moves it (src/boundary/free_body.hpp),
+  // inactive where its motion is prescribed (empty: none free).
+  virtual std::vector<FreeBody<D>> free_bodies() const { return {}; }
   // By particle id, 1 for a free-slip wall particle (no shear: src/boundary/moving_bodies.hpp); empty
   // when every wall is no-slip.
   virtual std::vector<char> free_slip_of_particles() const { return {}; }

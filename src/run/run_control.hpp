@@ -26,6 +26,7 @@ struct RunControl {
   PetscBool dt_force = PETSC_FALSE;   // run a -dt above the stability limit anyway
   PetscBool wall_forces = PETSC_TRUE;  // timeseries.csv's force columns (src/run/wall_groups.hpp)
   PetscInt body_pressure_force = 0;    // 0 surface, 1 pairs (src/run/wall_groups.hpp)
+  PetscReal free_body_added_mass = -1;  // -1: the scheme's (src/boundary/free_body.hpp)
   // Fluid leaving the box: 0 stop the run, 1 remove it, 2 remove it unless it went through a wall
   // (src/run/box_exit.hpp).
   PetscInt box_exit = 2;

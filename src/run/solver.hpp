@@ -93,6 +93,9 @@ template <int D> class Solver {
   // Default Verlet skin (-neighbour_skin) as a fraction of the support: a wider one rebuilds the lists
   // less often and holds more pairs (docs/performance.md, "Memory per particle").
   virtual double neighbour_skin() const { return 0.2; }
+  // The added mass a free body's coupling anticipates, in units of the fluid mass it displaces
+  // (src/boundary/free_body.hpp): none where the pressure answers the body's motion through sound.
+  virtual double free_body_added_mass() const { return 0.0; }
   // Active models and their parameters, linear solver settings: goes into summary.json.
   virtual nlohmann::json describe() const = 0;
 

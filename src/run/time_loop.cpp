@@ -20,6 +20,7 @@
 #include "src/neighbours/partition.hpp"
 #include "src/run/box_exit.hpp"
 #include "src/run/diagnostics.hpp"
+#include "src/run/free_body_outputs.hpp"
 #include "src/run/interrupt.hpp"
 #include "src/run/memory_budget.hpp"
 #include "src/run/progress.hpp"
@@ -102,6 +103,13 @@ template <int D> class TimeLoop {
   void write_due_outputs();
   void remove_escaped_fluid();
   void exchange_open_boundaries();
+  // The free bodies' accelerations from the groups' forces (body b is group b) and gravity.
+  void load_free_bodies(const std::vector<GroupForce<D>>& F) {
+    std::vector<Vector<D>> force;
+    std::vector<Eigen::Vector3d> moment;
+    for (const GroupForce<D>& f : F) force.push_back(f.total()), moment.push_back(f.moment);
+    s_.disc.bodies.set_loads(force, moment, s_.disc.physics.gravity);
+  }
   // Whether fluid can be taken out of this run (a side of the box is not periodic, -box_exit not stop).
   bool counts_removed_fluid() const {
     bool open = false;
@@ -198,8 +206,13 @@ template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
   x_at_build_ = s_.P.fields.declare_vector("x_at_build", kCarried | kOptional, s_.P.size());
   if (opt_.restarting()) resume();
   // Bodies with prescribed motion start at the run's time, with their velocity there.
-  s_.disc.bodies =
-      MovingBodies<D>(case_.body_motions(), case_.body_of_particles(), resumed_.t, case_.free_slip_of_particles());
+  std::vector<FreeBody<D>> free = case_.free_bodies();
+  const double added = opt_.free_body_added_mass >= 0 ? opt_.free_body_added_mass : solver_.free_body_added_mass();
+  for (FreeBody<D>& f : free)
+    if (f.active) f.added_mass_ratio = added * s_.disc.physics.rho0 * f.volume / f.mass;
+  s_.disc.bodies = MovingBodies<D>(case_.body_motions(), case_.body_of_particles(), resumed_.t,
+                                   case_.free_slip_of_particles(), std::move(free));
+  if (opt_.restarting()) s_.disc.bodies.restore(resumed_run_.value("free_bodies", nlohmann::json::array()));
   s_.disc.bodies.move_to(s_.P, resumed_.t);
   s_.disc.open.prescribe(s_.P, resumed_.t);
   check_initial_state(s_.P, resumed_.t);
@@ -301,6 +314,9 @@ template <int D> void TimeLoop<D>::run() {
   open_outputs();
   describe_run();
   set_start_state();
+  // Free bodies start with the load of the initial state; a restart has it from the checkpoint.
+  if (s_.disc.bodies.any_free() && !opt_.restarting())
+    load_free_bodies(wall_groups_->forces(s_.P, s_.nh, s_.kernel, s_.disc.physics, s_.disc.bodies));
   try {
     const TimeLoopLogStage log_stage;
     while (!time_reached(t_, opt_.t_end) && (opt_.max_steps < 0 || step_ < opt_.max_steps) && !steady_.reached()) {
@@ -362,11 +378,14 @@ template <int D> void TimeLoop<D>::open_outputs() {
     const std::vector<std::string> energy = budget->columns();
     columns.insert(columns.end(), energy.begin(), energy.end());
   }
-  if (walls_column_ && opt_.wall_forces) {
-    wall_groups_.emplace(case_, s_.P, opt_.body_pressure_force == 0);
+  // Free bodies move by the forces: they are computed whatever -wall_forces says.
+  if (walls_column_ && (opt_.wall_forces || s_.disc.bodies.any_free())) {
+    wall_groups_.emplace(case_, s_.P, opt_.body_pressure_force == 0, resumed_run_.value("moment_about", nlohmann::json()));
     const std::vector<std::string> forces = wall_groups_->columns();
     columns.insert(columns.end(), forces.begin(), forces.end());
   }
+  const std::vector<std::string> free = free_body_columns(case_.body_names(), s_.disc.bodies);
+  columns.insert(columns.end(), free.begin(), free.end());
   if (restarting) series_.emplace(dir + "/timeseries.csv", columns, 1, resumed_.t);
   else series_.emplace(dir + "/timeseries.csv", columns);
 }
@@ -428,6 +447,7 @@ template <int D> void TimeLoop<D>::advance() {
   if (step_ == resumed_.step) refuse_endless_run(dt);
   LogEventScope log_step(LogEvent::Step);
   failing_step_ = step_ + 1;
+  s_.disc.bodies.kick(s_.P, 0.5 * dt);  // free bodies: the opening kick, with the load at the step's start
   const StepReport report = solver_.step(dt);
   log_step.end();
   t_ += dt;
@@ -462,9 +482,16 @@ template <int D> void TimeLoop<D>::advance() {
     row.insert(row.end(), energy.begin(), energy.end());
   }
   if (wall_groups_) {
-    const std::vector<double> forces = wall_groups_->row(s_.P, s_.nh, s_.kernel, s_.disc.physics, s_.disc.bodies);
+    const std::vector<GroupForce<D>> F = wall_groups_->forces(s_.P, s_.nh, s_.kernel, s_.disc.physics, s_.disc.bodies);
+    const std::vector<double> forces = wall_groups_->row(F);
     row.insert(row.end(), forces.begin(), forces.end());
+    if (s_.disc.bodies.any_free()) {  // the free bodies' closing kick, with the load at the step's end
+      load_free_bodies(F);
+      s_.disc.bodies.kick(s_.P, 0.5 * dt);
+    }
   }
+  const std::vector<double> free = free_body_row(s_.disc.bodies);
+  row.insert(row.end(), free.begin(), free.end());
   series_->row(row);
   log_diagnostics.end();
   progress_->update(step_, t_, dt, report.linear_iterations);
@@ -584,6 +611,8 @@ template <int D> void TimeLoop<D>::write_state(const std::string& why) {
                      {"case_state", case_.accumulated_state()}};
   if (counts_removed_fluid()) run["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
   if (s_.disc.open.any()) run["open_boundaries"] = s_.disc.open.state();
+  if (s_.disc.bodies.any_free()) run["free_bodies"] = s_.disc.bodies.state();
+  if (wall_groups_) run["moment_about"] = wall_groups_->about();
   if (lists_built) run["order"] = {{"ranks", ranks_}, {"owned", owned}};
   run["history"].push_back(this_segment(why));
   write_checkpoint(checkpoint_path_, s_.P, {t_, step_, solver_.checkpoint_scalars(), run},
@@ -642,6 +671,7 @@ template <int D> void TimeLoop<D>::finish(const std::string& status, const std::
     j["conservation"]["open_boundaries"].erase("next_id");
     j["n_particles_final"] = s_.P.n_global;
   }
+  if (s_.disc.bodies.any_free()) j["free_bodies"] = free_body_states(case_.body_names(), s_.disc.bodies);
   write_json_file(run_.output_dir + "/summary.json", j);
 }
 

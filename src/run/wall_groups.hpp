@@ -19,29 +19,39 @@ template <int D> class WallGroups {
   // left over. No groups without wall particles.
   // surface_pressure: a body with a closed surface (a YAML scene's) takes its pressure force from the
   // pressure fitted on that surface (src/sph/surface_force.hpp) rather than from the pairs.
-  WallGroups(const Case<D>& run_case, const Particles<D>& P, bool surface_pressure)
+  // about: the points the moments are taken about, from the checkpoint a restart resumes (empty: the
+  // groups' centroids now, as laid out).
+  WallGroups(const Case<D>& run_case, const Particles<D>& P, bool surface_pressure, const nlohmann::json& about)
       : label_(run_case.body_of_particles()) {
-    const std::vector<std::string> bodies = run_case.body_names();
-    std::vector<double> count(bodies.size() + 1, 0.0), volume(bodies.size() + 1, 0.0);
-    std::vector<Vector<D>> sum(bodies.size() + 1, Vector<D>::Zero());
+    const std::vector<std::string> names = run_case.body_names();
+    std::vector<double> count(names.size() + 1, 0.0), volume(names.size() + 1, 0.0);
+    std::vector<Vector<D>> sum(names.size() + 1, Vector<D>::Zero());
+    // The volume at the reference density: a wall particle's density may vary (WCSPH), and a restart
+    // must find the volume its run started with.
+    const double rho0 = run_case.physics().rho0;
     for (std::size_t i = 0; i < P.n_owned; ++i) {
       if (P.kind[i] != kWall) continue;
       const std::size_t k = static_cast<std::size_t>(body_of(P.id[i]) + 1);  // 0: walls
-      count[k] += 1.0, sum[k] += P.x[i], volume[k] += P.m[i] / P.rho[i];
+      count[k] += 1.0, sum[k] += P.x[i], volume[k] += P.m[i] / rho0;
     }
     MPI_Allreduce(MPI_IN_PLACE, count.data(), static_cast<int>(count.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
     MPI_Allreduce(MPI_IN_PLACE, volume.data(), static_cast<int>(volume.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
     volume_.assign(volume.begin() + 1, volume.end());
     motions_ = run_case.body_motions();
+    for (const FreeBody<D>& f : run_case.free_bodies()) free_.push_back(f.active);
     for (Vector<D>& s : sum) MPI_Allreduce(MPI_IN_PLACE, s.data(), D, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
     // Body b is group b; the leftover walls come last, and only when there are any.
-    for (std::size_t b = 0; b < bodies.size(); ++b) add(bodies[b], count[b + 1], sum[b + 1]);
+    for (std::size_t b = 0; b < names.size(); ++b) add(names[b], count[b + 1], sum[b + 1]);
     walls_group_ = count[0] > 0 ? static_cast<int>(names_.size()) : -1;
     if (count[0] > 0) add("walls", count[0], sum[0]);
+    // A restart's bodies have moved since the layout: their points come from the checkpoint.
+    if (about.is_array() && about.size() == about_.size())
+      for (std::size_t g = 0; g < about_.size(); ++g)
+        for (int a = 0; a < D; ++a) about_[g][a] = about[g].at(static_cast<std::size_t>(a)).get<double>();
     const std::vector<SurfaceMesh> meshes = run_case.body_surfaces();
-    faces_.resize(bodies.size());
+    faces_.resize(names.size());
     if (surface_pressure)
-      for (std::size_t b = 0; b < bodies.size() && b < meshes.size(); ++b)
+      for (std::size_t b = 0; b < names.size() && b < meshes.size(); ++b)
         if (meshes[b].closed && count[b + 1] > 0) faces_[b] = faces_of(meshes[b]);
   }
 
@@ -61,20 +71,22 @@ template <int D> class WallGroups {
     return c;
   }
 
-  // The columns' values for the current state. Refreshes the ghosts' positions and velocities as the
-  // step left the owned ones (as the solvers do before their own pair loops); the pressure's and
-  // density's ghosts are fresh (docs/developer.md, "Ghosts").
-  std::vector<double> row(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K, const Physics<D>& physics,
-                          const MovingBodies<D>& bodies) const {
+  // Each group's force and moment for the current state; the moment about the group's centroid as
+  // laid out, a free body's about its centre of mass now. Refreshes the ghosts' positions and
+  // velocities as the step left the owned ones (as the solvers do before their own pair loops); the
+  // pressure's and density's ghosts are fresh (docs/developer.md, "Ghosts").
+  std::vector<GroupForce<D>> forces(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K,
+                                    const Physics<D>& physics, const MovingBodies<D>& bodies) const {
     nh.update(P);
     std::vector<int> group(P.n_owned, -1);
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (P.kind[i] == kWall) group[i] = body_of(P.id[i]) >= 0 ? body_of(P.id[i]) : walls_group_;
-    std::vector<GroupForce<D>> F = wall_group_forces(P, nh.list(), K, P.p, P.rho, group, physics.nu, about_, &bodies);
+    const std::vector<Vector<D>> about = about_now(bodies);
+    std::vector<GroupForce<D>> F = wall_group_forces(P, nh.list(), K, P.p, P.rho, group, physics.nu, about, &bodies);
     for (std::size_t b = 0; b < faces_.size() && b < F.size(); ++b) {
       if (faces_[b].centre.empty()) continue;
-      const Faces now = moved(b, bodies.time());
-      const SurfaceForce<D> S = surface_pressure_force(P, K, now.centre, now.area_normal, P.p, about_[b],
+      const Faces now = moved(b, bodies);
+      const SurfaceForce<D> S = surface_pressure_force(P, K, now.centre, now.area_normal, P.p, about[b],
                                                           nh.domain().screens.get(), physics.free_surface);
       F[b].moment += S.moment - F[b].pressure_moment;
       F[b].pressure = S.force, F[b].pressure_moment = S.moment;
@@ -83,9 +95,16 @@ template <int D> class WallGroups {
     // other part, mu (grad u)^T n, integrates over a body turning at w to a torque -2 mu V w (in 2D
     // and 3D), and to no force (docs/verification/body_forces.md, the Couette torque).
     for (std::size_t b = 0; b < motions_.size() && b < F.size(); ++b) {
-      const double w = motions_[b].angular_velocity(bodies.time());
-      F[b].moment -= 2.0 * physics.rho0 * physics.nu * volume_[b] * w * motions_[b].axis;
+      const FreeBody<D>* free = bodies.free_body(b);
+      const Eigen::Vector3d w =
+          free ? free->omega : Eigen::Vector3d(motions_[b].angular_velocity(bodies.time()) * motions_[b].axis);
+      F[b].moment -= 2.0 * physics.rho0 * physics.nu * volume_[b] * w;
     }
+    return F;
+  }
+
+  // The columns' values for the groups' forces.
+  std::vector<double> row(const std::vector<GroupForce<D>>& F) const {
     std::vector<double> r;
     for (const GroupForce<D>& f : F) {
       for (const Vector<D>& v : {f.total(), f.pressure, f.viscous}) r.insert(r.end(), v.data(), v.data() + D);
@@ -93,6 +112,13 @@ template <int D> class WallGroups {
       else r.insert(r.end(), f.moment.data(), f.moment.data() + 3);
     }
     return r;
+  }
+
+  // For the checkpoint: the points the moments are taken about.
+  nlohmann::json about() const {
+    nlohmann::json j = nlohmann::json::array();
+    for (const Vector<D>& a : about_) j.push_back(std::vector<double>(a.data(), a.data() + D));
+    return j;
   }
 
   // For summary.json: each group's wall particles and the point its moment is taken about.
@@ -103,6 +129,7 @@ template <int D> class WallGroups {
       j[names_[g]] = {{"particles", particles_[g]},
                       {"moment_about", std::vector<double>(about_[g].data(), about_[g].data() + D)},
                       {"pressure_force", surface ? "surface" : "pairs"}};
+      if (g < free_.size() && free_[g]) j[names_[g]]["moment_about"] = "centre of mass";
       if (surface) j[names_[g]]["surface_faces"] = faces_[g].centre.size();
     }
     return j;
@@ -132,22 +159,32 @@ template <int D> class WallGroups {
     }
     return f;
   }
-  // Body b's faces at time t: a rigid motion moves each centre and turns each normal with it.
-  Faces moved(std::size_t b, double t) const {
-    if (b >= motions_.size() || !motions_[b].moves()) return faces_[b];
+  // Body b's faces now: a rigid motion moves each centre and turns each normal with it.
+  Faces moved(std::size_t b, const MovingBodies<D>& bodies) const {
+    const FreeBody<D>* free = bodies.free_body(b);
+    const bool prescribed = b < motions_.size() && motions_[b].moves();
+    if (!free && !prescribed) return faces_[b];
+    auto place = [&](const Vector<D>& x) { return free ? free->placed(x) : motions_[b].moved(x, 0.0, bodies.time()); };
     Faces f = faces_[b];
     for (std::size_t q = 0; q < f.centre.size(); ++q) {
-      const Vector<D> c = motions_[b].moved(faces_[b].centre[q], 0.0, t);
-      f.area_normal[q] = motions_[b].moved(Vector<D>(faces_[b].centre[q] + faces_[b].area_normal[q]), 0.0, t) - c;
+      const Vector<D> c = place(faces_[b].centre[q]);
+      f.area_normal[q] = place(Vector<D>(faces_[b].centre[q] + faces_[b].area_normal[q])) - c;
       f.centre[q] = c;
     }
     return f;
+  }
+  std::vector<Vector<D>> about_now(const MovingBodies<D>& bodies) const {
+    std::vector<Vector<D>> about = about_;
+    for (std::size_t b = 0; b < about.size(); ++b)
+      if (const FreeBody<D>* free = bodies.free_body(b)) about[b] = free->centre;
+    return about;
   }
 
   std::vector<int> label_;    // by id: the body's index, -1 for none
   std::vector<Faces> faces_;  // per body: empty where its pressure force comes from the pairs
   std::vector<double> volume_;  // per body, as laid out
   std::vector<PrescribedMotion<D>> motions_;
+  std::vector<char> free_;  // per body: 1 for a free body
   std::vector<std::string> names_;
   std::vector<long> particles_;
   std::vector<Vector<D>> about_;
