@@ -221,7 +221,7 @@ std::vector<FreeBody<D>> SceneCase<D>::free_bodies_of(const std::vector<MotionSp
     if (x.empty()) continue;  // refused by the scene's geometry check
     const double density = spec.mass > 0 ? spec.mass / volume : spec.density;
     const double m = density * cell;
-    f.mass = density * volume, f.volume = volume;
+    f.mass = density * volume, f.volume = volume, f.particles = static_cast<long>(x.size());
     f.centre0 = f.centre = sum / static_cast<double>(x.size());
     for (const Vector<D>& xi : x) {
       const Eigen::Vector3d r = FreeBody<D>::lift(Vector<D>(xi - f.centre0));

@@ -21,6 +21,7 @@ template <int D> struct FreeBody {
   bool active = false;
   // Mass properties, from the body's particles as laid out (SceneCase) or given.
   double mass = 0.0, volume = 0.0;                    // per unit length in 2D
+  long particles = 0;                                 // its wall particles
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about the centre of mass, body frame (2D: zz)
   Vector<D> centre0 = Vector<D>::Zero();              // centre of mass as laid out
   // Constraints.
@@ -33,7 +34,8 @@ template <int D> struct FreeBody {
   Vector<D> centre = Vector<D>::Zero(), velocity = Vector<D>::Zero(), acceleration = Vector<D>::Zero();
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();                   // from the layout
   Eigen::Vector3d omega = Eigen::Vector3d::Zero(), alpha = Eigen::Vector3d::Zero();  // world frame
-  Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // the fluid's, about the centre of mass
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // what the spin's kick takes (set_load), about the centre
+  Vector<D> contact = Vector<D>::Zero();             // the contact force in the last load (body_contact.hpp)
   // The coupling's anticipated added mass over the body's mass, r: the accelerations solve
   // (1 + r) M a_new = F + M g + r M a_old (and so for the rotation), which leaves a state at rest
   // as it is and damps the step-to-step oscillation of an explicit coupling with a fluid whose

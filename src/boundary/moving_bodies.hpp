@@ -225,9 +225,11 @@ template <int D> class MovingBodies {
   }
   // Free bodies: the accelerations from each body's fluid force and moment (about its centre of
   // mass) and gravity; the half kick of their velocities; their particles' velocities after it.
-  void set_loads(const std::vector<Vector<D>>& force, const std::vector<Eigen::Vector3d>& moment, const Vector<D>& g) {
+  // contact: the part of force that is contact with walls and other bodies (for the outputs).
+  void set_loads(const std::vector<Vector<D>>& force, const std::vector<Eigen::Vector3d>& moment, const Vector<D>& g,
+                 const std::vector<Vector<D>>& contact) {
     for (std::size_t b = 0; b < free_.size(); ++b)
-      if (free_[b].active) free_[b].set_load(force[b], moment[b], g);
+      if (free_[b].active) free_[b].set_load(force[b], moment[b], g), free_[b].contact = contact[b];
   }
   void kick(Particles<D>& P, double half_dt) {
     if (!any_free_) return;

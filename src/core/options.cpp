@@ -61,13 +61,13 @@ const std::vector<std::string>& petsc_late_options() {
   return names;
 }
 
-// Names to suggest that no options block records: PETSc's initialisation options, and those
-// a solve reads.
+// Names to suggest that no options block records: the choices every run makes first (read before
+// any block), PETSc's initialisation options, and those a solve reads.
 const std::vector<std::string>& unrecorded_options() {
   static const std::vector<std::string> names = {
-      "options_file", "options_file_yaml", "options_string_yaml",     "help",
-      "version",      "start_in_debugger", "stop_for_debugger",       "mat_type",
-      "mat_view",     "ppe_pc_view",       "ppe_ksp_converged_reason"};
+      "case",     "solver",       "dim",         "options_file",      "options_file_yaml", "options_string_yaml",
+      "help",     "version",      "start_in_debugger", "stop_for_debugger", "mat_type",    "mat_view",
+      "ppe_pc_view", "ppe_ksp_converged_reason"};
   return names;
 }
 

@@ -24,6 +24,7 @@ std::vector<std::string> free_body_columns(const std::vector<std::string>& names
       for (const char* q : {"qw", "qx", "qy", "qz", "rate_x", "rate_y", "rate_z"}) c.push_back(n + "_" + q);
     }
     c.push_back(n + "_kinetic_energy");
+    for (int a = 0; a < D; ++a) c.push_back(n + "_contact_" + "xyz"[a]);
   }
   return c;
 }
@@ -44,6 +45,7 @@ template <int D> std::vector<double> free_body_row(const MovingBodies<D>& bodies
       for (int a = 0; a < 3; ++a) r.push_back(f->omega[a] * kDegree);
     }
     r.push_back(f->kinetic_energy());
+    r.insert(r.end(), f->contact.data(), f->contact.data() + D);
   }
   return r;
 }

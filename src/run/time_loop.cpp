@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "src/boundary/adami_wall.hpp"
+#include "src/boundary/body_contact.hpp"
 #include "src/core/log_events.hpp"
 #include "src/core/options.hpp"
 #include "src/io/checkpoint.hpp"
@@ -103,12 +104,17 @@ template <int D> class TimeLoop {
   void write_due_outputs();
   void remove_escaped_fluid();
   void exchange_open_boundaries();
-  // The free bodies' accelerations from the groups' forces (body b is group b) and gravity.
+  // The free bodies' accelerations from the groups' forces (body b is group b), their contact with
+  // walls and other bodies, and gravity; near a contact, the next steps are held to resolve it.
   void load_free_bodies(const std::vector<GroupForce<D>>& F) {
+    const double dx = case_.spacing(), g = s_.disc.physics.gravity.norm();
+    const ContactLoad<D> contact = body_contact(s_.P, s_.nh.list(), s_.disc.bodies, dx, g);
+    contact_step_ = contact.near ? contact_step(g, dx) : 0.0;
     std::vector<Vector<D>> force;
     std::vector<Eigen::Vector3d> moment;
-    for (const GroupForce<D>& f : F) force.push_back(f.total()), moment.push_back(f.moment);
-    s_.disc.bodies.set_loads(force, moment, s_.disc.physics.gravity);
+    for (std::size_t b = 0; b < contact.force.size(); ++b)
+      force.push_back(F[b].total() + contact.force[b]), moment.push_back(F[b].moment + contact.moment[b]);
+    s_.disc.bodies.set_loads(force, moment, s_.disc.physics.gravity, contact.force);
   }
   // Whether fluid can be taken out of this run (a side of the box is not periodic, -box_exit not stop).
   bool counts_removed_fluid() const {
@@ -170,6 +176,7 @@ template <int D> class TimeLoop {
   long last_checkpoint_step_ = -1, failing_step_ = 0;
   int interrupted_ = 0;  // the signal that stopped the run
   bool warned_dt_ = false;
+  double contact_step_ = 0.0;  // > 0: a free body is near a contact, the step held to this
   bool surface_column_ = false, walls_column_ = false;  // timeseries.csv's free_surface_share, fluid_in_walls
   RemovedFluid removed_;  // -box_exit auto or remove: the fluid taken out so far (timeseries.csv's removed_fluid)
   int removal_events_ = 0;
@@ -212,7 +219,10 @@ template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
     if (f.active) f.added_mass_ratio = added * s_.disc.physics.rho0 * f.volume / f.mass;
   s_.disc.bodies = MovingBodies<D>(case_.body_motions(), case_.body_of_particles(), resumed_.t,
                                    case_.free_slip_of_particles(), std::move(free));
-  if (opt_.restarting()) s_.disc.bodies.restore(resumed_run_.value("free_bodies", nlohmann::json::array()));
+  if (opt_.restarting() && resumed_run_.contains("free_bodies")) {
+    s_.disc.bodies.restore(resumed_run_["free_bodies"].value("state", nlohmann::json::array()));
+    contact_step_ = resumed_run_["free_bodies"].value("contact_step", 0.0);
+  }
   s_.disc.bodies.move_to(s_.P, resumed_.t);
   s_.disc.open.prescribe(s_.P, resumed_.t);
   check_initial_state(s_.P, resumed_.t);
@@ -440,7 +450,8 @@ template <int D> void TimeLoop<D>::set_start_state() {
 
 // One step, its health checks and its timeseries row.
 template <int D> void TimeLoop<D>::advance() {
-  const double stable = solver_.stable_dt();
+  double stable = solver_.stable_dt();
+  if (contact_step_ > 0.0) stable = std::min(stable, contact_step_);  // a free body touches a solid
   double dt = opt_.dt > 0 ? opt_.dt : stable;
   if (opt_.dt > stable) warn_dt(stable);
   dt = step_to_end(t_, opt_.t_end, dt);
@@ -611,7 +622,7 @@ template <int D> void TimeLoop<D>::write_state(const std::string& why) {
                      {"case_state", case_.accumulated_state()}};
   if (counts_removed_fluid()) run["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
   if (s_.disc.open.any()) run["open_boundaries"] = s_.disc.open.state();
-  if (s_.disc.bodies.any_free()) run["free_bodies"] = s_.disc.bodies.state();
+  if (s_.disc.bodies.any_free()) run["free_bodies"] = {{"state", s_.disc.bodies.state()}, {"contact_step", contact_step_}};
   if (wall_groups_) run["moment_about"] = wall_groups_->about();
   if (lists_built) run["order"] = {{"ranks", ranks_}, {"owned", owned}};
   run["history"].push_back(this_segment(why));

@@ -2,7 +2,8 @@
 # Free bodies (src/boundary/free_body.hpp) on cases/scenes/floating_box.yaml, a box of half the water's
 # density released above where it floats, both schemes at nx 20 in a viscous fluid (nu 0.1, so that it
 # comes to rest by t = 3): its draft at rest against Archimedes (scripts/floating-check); a disk settling
-# between two walls against Faxen's terminal velocity (scripts/settling-check); a restart that
+# between two walls against Faxen's terminal velocity (scripts/settling-check); a box dropped on a dry
+# floor held by the contact (src/boundary/body_contact.hpp); a restart that
 # equals the uninterrupted run bit for bit (ISPH and WCSPH), 2 ranks against 1, and one-line refusals
 # of free bodies that cannot be.   usage: free_bodies.sh <sph executable> <source dir>
 set -u
@@ -24,6 +25,26 @@ done
 # A disk settling between two walls in Stokes flow (cases/scenes/settling_disk.yaml), ISPH at nx 40.
 expect_ok -case scene -scene_file "$src/cases/scenes/settling_disk.yaml" -nx 40 -progress 0 -threads 1 -solver isph \
   -t_end 1 -output_interval 1 -output_dir "$tmp/settling"
+# Contact (src/boundary/body_contact.hpp): a box dropped 0.3 onto a dry floor, the scene's water held
+# apart behind a wall; it lands and comes to rest on the floor, the contact carrying its weight.
+cat > "$tmp/drop.yaml" <<'YAML'
+dimension: 2
+box: [-0.2, 2.2, -0.2, 1.2]
+gravity: [0, -9.81]
+nu: 1.0e-6
+rho0: 1000
+free_surface: true
+t_end: 1.5
+regions:
+  - {role: wall, shape: difference, of: [{box: [-0.2, 2.2, -0.2, 1.2]}, {box: [0, 2, 0, 1.3]}]}
+  - {role: wall, shape: box, bounds: [0.5, 0.7, 0, 0.3]}
+  - {role: fluid, shape: box, bounds: [0, 0.5, 0, 0.1], pressure: hydrostatic}
+  - {role: body, name: box, shape: box, bounds: [1.0, 1.4, 0.3, 0.5], density: 500, motion: {type: free}}
+YAML
+for s in isph wcsph; do
+  expect_ok -case scene -scene_file "$tmp/drop.yaml" -nx 20 -progress 0 -threads 1 -solver $s -output_interval 1.5 \
+    -output_dir "$tmp/drop_$s"
+done
 "$mpiexec" -n 2 "$sph" $quick -solver isph -t_end 0.4 -output_interval 1 -output_dir "$tmp/ranks2" >"$tmp/ranks2.log" 2>&1 ||
   { echo "FAIL: 2 ranks"; tail -3 "$tmp/ranks2.log"; fail=1; }
 
@@ -50,6 +71,17 @@ else:
     f = json.loads(out.stdout)  # docs/verification/free_bodies.md: -1.3 % at nx 40
     check(abs(f["error"]) < 0.03, f"settling disk: terminal velocity {f['terminal_velocity']:.4e} within 3 % of "
           f"Faxen's {f['faxen']:.4e} ({f['error']:+.2%})")
+# The contact's static sinking: 4 rows over 1 row touching, 1 % of dx each (body_contact.hpp): 0.002.
+for s in ("isph", "wcsph"):
+    rows = list(csv.DictReader(open(f"{tmp}/drop_{s}/timeseries.csv")))
+    late = [r for r in rows if float(r["t"]) > 1.0]
+    bottom = [float(r["box_y"]) - 0.1 for r in rows]
+    rest = [float(r["box_y"]) - 0.1 for r in late]
+    carried = sum(float(r["box_contact_y"]) for r in late) / len(late)
+    check(min(bottom) > -0.5 * 0.05, f"{s} drop: the box sinks at most {-min(bottom):.4f} (< dx / 2) into the floor")
+    check(all(abs(b + 0.002) < 0.0025 for b in rest), f"{s} drop: at rest on the floor (bottom {rest[-1]:+.4f}, "
+          "0.002 in by the contact's stiffness)")
+    check(abs(carried / 392.4 - 1) < 0.01, f"{s} drop: the contact carries the weight, {carried:.1f} of 392.4 N")
 last = lambda run: list(csv.DictReader(open(f"{tmp}/{run}/timeseries.csv")))[-1]
 for s in ("isph", "wcsph"):
     a, b = last(f"full_{s}"), last(f"resumed_{s}")

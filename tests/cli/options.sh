@@ -12,6 +12,9 @@ expect_error "did you mean -shifting" $small -shiftng 0
 expect_error "unknown option -ppe_ksp_typo" $small -ppe_ksp_typo cg
 expect_error "did you mean -ppe_ksp_type" $small -ppe_ksp_tpye cg
 expect_error "did you mean -c0" -case taylor_green -solver wcsph -nx 8 -c00 3
+# The two choices every run makes are suggested too (-cas once suggested -a0).
+expect_error "unknown option -cas .*did you mean -case\?" -cas taylor_green -nx 8 -t_end 0.01 -progress 0 -output_dir "$tmp/out" -overwrite
+expect_error "unknown option -solvr .*did you mean -solver\?" $small -solvr isph
 # Every option is checked, PETSc's own included (those read at start-up, during a solve, at the end).
 expect_error "unknown option -options_fiel .*did you mean -options_file\?" $small -options_fiel x.opts
 expect_error "unknown option -log_veiw .*did you mean -log_view\?" $small -log_veiw
