@@ -147,6 +147,19 @@ TEST(FreeBody, MovingBodiesCarriesItsParticles) {
   EXPECT_NEAR(now.angle(), 0.6, 1e-14);
 }
 
+// The step limit holds a free body's fastest point, the translation's speed plus the spin's at its
+// farthest particle, to the given fraction of h a step.
+TEST(FreeBody, StepLimitSeesTheFastestPoint) {
+  FreeBody<2> f = square(1.0, 0.2);
+  f.reach = 0.1 * std::sqrt(2.0);
+  f.velocity = Vector<2>(3.0, 4.0);
+  f.omega = Eigen::Vector3d(0, 0, 10.0);
+  sph::MovingBodies<2> bodies({sph::PrescribedMotion<2>{}}, {0}, 0.0, {}, {f});
+  EXPECT_DOUBLE_EQ(bodies.free_step(0.02, 0.25), 0.25 * 0.02 / (5.0 + 10.0 * f.reach));
+  sph::MovingBodies<2> none({sph::PrescribedMotion<2>{}}, {0}, 0.0, {}, {});
+  EXPECT_TRUE(std::isinf(none.free_step(0.02, 0.25)));
+}
+
 // The checkpoint's state gives back the same body bit for bit.
 TEST(FreeBody, StateRoundTripsExactly) {
   FreeBody<3> f;

@@ -225,6 +225,7 @@ std::vector<FreeBody<D>> SceneCase<D>::free_bodies_of(const std::vector<MotionSp
     f.centre0 = f.centre = sum / static_cast<double>(x.size());
     for (const Vector<D>& xi : x) {
       const Eigen::Vector3d r = FreeBody<D>::lift(Vector<D>(xi - f.centre0));
+      f.reach = std::max(f.reach, r.norm());
       f.inertia += m * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
     }
     const double own = m * dx * dx / 6.0;  // a cell's inertia about its centre: m (dx^2 + dx^2) / 12

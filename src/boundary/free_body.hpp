@@ -22,6 +22,7 @@ template <int D> struct FreeBody {
   // Mass properties, from the body's particles as laid out (SceneCase) or given.
   double mass = 0.0, volume = 0.0;                    // per unit length in 2D
   long particles = 0;                                 // its wall particles
+  double reach = 0.0;                                 // its farthest particle's distance from the centre
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about the centre of mass, body frame (2D: zz)
   Vector<D> centre0 = Vector<D>::Zero();              // centre of mass as laid out
   // Constraints.
@@ -150,6 +151,8 @@ template <int D> struct FreeBody {
   }
   // The rotation angle about z (2D), radians.
   double angle() const { return 2.0 * std::atan2(orientation.z(), orientation.w()); }
+  // The fastest a point of the body moves now.
+  double top_speed() const { return velocity.norm() + omega.norm() * reach; }
   double kinetic_energy() const {
     return 0.5 * mass * velocity.squaredNorm() + 0.5 * omega.dot(world_inertia() * omega);
   }

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "src/boundary/free_body.hpp"
@@ -237,6 +238,13 @@ template <int D> class MovingBodies {
       if (f.active) f.kick(half_dt);
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (const FreeBody<D>* f = free_of(P, i)) P.v[i] = f->point_velocity(P.x[i]);
+  }
+  // The longest step in which no free body's point moves more than `fraction` of h.
+  double free_step(double h, double fraction) const {
+    double step = std::numeric_limits<double>::infinity();
+    for (const FreeBody<D>& f : free_)
+      if (f.active && f.top_speed() > 0.0) step = std::min(step, fraction * h / f.top_speed());
+    return step;
   }
   nlohmann::json state() const {
     nlohmann::json j = nlohmann::json::array();

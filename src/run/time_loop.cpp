@@ -452,6 +452,8 @@ template <int D> void TimeLoop<D>::set_start_state() {
 template <int D> void TimeLoop<D>::advance() {
   double stable = solver_.stable_dt();
   if (contact_step_ > 0.0) stable = std::min(stable, contact_step_);  // a free body touches a solid
+  // A free body moves at most a quarter of h a step, as the fluid's CFL limits keep the fluid.
+  if (s_.disc.bodies.any_free()) stable = std::min(stable, s_.disc.bodies.free_step(s_.kernel.h(), 0.25));
   double dt = opt_.dt > 0 ? opt_.dt : stable;
   if (opt_.dt > stable) warn_dt(stable);
   dt = step_to_end(t_, opt_.t_end, dt);
