@@ -163,6 +163,7 @@ template <int D> class TimeLoop {
   std::vector<SurfaceMesh> body_surfaces_;    // each body's, at t = 0
   std::vector<SurfaceWriter> surface_writers_;
   std::vector<std::vector<double>> vorticity_;
+  std::vector<double> body_index_;  // the frames' "body" field
   nlohmann::json summary_;
   int ranks_ = 1;
 
@@ -573,11 +574,12 @@ template <int D> void TimeLoop<D>::write_frame(bool derived) {
   const std::vector<PrescribedMotion<D>> motions = case_.body_motions();
   for (std::size_t b = 0; b < surface_writers_.size(); ++b) {
     SurfaceMesh surface = body_surfaces_[b];
-    if (b < motions.size() && motions[b].moves())
+    const FreeBody<D>* free = s_.disc.bodies.free_body(b);
+    if (free || (b < motions.size() && motions[b].moves()))
       for (auto& x : surface.points) {
         Vector<D> p;
         for (int a = 0; a < D; ++a) p[a] = x[a];
-        p = motions[b].moved(p, 0.0, t_);
+        p = free ? free->placed(p) : motions[b].moved(p, 0.0, t_);
         for (int a = 0; a < D; ++a) x[a] = p[a];
       }
     surface_writers_[b].write(surface, t_);
@@ -587,6 +589,13 @@ template <int D> void TimeLoop<D>::write_frame(bool derived) {
 // The solver's own fields and the optional ones, for every frame.
 template <int D> std::vector<ScalarField> TimeLoop<D>::frame_fields(bool derived) {
   std::vector<ScalarField> fields = s_.P.fields.scalars_with(kWritten);
+  // Which body each particle belongs to (its index in summary.json's parameters.bodies; -1: none), so
+  // that ParaView can tell the bodies apart from the walls and from each other.
+  if (!case_.body_names().empty()) {
+    body_index_.assign(s_.P.n_owned, -1.0);
+    for (std::size_t i = 0; i < s_.P.n_owned; ++i) body_index_[i] = s_.disc.bodies.body_of(s_.P, i);
+    fields.push_back({"body", &body_index_});
+  }
   if (!opt_.vorticity_output || !derived) return fields;
   // The ghosts' velocities and positions as the step left the owned ones, in a neighbourhood of its
   // own: the run's lists, halo and (periodic) positions stay as they were, so the frames' extra fields

@@ -82,6 +82,17 @@ for s in ("isph", "wcsph"):
     check(all(abs(b + 0.002) < 0.0025 for b in rest), f"{s} drop: at rest on the floor (bottom {rest[-1]:+.4f}, "
           "0.002 in by the contact's stiffness)")
     check(abs(carried / 392.4 - 1) < 0.01, f"{s} drop: the contact carries the weight, {carried:.1f} of 392.4 N")
+# The frames: the body's surface where the body is, and each particle's body.
+import glob, vtk
+from vtk.util.numpy_support import vtk_to_numpy
+def read(path):
+    r = vtk.vtkXMLPolyDataReader(); r.SetFileName(path); r.Update(); return r.GetOutput()
+surface = vtk_to_numpy(read(sorted(glob.glob(f"{tmp}/rest_isph/body_box_*.vtp"))[-1]).GetPoints().GetData())
+y_end = float(list(csv.DictReader(open(f"{tmp}/rest_isph/timeseries.csv")))[-1]["box_y"])
+mid = 0.5 * (surface[:, 1].min() + surface[:, 1].max())
+check(abs(mid - y_end) < 1e-3, f"body_box.pvd: the surface's middle {mid:.4f} where the box is ({y_end:.4f})")
+body = vtk_to_numpy(read(sorted(glob.glob(f"{tmp}/rest_isph/particles_*.vtp"))[-1]).GetPointData().GetArray("body"))
+check((body == 0).sum() == 32 and (body == -1).sum() == len(body) - 32, "frames: the box's 32 particles have body 0")
 last = lambda run: list(csv.DictReader(open(f"{tmp}/{run}/timeseries.csv")))[-1]
 for s in ("isph", "wcsph"):
     a, b = last(f"full_{s}"), last(f"resumed_{s}")
