@@ -346,6 +346,24 @@ class Reader {
     return spec;
   }
 
+  // A free body's density: or mass: (one of them, positive), keys of its region beside its motion.
+  void body_mass(const YAML::Node& n, const std::string& key, MotionSpec& motion) const {
+    for (const char* name : {"density", "mass"}) {
+      const YAML::Node v = n[name];
+      if (!v.IsDefined()) continue;
+      if (motion.type != "free")
+        fail(v, key + "." + name, "is given for a body the fluid does not move; add motion: {type: free} or remove it");
+      const double x = number(v, key + "." + name);
+      if (!(x > 0)) fail(v, key + "." + name, "is " + number_text(x) + "; give a positive " + name);
+      (name[0] == 'd' ? motion.density : motion.mass) = x;
+    }
+    if (motion.type != "free") return;
+    if (n["density"].IsDefined() && n["mass"].IsDefined())
+      fail(n["mass"], key + ".mass", "is given with density:; give one of them");
+    if (!n["density"].IsDefined() && !n["mass"].IsDefined())
+      fail(n["motion"], key + ".motion", "makes a free body with no mass; add density: (kg/m^3) or mass: beside it");
+  }
+
   // {type: free, velocity: [..], rate: deg/s ([..] in 3D), fixed: [x, y, z, rotation, rx, ry, rz],
   // hinge: [..](, axis: [..] in 3D)}: a body the fluid moves (src/boundary/free_body.hpp); its density
   // or mass is a key of the region.
@@ -689,21 +707,7 @@ class Reader {
         fail(m, key + ".motion", "is given for a region that is no body; only role: body moves (fixed walls do not)");
       r.motion = motion(m, key + ".motion");
     }
-    for (const char* name : {"density", "mass"}) {
-      const YAML::Node v = n[name];
-      if (!v.IsDefined()) continue;
-      if (r.motion.type != "free")
-        fail(v, key + "." + name, "is given for a body the fluid does not move; add motion: {type: free} or remove it");
-      const double x = number(v, key + "." + name);
-      if (!(x > 0)) fail(v, key + "." + name, "is " + number_text(x) + "; give a positive " + name);
-      (name[0] == 'd' ? r.motion.density : r.motion.mass) = x;
-    }
-    if (r.motion.type == "free") {
-      if (n["density"].IsDefined() && n["mass"].IsDefined())
-        fail(n["mass"], key + ".mass", "is given with density:; give one of them");
-      if (!n["density"].IsDefined() && !n["mass"].IsDefined())
-        fail(n["motion"], key + ".motion", "makes a free body with no mass; add density: (kg/m^3) or mass: beside it");
-    }
+    body_mass(n, key, r.motion);
     const YAML::Node p = n["pressure"];
     r.hydrostatic = p.IsDefined() && p.IsScalar() && p.Scalar() == "hydrostatic";
     if (!r.hydrostatic && p.IsDefined()) r.pressure = number(p, key + ".pressure");
@@ -1071,6 +1075,35 @@ double share_of_lattice_kept(const std::array<std::pair<long, long>, 3>& range, 
       for (i[0] = range[0].first; i[0] <= range[0].second; i[0] += stride[0]) sampled += 1, kept += keeps(i);
   return sampled > 0 ? kept / sampled : 0.0;
 }
+// Per body, 1 where the fluid moves it; such a body in a scene without fluid is refused.
+std::vector<char> free_bodies(const Reader& r, const std::vector<Region>& solids, const std::vector<Region>& fluids,
+                              const std::vector<MotionSpec>& motions, const std::vector<std::string>& names) {
+  std::vector<char> free(motions.size(), 0);
+  for (const Region& w : solids)
+    if (w.role == Role::Body && motions[w.body].type == "free") {
+      free[w.body] = 1;
+      if (fluids.empty())
+        r.fail(w.at, w.key, "makes body '" + names[w.body] +
+                                "' free in a scene with no fluid region; add the fluid that moves it, or prescribe its motion");
+    }
+  return free;
+}
+
+// A free body that starts inside a wall or another body would be pushed out by nothing: refused at
+// the first lattice point x deep inside both.
+void refuse_free_body_inside(const Reader& r, const std::vector<Region>& solids, const std::vector<char>& free,
+                             const std::vector<std::string>& names, const Point3& x, double dx) {
+  const Region* body = nullptr;
+  for (const Region& w : solids)
+    if (w.role == Role::Body && free[w.body] && w.shape->distance(x) < -0.5 * dx) body = &w;
+  if (!body) return;
+  for (const Region& w : solids)
+    if (w.body != body->body && w.shape->distance(x) < -0.5 * dx)
+      r.fail(body->at, body->key,
+             "is free body '" + names[body->body] + "', which starts inside " + w.key +
+                 (w.role == Role::Body ? " (body '" + names[w.body] + "')" : " (a wall)") + "; move it clear");
+}
+
 }  // namespace
 
 YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
@@ -1163,28 +1196,9 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
 
   if (has_box) check_mesh_units(r, box_lo, box_hi);
   if (!out.open.empty() && fluids.empty()) r.fail(list, "regions", "has inlets or outlets but no fluid region; add one");
-  std::vector<char> free(out.motions.size(), 0);  // per body: the fluid moves it
-  for (const Region& w : solids)
-    if (w.role == Role::Body && out.motions[w.body].type == "free") {
-      free[w.body] = 1;
-      if (fluids.empty())
-        r.fail(w.at, w.key, "makes body '" + out.bodies[w.body] +
-                                "' free in a scene with no fluid region; add the fluid that moves it, or prescribe its motion");
-    }
+  const std::vector<char> free = free_bodies(r, solids, fluids, out.motions, out.bodies);
   const bool any_free = std::find(free.begin(), free.end(), 1) != free.end();
-  // A free body that starts inside a wall or another body would be pushed out by nothing: refused.
-  auto check_clear = [&](const Point3& x) {
-    const Region* body = nullptr;
-    for (const Region& w : solids)
-      if (w.role == Role::Body && free[w.body] && w.shape->distance(x) < -0.5 * dx) body = &w;
-    if (!body) return;
-    for (const Region& w : solids)
-      if (w.body != body->body && w.shape->distance(x) < -0.5 * dx)
-        r.fail(body->at, body->key,
-               "is free body '" + out.bodies[body->body] + "', which starts inside " + w.key +
-                   (w.role == Role::Body ? " (body '" + out.bodies[w.body] + "')" : " (a wall)") +
-                   "; move it clear");
-  };
+  auto check_clear = [&](const Point3& x) { refuse_free_body_inside(r, solids, free, out.bodies, x, dx); };
   Point3 lattice_lo = box_lo, lattice_hi = box_hi;
   grow_by_buffers(out.open, D, lattice_lo, lattice_hi, reach, s);
 
