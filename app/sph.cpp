@@ -7,8 +7,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <csignal>
 #include <cctype>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <new>
@@ -126,8 +126,10 @@ bool options_files_valid(int argc, char** argv) {
     // unless it is an option (a '-' not starting a number).
     const char* next = k + 1 < argc ? argv[k + 1] : nullptr;
     if (!next || (next[0] == '-' && !std::isdigit(static_cast<unsigned char>(next[1])) && next[1] != '.')) {
-      std::fprintf(stderr, "sph: error: option %s was given without a file name; give the path of an options file "
-                   "(e.g. %s cases/taylor_green.opts) or leave it out\n", opt.c_str(), opt.c_str());
+      std::fprintf(stderr,
+                   "sph: error: option %s was given without a file name; give the path of an options file "
+                   "(e.g. %s cases/taylor_green.opts) or leave it out\n",
+                   opt.c_str(), opt.c_str());
       return false;
     }
     std::vector<std::string> chain;

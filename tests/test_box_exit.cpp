@@ -64,7 +64,7 @@ TEST(BoxExit, FluidThrownOverTheWallsTopLeftThroughAnOpenSide) {
 TEST(BoxExit, AutoRemovesOnlyWhatLeftThroughAnOpenSide) {
   CutWall w;
   const std::size_t inside = w.add(V2(0.5, 0.5), kFluid);
-  w.add(V2(-4.2 * kDx, 3.0 * kDx), kFluid);  // through the wall
+  w.add(V2(-4.2 * kDx, 3.0 * kDx), kFluid);   // through the wall
   w.add(V2(-4.2 * kDx, 12.0 * kDx), kFluid);  // over its top
   const double mass = w.P.m[inside];
   Neighbourhood<2> nh(w.domain, 3 * kDx, 0.0);

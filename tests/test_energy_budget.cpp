@@ -14,9 +14,9 @@ namespace {
 using sph::testing::run_sph;
 using sph::testing::timeseries_column;
 
-const char* const kCauses[] = {"gravity",   "body_force",          "pressure",
-                               "viscous",   "artificial_viscosity", "density_diffusion",
-                               "shifting",  "wall_bounding",        "removed_fluid"};
+const char* const kCauses[] = {"gravity",  "body_force",           "pressure",
+                               "viscous",  "artificial_viscosity", "density_diffusion",
+                               "shifting", "wall_bounding",        "removed_fluid"};
 
 // The baffle in a closed sloshing tank (walls, a plate, a free surface, shifting; WCSPH's wall bounding
 // and density diffusion): the energies' change is the causes' sum to round-off (1e-10 of the potential

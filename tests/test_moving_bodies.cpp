@@ -2,19 +2,17 @@
 // particles move, and the force the fluid puts on an oscillating cylinder against potential flow's
 // added mass. docs/verification/body_forces.md has the convergence tables.
 #include <gtest/gtest.h>
-
-#include <cmath>
-#include <string>
-
-#include <Eigen/Geometry>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataReader.h>
 
+#include <Eigen/Geometry>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string>
 
 #include "src/boundary/moving_bodies.hpp"
 #include "tests/run_sph.hpp"
@@ -179,8 +177,9 @@ const std::string kOscillating = std::string(SPH_SOURCE_DIR) + "/cases/scenes/os
 
 // C_a of a run of the scene at nx 20.
 double added_mass_at_nx20(const std::string& solver) {
-  const auto r = sph::testing::run_sph("moving_" + solver, "-case scene -scene_file " + kOscillating +
-                                                               " -nx 20 -solver " + solver + " -t_end 1 -output_interval 0 -threads 1");
+  const auto r =
+      sph::testing::run_sph("moving_" + solver, "-case scene -scene_file " + kOscillating + " -nx 20 -solver " +
+                                                    solver + " -t_end 1 -output_interval 0 -threads 1");
   EXPECT_EQ(r.exit_code, 0);
   return r.exit_code == 0 ? added_mass_coefficient(r) : std::nan("");
 }

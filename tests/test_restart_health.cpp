@@ -73,8 +73,8 @@ TEST(Restart, WcsphWallBoundingMatchesUninterruptedRunExactly) {
 
 // A body with prescribed motion resumes where it was, with its velocity (both schemes).
 TEST(Restart, MovingBodyMatchesUninterruptedRunExactly) {
-  const std::string scene = "scene -scene_file " + std::string(SPH_SOURCE_DIR) +
-                            "/cases/scenes/oscillating_cylinder.yaml -nx 20";
+  const std::string scene =
+      "scene -scene_file " + std::string(SPH_SOURCE_DIR) + "/cases/scenes/oscillating_cylinder.yaml -nx 20";
   expect_restart_is_exact("isph", 0.005, scene);
   expect_restart_is_exact("wcsph", 0.001, scene);
 }

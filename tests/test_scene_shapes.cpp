@@ -284,8 +284,9 @@ TEST(SceneShapes, InlineShapesAndTopLevelPhysicsMatchTheNestedForm) {
 
 // A motion table's file: its header, its rows and its times are checked, naming the row.
 TEST(SceneShapes, MotionTablesAreCheckedRowByRow) {
-  const std::string scene = "dimension: 2\nregions:\n  - {role: fluid, shape: {box: [0, 1, 0, 1]}}\n"
-                            "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: table, file: m.csv}}\n";
+  const std::string scene =
+      "dimension: 2\nregions:\n  - {role: fluid, shape: {box: [0, 1, 0, 1]}}\n"
+      "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: table, file: m.csv}}\n";
   const std::vector<std::pair<std::string, std::string>> tables = {
       {"t,x\n0,0\n1,1\n", "has the header 't,x'; give t,x,y (and ,angle in degrees) in the first line"},
       {"t,x,y\n0,0,0\n0,1,0\n", "row 3: t = 0 does not increase"},
@@ -351,7 +352,8 @@ TEST(SceneShapes, RefusalsNameTheFileTheKeyAndTheFix) {
        "box: is 1.05 long along periodic x, not a whole number of dx = 0.1"},
       {"body_name", "dimension: 2\nregions:\n" + ok_region + "  - {role: body, shape: {box: [0, 1, -1, 0]}}\n",
        "regions[1]: is a body without a name; add name: NAME"},
-      {"walls_body", "dimension: 2\nregions:\n" + ok_region + "  - {role: {body: walls}, shape: {box: [0, 1, -1, 0]}}\n",
+      {"walls_body",
+       "dimension: 2\nregions:\n" + ok_region + "  - {role: {body: walls}, shape: {box: [0, 1, -1, 0]}}\n",
        "names a body 'walls', the name of the walls' own force columns; rename it"},
       {"inline_missing", "dimension: 2\nregions:\n  - {role: fluid, shape: difference}\n",
        "regions[0]: has shape: difference but no of; add of: ... beside it"},
@@ -364,11 +366,13 @@ TEST(SceneShapes, RefusalsNameTheFileTheKeyAndTheFix) {
            "  - {role: wall, shape: {box: [0, 1, -1, 0]}, motion: {type: constant, velocity: [1, 0]}}\n",
        "regions[1].motion: is given for a region that is no body; only role: body moves"},
       {"motion_type",
-       "dimension: 2\nregions:\n" + ok_region + "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: spin}}\n",
+       "dimension: 2\nregions:\n" + ok_region +
+           "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: spin}}\n",
        "regions[1].motion.type: is 'spin'; give fixed, constant, sinusoidal or table"},
       {"motion_period",
        "dimension: 2\nregions:\n" + ok_region +
-           "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: sinusoidal, amplitude: [1, 0], period: 0}}\n",
+           "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: sinusoidal, amplitude: [1, 0], period: "
+           "0}}\n",
        "regions[1].motion.period: is 0; give a positive period"},
       {"rotation_centre",
        "dimension: 2\nregions:\n" + ok_region +

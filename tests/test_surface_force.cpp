@@ -138,7 +138,9 @@ PlateFaces plate_faces(double x0, double y0, double y1, int pieces) {
 
 TEST(SurfaceForce, PlateFacesTakeTheirOwnSidesPressure) {
   const double dx = 1.0 / 40;
-  const auto p = [](const sph::Vector<2>& x) { return x[0] < 0.5 ? 5.0 + 2.0 * (1.0 - x[1]) : 1.0 + 3.0 * (1.0 - x[1]); };
+  const auto p = [](const sph::Vector<2>& x) {
+    return x[0] < 0.5 ? 5.0 + 2.0 * (1.0 - x[1]) : 1.0 + 3.0 * (1.0 - x[1]);
+  };
   const sph::Particles<2> P = fluid_around<2>(dx, 0.0, p);
   const sph::Kernel<2> K(sph::KernelType::WendlandC2, 1.5 * dx);
   const sph::Screens<2> screens({{sph::Vector<2>(0.5, -0.2), sph::Vector<2>(0.5, 1.2)}}, {});
@@ -174,8 +176,8 @@ TEST(SurfaceForce, DryFacesAboveAFreeSurfaceCarryNoPressure) {
   const sph::Kernel<2> K(sph::KernelType::WendlandC2, 1.5 * dx);
   const sph::Screens<2> screens({{sph::Vector<2>(0.5, -0.2), sph::Vector<2>(0.5, 1.2)}}, {});
   const PlateFaces f = plate_faces(0.5, 0.0, 1.0, 160);
-  const auto S = sph::surface_pressure_force(P, K, f.centre, f.area_normal, P.p, sph::Vector<2>(0.5, 0.0), &screens,
-                                             true);
+  const auto S =
+      sph::surface_pressure_force(P, K, f.centre, f.area_normal, P.p, sph::Vector<2>(0.5, 0.0), &screens, true);
   EXPECT_NEAR(S.force[0] / (rho_g * (0.36 - 0.09) / 2), 1.0, 1e-12);
 }
 

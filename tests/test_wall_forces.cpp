@@ -10,8 +10,8 @@
 
 namespace {
 
-using sph::testing::RunResult;
 using sph::testing::run_sph;
+using sph::testing::RunResult;
 using sph::testing::timeseries_column;
 
 const std::string kScene = std::string(SPH_SOURCE_DIR) + "/cases/scenes/submerged_cylinder.yaml";
@@ -58,7 +58,8 @@ void expect_archimedes(const std::string& solver, double t_end, const std::strin
   // At rest the walls and the body together carry the fluid's weight (the fluid's particles fill the
   // tank less the sampled body).
   const double fluid_weight = (2.0 - sampled_area(nx));
-  const double carried = late_mean(timeseries_column(r, "force_c_y")) + late_mean(timeseries_column(r, "force_walls_y"));
+  const double carried =
+      late_mean(timeseries_column(r, "force_c_y")) + late_mean(timeseries_column(r, "force_walls_y"));
   EXPECT_NEAR(-carried / fluid_weight, 1.0, 0.01) << solver;
 }
 
@@ -69,8 +70,8 @@ TEST(WallForces, WcsphSubmergedCylinderFeelsArchimedes) { expect_archimedes("wcs
 // The force columns are read-only: a run writing them ends in the same state, bit for bit.
 TEST(WallForces, WritingThemLeavesTheRunUnchanged) {
   for (const std::string solver : {"isph", "wcsph"}) {
-    const std::string common = "-case scene -scene_file " + kScene + " -nx 20 -solver " + solver +
-                               " -t_end 0.3 -output_interval 0 -threads 1";
+    const std::string common =
+        "-case scene -scene_file " + kScene + " -nx 20 -solver " + solver + " -t_end 0.3 -output_interval 0 -threads 1";
     const RunResult with = run_sph("wall_forces_on_" + solver, common + " -wall_forces 1");
     const RunResult without = run_sph("wall_forces_off_" + solver, common + " -wall_forces 0");
     ASSERT_EQ(with.exit_code, 0);

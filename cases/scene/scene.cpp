@@ -162,8 +162,10 @@ template <int D> void SceneCase<D>::read_file() {
     PrescribedMotion<D> m;
     using Type = typename PrescribedMotion<D>::Type;
     auto type_of = [](const std::string& name) {
-      return name == "constant" ? Type::Constant : name == "sinusoidal" ? Type::Sinusoidal : name == "table" ? Type::Table
-                                                                                                                : Type::Fixed;
+      return name == "constant"     ? Type::Constant
+             : name == "sinusoidal" ? Type::Sinusoidal
+             : name == "table"      ? Type::Table
+                                    : Type::Fixed;
     };
     m.type = type_of(spec.type);
     if (m.type == Type::Table)
@@ -191,7 +193,8 @@ template <int D> void SceneCase<D>::read_file() {
     b.type = spec.inlet ? OpenBoundary<D>::Type::Inlet : OpenBoundary<D>::Type::Outlet;
     b.axis = spec.axis, b.side = spec.side, b.plane = spec.plane, b.depth = spec.depth, b.pressure = spec.pressure;
     for (int a = 0; a < D; ++a)
-      b.section_lo[a] = spec.section_lo[a], b.section_hi[a] = spec.section_hi[a], b.inflow.velocity[a] = spec.velocity[a];
+      b.section_lo[a] = spec.section_lo[a], b.section_hi[a] = spec.section_hi[a],
+      b.inflow.velocity[a] = spec.velocity[a];
     if (spec.peak > 0) b.inflow.profile = InletVelocity<D>::Profile::Parabolic, b.inflow.peak = spec.peak;
     b.inflow.ramp = spec.ramp;
     open_.push_back(b);
@@ -278,12 +281,11 @@ template <int D> void SceneCase<D>::resolve_parameters() {
     const double measured = median_spacing(file_);
     if (measured > 0 && (dx_ < 0.5 * measured || dx_ > 2.0 * measured)) {
       const std::string given = opt_.dx_set ? "-scene_dx " + number(dx_) : "its field data dx " + number(dx_);
-      throw Error(file_.error("its particles lie " + number(measured) +
-                              " apart (median nearest-neighbour distance), but " + given +
-                              (opt_.dx_set ? " is given" : " says otherwise") + "; " +
-                              (opt_.dx_set ? "pass -scene_dx " + number(measured) + " or leave it out"
-                                           : "set field data dx to " + number(measured) + " or pass -scene_dx " +
-                                                 number(measured))));
+      throw Error(file_.error(
+          "its particles lie " + number(measured) + " apart (median nearest-neighbour distance), but " + given +
+          (opt_.dx_set ? " is given" : " says otherwise") + "; " +
+          (opt_.dx_set ? "pass -scene_dx " + number(measured) + " or leave it out"
+                       : "set field data dx to " + number(measured) + " or pass -scene_dx " + number(measured))));
     }
   }
 
@@ -372,7 +374,8 @@ template <int D> void SceneCase<D>::resolve_parameters() {
   for (std::size_t b = 0; b < motions_.size(); ++b) U = std::max(U, motions_[b].top_speed(reach[b]));
   // Inlets: their full speed.
   for (const OpenBoundary<D>& b : open_)
-    U = std::max(U, b.inflow.profile == InletVelocity<D>::Profile::Parabolic ? b.inflow.peak : b.inflow.velocity.norm());
+    U = std::max(U,
+                 b.inflow.profile == InletVelocity<D>::Profile::Parabolic ? b.inflow.peak : b.inflow.velocity.norm());
   physics_.U = opt_.U_set ? opt_.U : scalar("U", PETSC_FALSE, 0.0, U);
   if (!(physics_.U > 0))
     throw Error(opt_.U_set || file_.field.count("U")

@@ -68,13 +68,13 @@ template <int D> class SceneCase : public Case<D> {
 
   SceneFile file_;
   bool yaml_ = false;
-  std::vector<int> body_;            // YAML scenes: per particle, index into bodies_ (-1: none)
-  std::vector<char> free_slip_;      // per particle, 1 on free-slip walls (empty: none)
-  std::vector<std::string> bodies_;  // YAML scenes: the names of the bodies
+  std::vector<int> body_;                     // YAML scenes: per particle, index into bodies_ (-1: none)
+  std::vector<char> free_slip_;               // per particle, 1 on free-slip walls (empty: none)
+  std::vector<std::string> bodies_;           // YAML scenes: the names of the bodies
   std::vector<PrescribedMotion<D>> motions_;  // YAML scenes: per body
-  std::vector<FreeBody<D>> free_;              // YAML scenes: per body, active where the fluid moves it
-  std::vector<SurfaceMesh> surfaces_;          // YAML scenes: per body, at t = 0
-  std::vector<OpenBoundary<D>> open_;          // YAML scenes: inlets and outlets
+  std::vector<FreeBody<D>> free_;             // YAML scenes: per body, active where the fluid moves it
+  std::vector<SurfaceMesh> surfaces_;         // YAML scenes: per body, at t = 0
+  std::vector<OpenBoundary<D>> open_;         // YAML scenes: inlets and outlets
   // YAML scenes: the thin plates (src/neighbours/screens.hpp), and per particle the plate face it
   // stands for (0: none; empty without plates).
   std::vector<typename Screens<D>::Plate> plates_;

@@ -7,11 +7,11 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataReader.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <algorithm>
 #include <nanoflann.hpp>
 #include <sstream>
 

@@ -142,8 +142,9 @@ class Reader {
       throw Error("scene file '" + path_ +
                   "': holds no YAML mapping; write keys such as dimension: 2 and regions: "
                   "(docs/user-guide.md, YAML scenes)");
-    only_keys(root, "", {"dimension", "dx", "box", "periodic", "physics", "regions", "gravity", "nu", "rho0", "U",
-                         "free_surface", "t_end"});
+    only_keys(root, "",
+              {"dimension", "dx", "box", "periodic", "physics", "regions", "gravity", "nu", "rho0", "U", "free_surface",
+               "t_end"});
     const YAML::Node d = root["dimension"];
     if (!d.IsDefined()) fail(YAML::Node(), "", "has no key 'dimension'; add dimension: 2 or dimension: 3");
     const double value = number(d, "dimension");
@@ -285,8 +286,10 @@ class Reader {
       if (file.is_relative()) file = dir_ / file;
       std::error_code ec;
       if (std::filesystem::is_directory(file, ec))
-        fail(v, k, "'" + file.string() + "' is a folder, not a mesh; give an .stl, .obj or .vtp file (paths are "
-                   "relative to the scene file)");
+        fail(v, k,
+             "'" + file.string() +
+                 "' is a folder, not a mesh; give an .stl, .obj or .vtp file (paths are "
+                 "relative to the scene file)");
       try {
         ShapePtr mesh = make_mesh(file.string());
         meshes.push_back({v, k, file.string(), mesh->bounds()});
@@ -305,7 +308,8 @@ class Reader {
   // phase: degrees (optional)}.
   MotionSpec motion(const YAML::Node& m, const std::string& key) {
     if (m["type"].IsDefined() && m["type"].IsScalar() && m["type"].Scalar() == "free") return free_motion(m, key);
-    only_keys(m, key, {"type", "velocity", "amplitude", "period", "phase", "rotation", "file", "centre", "center", "axis"});
+    only_keys(m, key,
+              {"type", "velocity", "amplitude", "period", "phase", "rotation", "file", "centre", "center", "axis"});
     MotionSpec spec;
     if (m["type"].IsDefined() && m["type"].IsScalar() && m["type"].Scalar() == "table") {
       table_motion(m, key, spec);
@@ -337,7 +341,8 @@ class Reader {
       vector("amplitude", spec.amplitude);
       if (!m["period"].IsDefined()) fail(m, key, "of type sinusoidal needs period: T");
       spec.period = number(m["period"], key + ".period");
-      if (!(spec.period > 0)) fail(m["period"], key + ".period", "is " + number_text(spec.period) + "; give a positive period");
+      if (!(spec.period > 0))
+        fail(m["period"], key + ".period", "is " + number_text(spec.period) + "; give a positive period");
       if (m["phase"].IsDefined()) spec.phase_degrees = number(m["phase"], key + ".phase");
       refuse_extra({"velocity"});
     } else {
@@ -386,20 +391,24 @@ class Reader {
     }
     if (const YAML::Node f = m["fixed"]; f.IsDefined()) {
       if (!f.IsSequence() || f.size() == 0)
-        fail(f, key + ".fixed", "is not a list of axes; give e.g. fixed: [x, rotation] (x, y, z, rotation, rx, ry, rz)");
+        fail(f, key + ".fixed",
+             "is not a list of axes; give e.g. fixed: [x, rotation] (x, y, z, rotation, rx, ry, rz)");
       for (const auto& item : f) {
         const std::string a = item.IsScalar() ? item.Scalar() : "";
-        const std::size_t t = std::string("xyz").find(a), r = a.size() == 2 && a[0] == 'r' ? std::string("xyz").find(a[1]) : std::string::npos;
+        const std::size_t t = std::string("xyz").find(a),
+                          r = a.size() == 2 && a[0] == 'r' ? std::string("xyz").find(a[1]) : std::string::npos;
         if (a.size() == 1 && t < static_cast<std::size_t>(dim)) spec.fixed_translation[t] = true;
         else if (a == "rotation") spec.fixed_rotation = {true, true, true};
         else if (dim == 3 && r != std::string::npos) spec.fixed_rotation[r] = true;
         else
           fail(item, key + ".fixed",
-               "names '" + a + "', which is no axis; give " + (dim == 2 ? "x, y or rotation" : "x, y, z, rotation, rx, ry or rz"));
+               "names '" + a + "', which is no axis; give " +
+                   (dim == 2 ? "x, y or rotation" : "x, y, z, rotation, rx, ry or rz"));
       }
     }
     if (const YAML::Node h = m["hinge"]; h.IsDefined()) {
-      if (m["fixed"].IsDefined()) fail(h, key + ".hinge", "is given with fixed:; a hinged body only turns about it, remove one");
+      if (m["fixed"].IsDefined())
+        fail(h, key + ".hinge", "is given with fixed:; a hinged body only turns about it, remove one");
       const Point3 p = point(h, key + ".hinge");
       spec.hinged = true, spec.hinge = {p[0], p[1], p[2]};
       if (dim == 3) {
@@ -408,8 +417,9 @@ class Reader {
       }
     }
     if (m["axis"].IsDefined() && (dim == 2 || !m["hinge"].IsDefined()))
-      fail(m["axis"], key + ".axis", dim == 2 ? "is given in a 2D scene, where bodies turn about z; remove it"
-                                              : "is given without a hinge; remove it or add hinge: [x, y, z]");
+      fail(m["axis"], key + ".axis",
+           dim == 2 ? "is given in a 2D scene, where bodies turn about z; remove it"
+                    : "is given without a hinge; remove it or add hinge: [x, y, z]");
     return spec;
   }
 
@@ -424,10 +434,13 @@ class Reader {
     std::error_code ec;
     if (std::filesystem::is_directory(file, ec))
       fail(m["file"], key + ".file",
-           "'" + file.string() + "' is a folder, not a file; give the motion table, a CSV with the header t,x,y "
-           "(paths are relative to the scene file)");
+           "'" + file.string() +
+               "' is a folder, not a file; give the motion table, a CSV with the header t,x,y "
+               "(paths are relative to the scene file)");
     std::ifstream in(file, std::ios::binary);
-    if (!in) fail(m["file"], key + ".file", "cannot be opened ('" + file.string() + "'; paths are relative to the scene file)");
+    if (!in)
+      fail(m["file"], key + ".file",
+           "cannot be opened ('" + file.string() + "'; paths are relative to the scene file)");
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     checksum = fnv1a(checksum, text.data(), text.size());
     std::istringstream lines(text);
@@ -448,14 +461,16 @@ class Reader {
     const bool with_angle = header.size() == want.size() + 1 && header.back() == "angle";
     if (with_angle) want.push_back("angle");
     if (header != want)
-      fail(m["file"], where, std::string("has the header '") + line + "'; give t,x,y" + (dim == 3 ? ",z" : "") +
-                                 " (and ,angle in degrees) in the first line");
+      fail(m["file"], where,
+           std::string("has the header '") + line + "'; give t,x,y" + (dim == 3 ? ",z" : "") +
+               " (and ,angle in degrees) in the first line");
     for (int row = 2; std::getline(lines, line); ++row) {
       if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
       const std::vector<std::string> v = cells(line);
       if (v.size() != want.size())
-        fail(m["file"], where, "row " + std::to_string(row) + " has " + std::to_string(v.size()) + " values; give " +
-                                   std::to_string(want.size()));
+        fail(m["file"], where,
+             "row " + std::to_string(row) + " has " + std::to_string(v.size()) + " values; give " +
+                 std::to_string(want.size()));
       std::vector<double> x;
       for (const std::string& cell : v) {
         char* end = nullptr;
@@ -470,7 +485,8 @@ class Reader {
       for (int a = 0; a < dim; ++a) spec.table_x[a].push_back(x[1 + a]);
       if (with_angle) spec.table_angle_degrees.push_back(x.back());
     }
-    if (spec.table_t.size() < 2) fail(m["file"], where, "holds fewer than two rows; give the motion at two times at least");
+    if (spec.table_t.size() < 2)
+      fail(m["file"], where, "holds fewer than two rows; give the motion at two times at least");
     spec.type = "table";
     if (!with_angle) return;
     spec.spin = "table";
@@ -619,7 +635,8 @@ class Reader {
       fail(n, key, "is an inlet without a velocity; add velocity: [u, v] or velocity: {parabolic: U_max}");
     if (v.IsMap()) {
       only_keys(v, key + ".velocity", {"parabolic"});
-      if (!v["parabolic"].IsDefined()) fail(v, key + ".velocity", "has no parabolic: U_max; give the profile's peak speed");
+      if (!v["parabolic"].IsDefined())
+        fail(v, key + ".velocity", "has no parabolic: U_max; give the profile's peak speed");
       b.peak = number(v["parabolic"], key + ".velocity.parabolic");
       if (!(b.peak > 0))
         fail(v["parabolic"], key + ".velocity.parabolic",
@@ -640,10 +657,9 @@ class Reader {
   }
 
   Region region(const YAML::Node& n, const std::string& key, std::vector<std::string>& bodies, const Point3& g) {
-    only_keys(n, key,
-              {"role",   "shape",  "velocity", "pressure", "motion", "slip",   "name", "of",
-               "bounds", "vertices", "file", "centre",  "center", "radius", "ends", "point",
-               "normal", "from",     "to",   "thickness", "density", "mass"});
+    only_keys(n, key, {"role",   "shape",    "velocity", "pressure",  "motion",  "slip",   "name", "of",
+                       "bounds", "vertices", "file",     "centre",    "center",  "radius", "ends", "point",
+                       "normal", "from",     "to",       "thickness", "density", "mass"});
     Region r;
     const YAML::Node role = n["role"];
     if (!role.IsDefined())
@@ -663,8 +679,10 @@ class Reader {
     }
     if (!body.empty()) {
       r.role = Role::Body;
-      if (body.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") != std::string::npos)
-        fail(n, key, "names body '" + body + "'; a body's name takes letters, digits and _ (it names timeseries columns)");
+      if (body.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") !=
+          std::string::npos)
+        fail(n, key,
+             "names body '" + body + "'; a body's name takes letters, digits and _ (it names timeseries columns)");
       if (body == "walls") fail(n, key, "names a body 'walls', the name of the walls' own force columns; rename it");
       r.body = static_cast<int>(std::find(bodies.begin(), bodies.end(), body) - bodies.begin());
       if (r.body == static_cast<int>(bodies.size())) bodies.push_back(body);
@@ -833,7 +851,8 @@ void check_regions_filled(const Reader& r, const std::vector<Region>& fluids, co
       r.fail(at.at, at.key,
              what + " holds " + std::to_string(n) + " particle" + (n == 1 ? "" : "s") + " at dx = " + number_text(dx) +
                  ", under a quarter of the " + number_text(std::round(expected)) + " its " + measure + " (" +
-                 number_text(area) + ", less what the regions after it cover) holds: parts of it thinner than "
+                 number_text(area) +
+                 ", less what the regions after it cover) holds: parts of it thinner than "
                  "the spacing are lost between the lattice's rows; refine (a larger -nx) or thicken them");
   };
   for (const Region& f : fluids) {
@@ -848,7 +867,8 @@ void check_regions_filled(const Reader& r, const std::vector<Region>& fluids, co
     for (const Region& w : solids)
       if (w.body == static_cast<int>(b)) n += taken[&w], area += kept[&w], first = first ? first : &w;
     for (const Region& p : plates) plate = plate || p.body == static_cast<int>(b);  // its layers come later
-    if (n == 0 && first && !plate) r.fail(first->at, first->key, "is body '" + bodies[b] + "', which holds no particle" + fix);
+    if (n == 0 && first && !plate)
+      r.fail(first->at, first->key, "is body '" + bodies[b] + "', which holds no particle" + fix);
     if (first && !plate) too_few(*first, "is body '" + bodies[b] + "', which", n, area);
   }
 }
@@ -932,8 +952,8 @@ bool in_plate_gap(const std::vector<Region>& plates, const Point3& x, double dx)
 // (still water at two levels either side of a plate lost a fifth of its force); screened without the
 // layers, the fluid in the corner would miss the wall beyond the plate from its support
 // (docs/verification/thin_plate.md).
-void add_plate_layers(const std::vector<Region>& plates, const std::vector<Region>& solids, int wall_layers,
-                      double dx, const Point3& box_lo, const Point3& box_hi, YamlScene& out) {
+void add_plate_layers(const std::vector<Region>& plates, const std::vector<Region>& solids, int wall_layers, double dx,
+                      const Point3& box_lo, const Point3& box_hi, YamlScene& out) {
   SceneFile& s = out.file;
   out.plate_face.resize(s.x.size(), 0);
   auto in_a_wall = [&](const Point3& x) {
@@ -1083,8 +1103,9 @@ std::vector<char> free_bodies(const Reader& r, const std::vector<Region>& solids
     if (w.role == Role::Body && motions[w.body].type == "free") {
       free[w.body] = 1;
       if (fluids.empty())
-        r.fail(w.at, w.key, "makes body '" + names[w.body] +
-                                "' free in a scene with no fluid region; add the fluid that moves it, or prescribe its motion");
+        r.fail(w.at, w.key,
+               "makes body '" + names[w.body] +
+                   "' free in a scene with no fluid region; add the fluid that moves it, or prescribe its motion");
     }
   return free;
 }
@@ -1163,7 +1184,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
     r.fail(list.IsDefined() ? list : root, "regions", "needs a list of regions - {role: ..., shape: ...}");
   std::vector<Region> solids, fluids, plates;
   Bounds reach{Point3::Constant(kInf), Point3::Constant(-kInf)};
-  std::vector<char> given;  // per body: its motion was given
+  std::vector<char> given;                                     // per body: its motion was given
   std::vector<std::pair<YAML::Node, std::string>> open_nodes;  // each open boundary's region and key, for messages
   for (std::size_t k = 0; k < list.size(); ++k) {
     if (Reader::is_open_boundary(list[k])) {
@@ -1195,7 +1216,8 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
   }
 
   if (has_box) check_mesh_units(r, box_lo, box_hi);
-  if (!out.open.empty() && fluids.empty()) r.fail(list, "regions", "has inlets or outlets but no fluid region; add one");
+  if (!out.open.empty() && fluids.empty())
+    r.fail(list, "regions", "has inlets or outlets but no fluid region; add one");
   const std::vector<char> free = free_bodies(r, solids, fluids, out.motions, out.bodies);
   const bool any_free = std::find(free.begin(), free.end(), 1) != free.end();
   auto check_clear = [&](const Point3& x) { refuse_free_body_inside(r, solids, free, out.bodies, x, dx); };
@@ -1295,7 +1317,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
             const Fill inside = fill(y);
             if (!inside.fluid) continue;
             const Region& in = *inside.fluid;
-            const double p = !b.inlet ? b.pressure
+            const double p = !b.inlet         ? b.pressure
                              : in.hydrostatic ? rho0 * g.norm() * depth_below_surface(occupied, y, up, box_top, dx)
                                               : in.pressure;
             s.x.push_back({x[0], x[1], x[2]});

@@ -45,7 +45,6 @@
 #include <cstdint>
 #include <string>
 #include <vector>
-#include <vector>
 
 #include "cases/scene/scene_file.hpp"
 #include "src/io/surface_writer.hpp"
@@ -88,11 +87,11 @@ struct OpenBoundarySpec {
 };
 
 struct YamlScene {
-  SceneFile file;                   // particles and field data, as read_scene_file gives them
-  std::vector<int> body;            // per particle: index into bodies, -1 for fluid and walls
-  std::vector<char> free_slip;      // per particle: 1 on walls and bodies given slip: free
-  std::vector<std::string> bodies;  // the body names, in order of first appearance
-  std::vector<MotionSpec> motions;  // per body
+  SceneFile file;                     // particles and field data, as read_scene_file gives them
+  std::vector<int> body;              // per particle: index into bodies, -1 for fluid and walls
+  std::vector<char> free_slip;        // per particle: 1 on walls and bodies given slip: free
+  std::vector<std::string> bodies;    // the body names, in order of first appearance
+  std::vector<MotionSpec> motions;    // per body
   std::vector<SurfaceMesh> surfaces;  // per body, where the body is at t = 0 (within the box)
   // Thin plates (2D): per particle, 0 or the face whose layers it belongs to, +-(k + 1) for plate k
   // (src/neighbours/screens.hpp); each plate's mid-line x0, y0, x1, y1.

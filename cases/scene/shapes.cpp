@@ -270,11 +270,11 @@ void check_obj_faces(const std::string& path) {
     throw Error(where + std::to_string(zero_at) +
                 ": a face names vertex 0; OBJ numbers vertices from 1 (or -1 for the last): fix the face");
   if (highest > vertices)
-    throw Error(where + std::to_string(highest_at) + ": a face names vertex " + std::to_string(highest) +
-                " of the " + std::to_string(vertices) + " the file holds; fix the face or add its vertices");
+    throw Error(where + std::to_string(highest_at) + ": a face names vertex " + std::to_string(highest) + " of the " +
+                std::to_string(vertices) + " the file holds; fix the face or add its vertices");
   if (-lowest > vertices)
-    throw Error(where + std::to_string(lowest_at) + ": a face names vertex " + std::to_string(lowest) + ", before the " +
-                std::to_string(vertices) + " the file holds; fix the face");
+    throw Error(where + std::to_string(lowest_at) + ": a face names vertex " + std::to_string(lowest) +
+                ", before the " + std::to_string(vertices) + " the file holds; fix the face");
 }
 
 vtkSmartPointer<vtkPolyData> read_surface(const std::string& path) {
@@ -348,7 +348,8 @@ ShapePtr make_mesh(const std::string& path) {
     if (count != 3) continue;
     for (int c = 0; c < 3; ++c) surface->GetPoint(ids[c], p[c]);
     volume += (p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) - p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
-               p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0])) / 6.0;
+               p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0])) /
+              6.0;
   }
   const double size = std::max({b[1] - b[0], b[3] - b[2], b[5] - b[4]});
   if (!(std::abs(volume) > 1e-9 * size * size * size))

@@ -114,9 +114,8 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
   models["projection_corrections"] = projection_corrections_;
   models["time_integration"] = "kick-drift-kick, projection as the closing kick";
   if (walls_)
-    models["walls"] = {
-        {"model", "AdamiWall"},
-        {"ppe", phys.free_surface ? "extrapolation rows" : "extrapolation rows, diagonal regularised"}};
+    models["walls"] = {{"model", "AdamiWall"},
+                       {"ppe", phys.free_surface ? "extrapolation rows" : "extrapolation rows, diagonal regularised"}};
   if (phys.free_surface) {
     models["free_surface"] = free_surface_model_.describe();
     models["free_surface"]["condition"] = surface_condition_names[static_cast<int>(surface_condition_)];
@@ -133,9 +132,7 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
                                                         !phys.free_surface)}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
   if (shifting_model_.enabled) models["shifting"] = shifting_model_.describe();
-  return {{"models", models},
-          {"cfl", cfl_},
-          {"ksp", ppe_.describe()}};
+  return {{"models", models}, {"cfl", cfl_}, {"ksp", ppe_.describe()}};
 }
 
 // The solver's other members are instantiated with the class in its own file.

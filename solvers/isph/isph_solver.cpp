@@ -247,8 +247,7 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
   const std::vector<Vector<D>> wall_acceleration = disc_->bodies.accelerations(P, disc_->bodies.time());
   auto assemble = [&] {
     ppe_.assemble(P, nh, K, phys.gravity, nodes || outlets ? &dirichlet : surface_flags,
-                  consistent ? &corrections : nullptr,
-                  nodes ? &nodes_ : nullptr, wall_impact_ ? &impact : nullptr,
+                  consistent ? &corrections : nullptr, nodes ? &nodes_ : nullptr, wall_impact_ ? &impact : nullptr,
                   wall_acceleration.empty() ? nullptr : &wall_acceleration);
   };
   assemble();
@@ -348,8 +347,8 @@ template <int D> void IsphSolver<D>::bound_to_walls() {
   Particles<D>& P = disc_->particles;
   disc_->neighbourhood.update(P);
   const auto before = energy_.energies(P);
-  bounded_ += wall_bounding_.apply(P, disc_->neighbourhood, disc_->kernel, disc_->dx, disc_->physics.rho0,
-                                   disc_->bodies.any());
+  bounded_ +=
+      wall_bounding_.apply(P, disc_->neighbourhood, disc_->kernel, disc_->dx, disc_->physics.rho0, disc_->bodies.any());
   energy_.add_change(EnergyCause::WallBounding, before, energy_.energies(P));
 }
 

@@ -106,7 +106,7 @@ template <int D> class IsphSolver : public Solver<D> {
     bool have_pressure = false;  // a projection has run before: the opening kick has a pressure
     std::vector<Vector<D>> acc;  // a^n, the opening kick's acceleration (gravity included)
     std::vector<Vector<D>> u_half, u_star;
-    std::vector<Vector<D>> u_start, viscous_kick;  // u^n and the viscous term's change of it, for the energy budget
+    std::vector<Vector<D>> u_start, viscous_kick;     // u^n and the viscous term's change of it, for the energy budget
     std::vector<LaplacianCorrection<D>> corrections;  // the consistent Laplacian's factors at x^{n+1}
   };
   void opening_kick_and_drift(double dt, StepState& s);

@@ -34,12 +34,11 @@ template <int D> void PressurePoisson<D>::release() {
   rows_.release(), pc_rows_.release();
 }
 
-template <int D> void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>& nh,
-                                                   const Kernel<D>& K, const Vector<D>& body_force,
-                                                   const std::vector<char>* dirichlet,
-                                                   const std::vector<LaplacianCorrection<D>>* consistent,
-                                                   const SurfaceNodes<D>* nodes, const WallImpact<D>* impact,
-                                                   const std::vector<Vector<D>>* wall_acceleration) {
+template <int D>
+void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
+                                  const Vector<D>& body_force, const std::vector<char>* dirichlet,
+                                  const std::vector<LaplacianCorrection<D>>* consistent, const SurfaceNodes<D>* nodes,
+                                  const WallImpact<D>* impact, const std::vector<Vector<D>>* wall_acceleration) {
   const std::size_t n = P.n_owned;
   kind_.assign(P.kind.begin(), P.kind.begin() + n);
   if (dirichlet) dirichlet_ = *dirichlet;

@@ -135,15 +135,14 @@ template <int D> [[gnu::always_inline]] inline void add_rates_pair(const RatesIn
   }
   if (in.continuity) {
     // Walls count as at rest here (moving bodies aside): every wall is fixed or slides along itself
-    // (the cavity lid), so no mass crosses it, and the sliding velocity must stay out of the density. Where the lid ends
-    // at a fixed corner block its velocity jumps from U to 0 inside the kernel support, and the
-    // discrete divergence reads that jump as a source of order U/dx, which this equation integrates in
-    // time into a compression of the whole cavity (docs/verification/lid_driven_cavity.md, "Design
-    // measurements"). ISPH's pressure source can keep v_w (-ppe_wall_velocity prescribed): the projection
-    // does not accumulate the source, which there raises the stagnation pressure in the downstream corner
-    // and drives the vortex harder, a first-order error that on coarse grids at Re 1000 cancels most of
-    // the scheme's under-resolution (docs/verification/lid_driven_cavity.md, "Why the best corner depends
-    // on Re").
+    // (the cavity lid), so no mass crosses it, and the sliding velocity must stay out of the density. Where the lid
+    // ends at a fixed corner block its velocity jumps from U to 0 inside the kernel support, and the discrete
+    // divergence reads that jump as a source of order U/dx, which this equation integrates in time into a compression
+    // of the whole cavity (docs/verification/lid_driven_cavity.md, "Design measurements"). ISPH's pressure source can
+    // keep v_w (-ppe_wall_velocity prescribed): the projection does not accumulate the source, which there raises the
+    // stagnation pressure in the downstream corner and drives the vortex harder, a first-order error that on coarse
+    // grids at Re 1000 cancels most of the scheme's under-resolution (docs/verification/lid_driven_cavity.md, "Why the
+    // best corner depends on Re").
     const Vector<D> u_j = P.kind[j] != kWall ? Vector<D>(P.v[j])
                           : in.wall_velocity ? Vector<D>((*in.wall_velocity)[j])
                                              : Vector<D>::Zero();
@@ -155,8 +154,8 @@ template <int D> [[gnu::always_inline]] inline void add_rates_pair(const RatesIn
       const double rho_j = in.diffused[j] + in.hydrostatic_density_gradient.dot(g.rij);
       if (!drains_surface_layer(in, i, j, rho_j - in.diffused[i]))
         s.drho_diffusion += density_diffusion_pair(in.delta_h_c0, in.diffused[i], rho_j, Vj, F,
-                                         in.grad_rho.empty() ? zero : in.grad_rho[i],
-                                         in.grad_rho.empty() ? zero : in.grad_rho[j], g);
+                                                   in.grad_rho.empty() ? zero : in.grad_rho[i],
+                                                   in.grad_rho.empty() ? zero : in.grad_rho[j], g);
     }
   }
 }

@@ -76,8 +76,9 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
         "-closed_volume 1 needs a scene without a free surface (a free surface lets the fluid's volume "
         "change); remove the option");
   if (closed_volume_option_ > 0 && disc.open.any())
-    throw Error("-closed_volume 1 needs a scene without inlets or outlets (they let the fluid's volume change); "
-                "remove the option");
+    throw Error(
+        "-closed_volume 1 needs a scene without inlets or outlets (they let the fluid's volume change); "
+        "remove the option");
   closed_volume_ =
       closed_volume_option_ < 0 ? !disc.physics.free_surface && !disc.open.any() : closed_volume_option_ > 0;
   // The free surface's default kernel sums nearly flat over a wall's particles, which then let fluid
@@ -206,9 +207,9 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   // The corrected divergence goes with the corrected pressure gradient. The symmetric gradient's
   // discrete adjoint is nearly the plain divergence: together they exchange energy between pressure
   // work and compression but for the factor rho_i / rho_j in each continuity pair
-  // (docs/verification/free_surface.md, "Energy budgets"). Mixed with the corrected divergence (a free surface, where auto picks the
-  // symmetric gradient) the dam-break front runs far ahead of the experiment (docs/verification/dam_break.md,
-  // "Design measurements").
+  // (docs/verification/free_surface.md, "Energy budgets"). Mixed with the corrected divergence (a free surface, where
+  // auto picks the symmetric gradient) the dam-break front runs far ahead of the experiment
+  // (docs/verification/dam_break.md, "Design measurements").
   const bool corrected_continuity = consistent && corrected_gradient && continuity;
   // Sums finished after the pair loop: the moment matrix of the kernel-gradient correction, the
   // velocity gradient of the corrected continuity equation and the pressure-difference sum.
@@ -294,10 +295,9 @@ template <int D> void WcsphSolver<D>::compute_rates() {
 
 // The viscous Laplacian's smoothing error removed after the pair loop (src/sph/laplacian_smoothing.hpp),
 // from its factors and values lap_u; the change goes to the viscous part too.
-template <int D>
-void WcsphSolver<D>::remove_viscous_smoothing_error(const std::vector<LaplacianCorrection<D>>& factors,
-                                                    const std::vector<Vector<D>>& lap_u,
-                                                    std::vector<Vector<D>>* viscous_part) {
+template <int D> void WcsphSolver<D>::remove_viscous_smoothing_error(const std::vector<LaplacianCorrection<D>>& factors,
+                                                                     const std::vector<Vector<D>>& lap_u,
+                                                                     std::vector<Vector<D>>* viscous_part) {
   Particles<D>& P = disc_->particles;
   std::vector<Vector<D>>& acc = P.fields[acc_];
   std::vector<Vector<D>> corrected = lap_u;
@@ -314,9 +314,9 @@ void WcsphSolver<D>::remove_viscous_smoothing_error(const std::vector<LaplacianC
 // exact for linear fields on any particle distribution (the plain forms are O(1) wrong in the
 // disorder; Negi & Ramachandran 2022 found them the obstacle to second order). grad_u empty: the
 // plain continuity equation.
-template <int D>
-void WcsphSolver<D>::apply_corrected_forms(const std::vector<Tensor<D>>& M, const std::vector<Vector<D>>& grad_p,
-                                           const std::vector<Tensor<D>>& grad_u) {
+template <int D> void WcsphSolver<D>::apply_corrected_forms(const std::vector<Tensor<D>>& M,
+                                                            const std::vector<Vector<D>>& grad_p,
+                                                            const std::vector<Tensor<D>>& grad_u) {
   Particles<D>& P = disc_->particles;
   std::vector<Vector<D>>& acc = P.fields[acc_];
   std::vector<double>& drho = P.fields[drho_];

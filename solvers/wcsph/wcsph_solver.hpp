@@ -115,7 +115,7 @@ template <int D> class WcsphSolver : public Solver<D> {
   int wall_bounding_option_ = -1;      // -wall_bounding: -1 unset (on with a free surface), 0 off, 1 on
   bool bound_to_walls_ = false;
   WallBounding<D> wall_bounding_;
-  long bounded_ = 0;                   // fluid particles put back on a wall's face, summed over the steps
+  long bounded_ = 0;  // fluid particles put back on a wall's face, summed over the steps
   // This step's free-surface particles (owned), found once at the rates' positions and used again by
   // the shift, which comes at the same positions; and as flags on owned and ghost particles.
   std::vector<char> surface_;

@@ -99,7 +99,8 @@ template <int D> struct AdamiWall {
                                    const std::vector<Vector<D>>* acceleration = nullptr) {
     for (std::size_t w = 0; w < P.n_owned; ++w) {
       if (!extrapolates_pressure(P.kind[w])) continue;
-      const Vector<D> g = acceleration && !acceleration->empty() ? Vector<D>(body_force - (*acceleration)[w]) : body_force;
+      const Vector<D> g =
+          acceleration && !acceleration->empty() ? Vector<D>(body_force - (*acceleration)[w]) : body_force;
       double p = 0.0;
       for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) {
         const int f = s.fluid[k];

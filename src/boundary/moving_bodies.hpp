@@ -2,13 +2,12 @@
 // Bodies whose motion is prescribed as a function of time: a translation (constant velocity, or
 // sinusoidal, A (sin(w t + phi) - sin phi), which starts at rest for phi = -90 degrees) and a rotation
 // about an axis through a point that moves with it (constant rate, or a sinusoidal angle), or both
-// from a table (src/boundary/motion_table.hpp). Their wall particles are moved by the solvers at their drift, and the wall condition
-// sees the body's velocity and acceleration: Adami et al. (2012)'s pressure extrapolation takes
-// (g - a_w), the continuity equation (WCSPH) and the pressure source (ISPH) the wall's velocity.
-// Membership is by permanent particle id, as for the force groups (src/run/wall_groups.hpp). The same
-// object says which wall particles are free-slip (free_slip()), the other wall condition a case may
-// ask of its wall particles. A body may instead be free (src/boundary/free_body.hpp): the fluid moves it,
-// and its state travels in the checkpoint (state(), restore()).
+// from a table (src/boundary/motion_table.hpp). Their wall particles are moved by the solvers at their drift, and the
+// wall condition sees the body's velocity and acceleration: Adami et al. (2012)'s pressure extrapolation takes (g -
+// a_w), the continuity equation (WCSPH) and the pressure source (ISPH) the wall's velocity. Membership is by permanent
+// particle id, as for the force groups (src/run/wall_groups.hpp). The same object says which wall particles are
+// free-slip (free_slip()), the other wall condition a case may ask of its wall particles. A body may instead be free
+// (src/boundary/free_body.hpp): the fluid moves it, and its state travels in the checkpoint (state(), restore()).
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -112,7 +111,8 @@ template <int D> struct PrescribedMotion {
       return top;
     };
     if (type == Type::Table) s = sampled(table_position[0], [&](double t) { return velocity_at(t).norm(); });
-    if (spin == Type::Table) s += radius * sampled(table_angle, [&](double t) { return std::abs(angular_velocity(t)); });
+    if (spin == Type::Table)
+      s += radius * sampled(table_angle, [&](double t) { return std::abs(angular_velocity(t)); });
     return s;
   }
 
@@ -155,7 +155,9 @@ template <int D> class MovingBodies {
   bool any() const { return any_; }
   bool any_free() const { return any_free_; }
   // Body b's free state (nullptr when its motion is prescribed).
-  const FreeBody<D>* free_body(std::size_t b) const { return b < free_.size() && free_[b].active ? &free_[b] : nullptr; }
+  const FreeBody<D>* free_body(std::size_t b) const {
+    return b < free_.size() && free_[b].active ? &free_[b] : nullptr;
+  }
   FreeBody<D>* free_body(std::size_t b) { return b < free_.size() && free_[b].active ? &free_[b] : nullptr; }
   std::size_t count() const { return std::max(motions_.size(), free_.size()); }
 

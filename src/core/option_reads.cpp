@@ -1,11 +1,12 @@
 #include "src/core/option_reads.hpp"
 
+#include <strings.h>
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 #include <string>
-#include <strings.h>
 #include <vector>
 
 #include "src/core/options.hpp"

@@ -64,10 +64,20 @@ const std::vector<std::string>& petsc_late_options() {
 // Names to suggest that no options block records: the choices every run makes first (read before
 // any block), PETSc's initialisation options, and those a solve reads.
 const std::vector<std::string>& unrecorded_options() {
-  static const std::vector<std::string> names = {
-      "case",     "solver",       "dim",         "options_file",      "options_file_yaml", "options_string_yaml",
-      "help",     "version",      "start_in_debugger", "stop_for_debugger", "mat_type",    "mat_view",
-      "ppe_pc_view", "ppe_ksp_converged_reason"};
+  static const std::vector<std::string> names = {"case",
+                                                 "solver",
+                                                 "dim",
+                                                 "options_file",
+                                                 "options_file_yaml",
+                                                 "options_string_yaml",
+                                                 "help",
+                                                 "version",
+                                                 "start_in_debugger",
+                                                 "stop_for_debugger",
+                                                 "mat_type",
+                                                 "mat_view",
+                                                 "ppe_pc_view",
+                                                 "ppe_ksp_converged_reason"};
   return names;
 }
 

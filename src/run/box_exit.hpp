@@ -19,9 +19,8 @@ namespace sph {
 // it crossed the box's side (its place clipped to the box) lies in a wall, within half a spacing of a
 // wall particle along every axis (a wall particle's lattice cell; 0.6 dx for round-off). A particle
 // thrown over a wall's top crosses at least its gap to the wall above the top layer.
-template <int D>
-bool left_through_wall(const Particles<D>& P, const NeighbourList<D>& nl, const Domain<D>& domain, std::size_t i,
-                       double dx) {
+template <int D> bool left_through_wall(const Particles<D>& P, const NeighbourList<D>& nl, const Domain<D>& domain,
+                                        std::size_t i, double dx) {
   Vector<D> crossing = P.x[i];
   for (int a = 0; a < D; ++a) crossing[a] = std::clamp(crossing[a], domain.lo[a], domain.hi[a]);
   for (const int* j = nl.begin(i); j != nl.end(i); ++j)
@@ -31,9 +30,8 @@ bool left_through_wall(const Particles<D>& P, const NeighbourList<D>& nl, const 
 
 // Removes the owned fluid particles outside the box that did not go through a wall (-box_exit auto), or
 // all of them (`through_walls_too`, -box_exit remove). The others stay for the health check to stop at.
-template <int D>
-RemovedFluid remove_fluid_outside(Particles<D>& P, const NeighbourList<D>& nl, const Domain<D>& domain, double dx,
-                                  bool through_walls_too) {
+template <int D> RemovedFluid remove_fluid_outside(Particles<D>& P, const NeighbourList<D>& nl, const Domain<D>& domain,
+                                                   double dx, bool through_walls_too) {
   std::vector<char> gone(P.n_owned, 0);
   for (std::size_t i = 0; i < P.n_owned; ++i)
     gone[i] = P.kind[i] == kFluid && domain.outside(P.x[i]) &&

@@ -117,9 +117,8 @@ inline std::string blow_up_advice(const std::string& courant_option) {
 // `ke_bound`. The message names the first such particle and where it is.
 // `escapes_removed`: fluid that left over an open side has been taken out already (-box_exit auto), so
 // what is outside went through a wall.
-template <int D>
-void check_health(const Particles<D>& P, const Domain<D>& domain, double ke_bound, const std::string& courant_option,
-                  bool escapes_removed = false) {
+template <int D> void check_health(const Particles<D>& P, const Domain<D>& domain, double ke_bound,
+                                   const std::string& courant_option, bool escapes_removed = false) {
   auto not_finite = [&](std::size_t i) { return !P.x[i].allFinite() || !P.v[i].allFinite() || !std::isfinite(P.p[i]); };
   auto outside = [&](std::size_t i) { return domain.outside(P.x[i]); };
   int bad[2] = {0, 0};  // NaN, outside
@@ -135,7 +134,8 @@ void check_health(const Particles<D>& P, const Domain<D>& domain, double ke_boun
   if (bad[0]) {
     const NamedParticle<D> p = first_particle(P, not_finite);
     throw Error("position, velocity or pressure became NaN/Inf" +
-                (p.label >= 0 ? " (" + p.where() + " first)" : std::string()) + ": the run blew up; " + blow_up_advice(courant_option));
+                (p.label >= 0 ? " (" + p.where() + " first)" : std::string()) + ": the run blew up; " +
+                blow_up_advice(courant_option));
   }
   if (bad[1]) {
     const NamedParticle<D> p = first_particle(P, outside);

@@ -66,12 +66,13 @@ PetscErrorCode read_options(RunControl* o) {
                           "walls and the bodies of .vtp scenes)",
                           body_pressure_force_names, 2, body_pressure_force_names[o->body_pressure_force],
                           &o->body_pressure_force, nullptr));
-  PetscCall(option_real(PetscOptionsObject, "-free_body_added_mass",
-                        "Free bodies: the added mass the coupling anticipates, in units of the fluid mass the body "
-                        "displaces (-1: the scheme's, 1 for ISPH, whose pressure answers a body's acceleration at once, "
-                        "0 for the explicit schemes); a state at rest does not depend on it "
-                        "(docs/verification/free_bodies.md)",
-                        o->free_body_added_mass, &o->free_body_added_mass, nullptr));
+  PetscCall(
+      option_real(PetscOptionsObject, "-free_body_added_mass",
+                  "Free bodies: the added mass the coupling anticipates, in units of the fluid mass the body "
+                  "displaces (-1: the scheme's, 1 for ISPH, whose pressure answers a body's acceleration at once, "
+                  "0 for the explicit schemes); a state at rest does not depend on it "
+                  "(docs/verification/free_bodies.md)",
+                  o->free_body_added_mass, &o->free_body_added_mass, nullptr));
   PetscCall(option_bool(PetscOptionsObject, "-overwrite",
                         "Replace the run already in -output_dir (its frames, tables, summary, checkpoint)",
                         o->overwrite, &o->overwrite, nullptr));

@@ -22,10 +22,10 @@ struct RunControl {
   PetscInt threads = 0;                // OpenMP threads per rank (0: see configure_threads)
   char restart[PETSC_MAX_PATH_LEN] = "";
   PetscBool progress = PETSC_TRUE;
-  PetscBool overwrite = PETSC_FALSE;  // replace a run already in output_dir
-  PetscBool dt_force = PETSC_FALSE;   // run a -dt above the stability limit anyway
-  PetscBool wall_forces = PETSC_TRUE;  // timeseries.csv's force columns (src/run/wall_groups.hpp)
-  PetscInt body_pressure_force = 0;    // 0 surface, 1 pairs (src/run/wall_groups.hpp)
+  PetscBool overwrite = PETSC_FALSE;    // replace a run already in output_dir
+  PetscBool dt_force = PETSC_FALSE;     // run a -dt above the stability limit anyway
+  PetscBool wall_forces = PETSC_TRUE;   // timeseries.csv's force columns (src/run/wall_groups.hpp)
+  PetscInt body_pressure_force = 0;     // 0 surface, 1 pairs (src/run/wall_groups.hpp)
   PetscReal free_body_added_mass = -1;  // -1: the scheme's (src/boundary/free_body.hpp)
   // Fluid leaving the box: 0 stop the run, 1 remove it, 2 remove it unless it went through a wall
   // (src/run/box_exit.hpp).

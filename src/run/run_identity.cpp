@@ -195,8 +195,8 @@ nlohmann::json check_same_run(const nlohmann::json& saved, const nlohmann::json&
   // and is named as such, not as an option (-scene_checksum, -bodies do not exist).
   for (const auto& [name, value] : pa.items())
     if (!identified_by_content(name) && (!pb.contains(name) || pb[name] != value))
-      throw Error("checkpoint " + path + " was written with " + name + " = " + value.dump() + ", this run has " +
-                  name + " = " + (pb.contains(name) ? pb[name].dump() : "unset") +
+      throw Error("checkpoint " + path + " was written with " + name + " = " + value.dump() + ", this run has " + name +
+                  " = " + (pb.contains(name) ? pb[name].dump() : "unset") +
                   ": the case's input changed since (a scene file edited, or another version of sph); restart "
                   "with the input it was written from or start a new run without -restart");
   return changed;

@@ -53,8 +53,8 @@ void refuse_unmodelled(const Physics<D>& phys, const std::string& solver, bool g
 
 // Inlets and outlets (src/boundary/open_boundaries.hpp) are built for single-phase flows without a free
 // surface: a scheme or a scene beyond that is refused, not run with a buffer it does not model.
-template <int D> void refuse_unmodelled_open_boundaries(const Discretisation<D>& disc, const std::string& solver,
-                                                       bool modelled) {
+template <int D>
+void refuse_unmodelled_open_boundaries(const Discretisation<D>& disc, const std::string& solver, bool modelled) {
   if (!disc.open.any()) return;
   if (!modelled)
     throw Error("-solver " + solver + " has no inlets or outlets; use -solver isph or wcsph, or close the scene");

@@ -3,8 +3,8 @@
 #include <petscsys.h>
 
 #include <chrono>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -177,7 +177,7 @@ template <int D> class TimeLoop {
   long last_checkpoint_step_ = -1, failing_step_ = 0;
   int interrupted_ = 0;  // the signal that stopped the run
   bool warned_dt_ = false;
-  double contact_step_ = 0.0;  // > 0: a free body is near a contact, the step held to this
+  double contact_step_ = 0.0;                           // > 0: a free body is near a contact, the step held to this
   bool surface_column_ = false, walls_column_ = false;  // timeseries.csv's free_surface_share, fluid_in_walls
   RemovedFluid removed_;  // -box_exit auto or remove: the fluid taken out so far (timeseries.csv's removed_fluid)
   int removal_events_ = 0;
@@ -391,7 +391,8 @@ template <int D> void TimeLoop<D>::open_outputs() {
   }
   // Free bodies move by the forces: they are computed whatever -wall_forces says.
   if (walls_column_ && (opt_.wall_forces || s_.disc.bodies.any_free())) {
-    wall_groups_.emplace(case_, s_.P, opt_.body_pressure_force == 0, resumed_run_.value("moment_about", nlohmann::json()));
+    wall_groups_.emplace(case_, s_.P, opt_.body_pressure_force == 0,
+                         resumed_run_.value("moment_about", nlohmann::json()));
     const std::vector<std::string> forces = wall_groups_->columns();
     columns.insert(columns.end(), forces.begin(), forces.end());
   }
@@ -528,8 +529,7 @@ template <int D> void TimeLoop<D>::exchange_open_boundaries() {
 template <int D> void TimeLoop<D>::remove_escaped_fluid() {
   EnergyBudget* budget = solver_.energy_budget();
   const auto before = budget ? budget->energies(s_.P) : std::array<double, EnergyBudget::kForms>{};
-  const RemovedFluid gone =
-      remove_fluid_outside(s_.P, s_.nh.list(), s_.domain, case_.spacing(), opt_.box_exit == 1);
+  const RemovedFluid gone = remove_fluid_outside(s_.P, s_.nh.list(), s_.domain, case_.spacing(), opt_.box_exit == 1);
   if (gone.count == 0) return;
   removed_.count += gone.count, removed_.mass += gone.mass;
   if (budget) budget->add_change(EnergyCause::RemovedFluid, before, budget->energies(s_.P));
@@ -633,7 +633,8 @@ template <int D> void TimeLoop<D>::write_state(const std::string& why) {
                      {"case_state", case_.accumulated_state()}};
   if (counts_removed_fluid()) run["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
   if (s_.disc.open.any()) run["open_boundaries"] = s_.disc.open.state();
-  if (s_.disc.bodies.any_free()) run["free_bodies"] = {{"state", s_.disc.bodies.state()}, {"contact_step", contact_step_}};
+  if (s_.disc.bodies.any_free())
+    run["free_bodies"] = {{"state", s_.disc.bodies.state()}, {"contact_step", contact_step_}};
   if (wall_groups_) run["moment_about"] = wall_groups_->about();
   if (lists_built) run["order"] = {{"ranks", ranks_}, {"owned", owned}};
   run["history"].push_back(this_segment(why));
@@ -652,11 +653,11 @@ template <int D> void TimeLoop<D>::stop_early() {
   why << " at t = " << t_ << ", before -t_end " << opt_.t_end;
   const bool checkpoint = opt_.checkpoint_interval != 0;
   if (checkpoint && last_checkpoint_step_ != step_) write_state(steps ? "stopped by -max_steps" : "steady state");
-  summary_["stopped_early"] = {{"reason", steps ? "max_steps" : "steady_state"}, {"detail", why.str()},
-                               {"checkpoint", checkpoint}};
-  PetscPrintf(PETSC_COMM_WORLD, "stopped early: %s; %s\n", why.str().c_str(),
-              checkpoint ? ("continue with -restart " + checkpoint_path_).c_str()
-                         : "no checkpoint (-checkpoint_interval 0)");
+  summary_["stopped_early"] = {
+      {"reason", steps ? "max_steps" : "steady_state"}, {"detail", why.str()}, {"checkpoint", checkpoint}};
+  PetscPrintf(
+      PETSC_COMM_WORLD, "stopped early: %s; %s\n", why.str().c_str(),
+      checkpoint ? ("continue with -restart " + checkpoint_path_).c_str() : "no checkpoint (-checkpoint_interval 0)");
 }
 
 // This run's entry in the history of runs that led to its state.
@@ -687,7 +688,8 @@ template <int D> void TimeLoop<D>::finish(const std::string& status, const std::
   j["partition"] = {
       {"curve", "morton"}, {"interval", opt_.partition_interval}, {"count", partitions_}, {"imbalance", s_.imbalance}};
   add_final_state(j, solver_, case_, s_.P, t_, stats_, *initial_);
-  if (counts_removed_fluid()) j["conservation"]["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
+  if (counts_removed_fluid())
+    j["conservation"]["removed_fluid"] = {{"particles", removed_.count}, {"mass", removed_.mass}};
   if (s_.disc.open.any()) {
     j["conservation"]["open_boundaries"] = s_.disc.open.state();
     j["conservation"]["open_boundaries"].erase("next_id");

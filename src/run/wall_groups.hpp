@@ -87,7 +87,7 @@ template <int D> class WallGroups {
       if (faces_[b].centre.empty()) continue;
       const Faces now = moved(b, bodies);
       const SurfaceForce<D> S = surface_pressure_force(P, K, now.centre, now.area_normal, P.p, about[b],
-                                                          nh.domain().screens.get(), physics.free_surface);
+                                                       nh.domain().screens.get(), physics.free_surface);
       F[b].moment += S.moment - F[b].pressure_moment;
       F[b].pressure = S.force, F[b].pressure_moment = S.moment;
     }
@@ -180,8 +180,8 @@ template <int D> class WallGroups {
     return about;
   }
 
-  std::vector<int> label_;    // by id: the body's index, -1 for none
-  std::vector<Faces> faces_;  // per body: empty where its pressure force comes from the pairs
+  std::vector<int> label_;      // by id: the body's index, -1 for none
+  std::vector<Faces> faces_;    // per body: empty where its pressure force comes from the pairs
   std::vector<double> volume_;  // per body, as laid out
   std::vector<PrescribedMotion<D>> motions_;
   std::vector<char> free_;  // per body: 1 for a free body

@@ -51,10 +51,9 @@ enum class EnergyForm { Kinetic, Potential, Internal };
 class EnergyBudget {
  public:
   static constexpr int kCauses = 10, kForms = 3;
-  static constexpr const char* kCauseNames[kCauses] = {"gravity",   "body_force",          "pressure",
-                                                       "viscous",   "artificial_viscosity", "density_diffusion",
-                                                       "shifting",  "wall_bounding",        "removed_fluid",
-                                                       "open_boundaries"};
+  static constexpr const char* kCauseNames[kCauses] = {
+      "gravity",           "body_force", "pressure",      "viscous",       "artificial_viscosity",
+      "density_diffusion", "shifting",   "wall_bounding", "removed_fluid", "open_boundaries"};
   static constexpr const char* kFormNames[kForms] = {"kinetic", "potential", "internal"};
   // A weakly compressible fluid's specific elastic energy e(rho), zero at the rest density, and its
   // slope e'(rho) = p / rho^2.
@@ -121,8 +120,7 @@ class EnergyBudget {
       Vector<D> d = Vector<D>::Zero();
       for (const auto& [cause, scale, a] : parts) d += scale * (*a)[i];
       const Vector<D> mid = u[i] + 0.5 * d;
-      for (const auto& [cause, scale, a] : parts)
-        at(cause, EnergyForm::Kinetic) += P.m[i] * mid.dot(scale * (*a)[i]);
+      for (const auto& [cause, scale, a] : parts) at(cause, EnergyForm::Kinetic) += P.m[i] * mid.dot(scale * (*a)[i]);
     }
   }
 
@@ -145,7 +143,8 @@ class EnergyBudget {
     at(cause, form) += after - before;
   }
   // The same for all three forms.
-  void add_change(EnergyCause cause, const std::array<double, kForms>& before, const std::array<double, kForms>& after) {
+  void add_change(EnergyCause cause, const std::array<double, kForms>& before,
+                  const std::array<double, kForms>& after) {
     for (int f = 0; f < kForms; ++f) change_[idx(cause)][f] += after[f] - before[f];
   }
 
@@ -228,7 +227,7 @@ class EnergyBudget {
   // (src/run/time_loop.cpp), takes each rank's own, so that the sums go on bitwise as the writing run's;
   // on another rank count rank 0 takes their total and the others start from zero.
   nlohmann::json to_json() const {
-    std::array<double, kForms * (1 + kCauses)> mine{};
+    std::array<double, kForms*(1 + kCauses)> mine{};
     for (int f = 0; f < kForms; ++f) mine[f] = start_[f];
     for (int c = 0; c < kCauses; ++c)
       for (int f = 0; f < kForms; ++f) mine[kForms * (1 + c) + f] = change_[c][f];

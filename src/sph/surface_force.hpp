@@ -6,10 +6,10 @@
 // arrangement, and a linear one gives exactly the weight of the water the surface encloses: the pair
 // sums of wall_forces.hpp respond to the pressure's level beside disordered particles
 // (docs/verification/body_forces.md).
-#include <Eigen/Dense>
 #include <mpi.h>
 #include <petscsys.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -40,12 +40,11 @@ template <int D> struct SurfaceForce {
 // plate's two faces hold the pressures of their own sides. With a free surface (p = 0 there, air
 // beyond) a face holds no tension: a fit reaches 2h beyond the water, and its linear extrapolation
 // there, negative, would count air as suction, face by face as the faces come within reach.
-template <int D> SurfaceForce<D> surface_pressure_force(const Particles<D>& P, const Kernel<D>& K,
-                                                        const std::vector<Vector<D>>& centre,
-                                                        const std::vector<Vector<D>>& area_normal,
-                                                        const std::vector<double>& p, const Vector<D>& about,
-                                                        const Screens<D>* screens = nullptr,
-                                                        bool free_surface = false) {
+template <int D>
+SurfaceForce<D> surface_pressure_force(const Particles<D>& P, const Kernel<D>& K, const std::vector<Vector<D>>& centre,
+                                       const std::vector<Vector<D>>& area_normal, const std::vector<double>& p,
+                                       const Vector<D>& about, const Screens<D>* screens = nullptr,
+                                       bool free_surface = false) {
   const double h = K.h();
   const bool screened = screens && screens->any();
   const double off = 1e-6 * h;  // how far outside its face a fit looks from

@@ -39,12 +39,12 @@ template <int D> Eigen::Vector3d moment_of(const Vector<D>& r, const Vector<D>& 
 // Forces on groups 0..n_groups-1 of owned wall particles (group[i] < 0: in none), reduced over all
 // ranks. p, rho: the pressure and density with current ghost values; nu: the kinematic viscosity (0: no
 // viscous part); about[g]: group g's moment reference point.
-template <int D>
-std::vector<GroupForce<D>> wall_group_forces(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                             const std::vector<double>& p, const std::vector<double>& rho,
-                                             const std::vector<int>& group, double nu,
-                                             const std::vector<Vector<D>>& about,
-                                             const MovingBodies<D>* bodies = nullptr) {
+template <int D> std::vector<GroupForce<D>> wall_group_forces(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                              const Kernel<D>& K, const std::vector<double>& p,
+                                                              const std::vector<double>& rho,
+                                                              const std::vector<int>& group, double nu,
+                                                              const std::vector<Vector<D>>& about,
+                                                              const MovingBodies<D>* bodies = nullptr) {
   const std::size_t n_groups = about.size();
   check_ghosts(nl, p, "the wall forces' pressure");
   check_ghosts(nl, rho, "the wall forces' density");
@@ -65,8 +65,7 @@ std::vector<GroupForce<D>> wall_group_forces(const Particles<D>& P, const Neighb
       [&](Sums& s, int w, int f, const PairGeometry<D>& g) {
         if (P.kind[f] != kFluid || group[w] < 0) return;
         const Vector<D> arm = P.x[w] - 0.5 * g.rij - about[static_cast<std::size_t>(group[w])];
-        const Vector<D> pressure =
-            (-P.m[w] * P.m[f] * (p[f] / (rho[f] * rho[f]) + p[w] / (rho[w] * rho[w]))) * g.gradW;
+        const Vector<D> pressure = (-P.m[w] * P.m[f] * (p[f] / (rho[f] * rho[f]) + p[w] / (rho[w] * rho[w]))) * g.gradW;
         s.pressure += pressure, s.pressure_moment += moment_of<D>(arm, pressure);
         if (nu > 0.0) {
           const double k = P.m[f] * (rho[w] * nu + rho[f] * nu) / (rho[w] * rho[f]) * morris_factor(g, h);
@@ -83,8 +82,8 @@ std::vector<GroupForce<D>> wall_group_forces(const Particles<D>& P, const Neighb
     GroupForce<D>& F = out[static_cast<std::size_t>(group[w])];
     F.pressure += s.pressure, F.moment += s.pressure_moment, F.pressure_moment += s.pressure_moment;
     if (s.shepard_weight > 0.0) {
-      const Vector<D> mirror = AdamiWall<D>::mirror_velocity(P, w, s.shepard_u / s.shepard_weight,
-                                                             s.shepard_r / s.shepard_weight, bodies);
+      const Vector<D> mirror =
+          AdamiWall<D>::mirror_velocity(P, w, s.shepard_u / s.shepard_weight, s.shepard_r / s.shepard_weight, bodies);
       // sum_f m_w k_f (mirror - u_f), and its moment about the pairs' midpoints.
       F.viscous += P.m[w] * (s.viscous_weight * mirror - s.viscous_u);
       F.moment += P.m[w] * (moment_of<D>(s.viscous_arm, mirror) - s.viscous_moment_u);
