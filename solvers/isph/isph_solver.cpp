@@ -167,30 +167,70 @@ template <int D> std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences
 
 template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>& u_star, double tau,
                                                    std::vector<LaplacianCorrection<D>> corrections) {
-  Particles<D>& P = disc_->particles;
-  Neighbourhood<D>& nh = disc_->neighbourhood;
-  const Kernel<D>& K = disc_->kernel;
-  const Physics<D>& phys = disc_->physics;
-  const bool consistent = operators_ == OperatorSet::Consistent;
-  const bool nodes = phys.free_surface && surface_condition_ == SurfaceCondition::Node;
+  Projection j;
+  j.tau = tau;
+  j.consistent = operators_ == OperatorSet::Consistent;
+  j.nodes = disc_->physics.free_surface && surface_condition_ == SurfaceCondition::Node;
+  j.corrections = std::move(corrections);
 
   // div(grad p / rho) = div(u*) / tau.
   LogEventScope log_assembly(ppe_assembly_event());
-  std::vector<char> surface, near_surface;
+  detect_free_surface(j);
+  const std::vector<double> source = ppe_source(u_star, j);
+  if (wall_impact_) prepare_wall_impact(u_star, j);
+  set_dirichlet_rows(j);
+  // Moving bodies' rows extrapolate with g - a_w (Adami et al. 2012).
+  j.wall_acceleration = disc_->bodies.accelerations(disc_->particles, disc_->bodies.time());
+  assemble(j);
+  // Only a surface particle released below assembles again: otherwise the factors go before the
+  // solve, where the step's memory peaks (docs/performance.md, "Memory per particle").
+  if (!j.nodes) j.corrections = {};
+  log_assembly.end();
+
+  LogEventScope log_solve(ppe_solve_event());
+  StepReport report = solve_releasing_tension(source, j);
+  ++solves_;
+  // After the step's last solve the system goes before the forces, which would otherwise add to the
+  // step's memory peak (docs/performance.md, "Memory per particle").
+  if (projection_corrections_ == 0) ppe_.release();
+  log_solve.end();
+
+  LogEventScope log_correction(LogEvent::Forces);
+  Particles<D>& P = disc_->particles;
+  const std::vector<Vector<D>> grad_p = pressure_gradient(P.p);
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (P.kind[i] == kFluid) P.v[i] = u_star[i] - (tau / P.rho[i]) * grad_p[i];
+  log_correction.end();
+  for (PetscInt pass = 0; pass < projection_corrections_; ++pass) correction_pass(j, pass, report);
+  return report;
+}
+
+// The free surface at the new positions: its particles, its nodes (-free_surface_condition node) and,
+// under the consistent operators without nodes, the particles near it.
+template <int D> void IsphSolver<D>::detect_free_surface(Projection& j) {
+  Particles<D>& P = disc_->particles;
+  Neighbourhood<D>& nh = disc_->neighbourhood;
+  const Kernel<D>& K = disc_->kernel;
   nodes_ = {};
-  if (phys.free_surface) {
-    surface = free_surface_model_.detect(P, nh.list(), K, true);
-    if (nodes) nodes_ = surface_nodes(P, nh, K, surface, 0.5 * disc_->dx);
-    if (consistent && !nodes)
-      near_surface = near_free_surface(P, nh.list(), K, surface_flags_with_ghosts(surface, P, nh));
-  }
-  const std::vector<char>* surface_flags = phys.free_surface ? &surface : nullptr;
+  if (!disc_->physics.free_surface) return;
+  j.surface = free_surface_model_.detect(P, nh.list(), K, true);
+  if (j.nodes) nodes_ = surface_nodes(P, nh, K, j.surface, 0.5 * disc_->dx);
+  if (j.consistent && !j.nodes)
+    j.near_surface = near_free_surface(P, nh.list(), K, surface_flags_with_ghosts(j.surface, P, nh));
+  j.surface_flags = &j.surface;
+}
+
+// The source div u* / tau, less the part of u^n's divergence below the particle scale.
+template <int D>
+std::vector<double> IsphSolver<D>::ppe_source(const std::vector<Vector<D>>& u_star, const Projection& j) const {
+  const Particles<D>& P = disc_->particles;
+  const double tau = j.tau;
   // Scale separation where a free surface cuts the support: with p = 0 on the surface particles,
   // nothing (their rows ignore the source); with surface nodes, the surface particles' rows take it,
   // and their particle-scale noise divided by tau, every step, made violent flows blow up sooner at
   // a smaller step (docs/verification/free_surface.md, "The causes, and how each was found"). The
   // average over the fluid part of the support separates it there.
-  const bool average_cut = nodes;
+  const bool average_cut = j.nodes;
   // The velocity u^n = P.v that the last projection made divergence-free has, at the particles' new
   // positions, a particle-scale divergence (div u^n minus its kernel average) that the projection
   // cannot remove: its Laplacian is not the divergence of its gradient on that scale. In the source
@@ -198,7 +238,7 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
   // 1/dt (docs/verification/taylor_green.md, "ISPH's time error"). -ppe_particle_divergence_rate R keeps a fraction
   // R U tau / h of it instead, so that below the step with R U tau = h it is removed at a rate per
   // unit time; the step's own change of u keeps all of its divergence.
-  const double kept = particle_divergence_rate_ * phys.U * tau / K.h();  // the fraction kept; at least 1: all
+  const double kept = particle_divergence_rate_ * disc_->physics.U * tau / disc_->kernel.h();  // at least 1: all
   const bool remove_particle_scale = particle_divergence_rate_ >= 0 && solves_ > 0 && kept < 1.0;
   // The walls' pressure rows carry the hydrostatic head (Adami et al. 2012), the normal pressure
   // gradient that holds the fluid against gravity. Seen at rest by the source, the walls would count
@@ -207,121 +247,120 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
   // found"). So in the source the walls move with tau g.
   // div u* and, for the particle-scale part below, div u^n: one pass over the pairs for both.
   std::vector<std::vector<double>> divergences = remove_particle_scale
-                                                     ? ppe_divergences({&u_star, &P.v}, near_surface, tau)
-                                                     : ppe_divergences({&u_star}, near_surface, tau);
-  std::vector<double>& source = divergences[0];
+                                                     ? ppe_divergences({&u_star, &P.v}, j.near_surface, tau)
+                                                     : ppe_divergences({&u_star}, j.near_surface, tau);
+  std::vector<double> source = std::move(divergences[0]);
   if (remove_particle_scale) {
     std::vector<double>& div_u = divergences[1];  // its ghost values are filled for the average
-    const KernelAverage<double> resolved = kernel_average_in_fluid(P, nh, K, div_u, surface_flags, average_cut);
+    const KernelAverage<double> resolved =
+        kernel_average_in_fluid(P, disc_->neighbourhood, disc_->kernel, div_u, j.surface_flags, average_cut);
     for (std::size_t i = 0; i < P.n_owned; ++i) source[i] -= (1.0 - kept) * (div_u[i] - resolved.average[i]);
   }
   for (double& s : source) s /= tau;
+  return source;
+}
 
-  std::vector<Vector<D>> predicted, wall_normals;
-  std::vector<double> impacting;
-  WallImpact<D> impact{&predicted, &wall_normals, &impacting, tau};
-  if (wall_impact_) {
-    predicted = u_star;
-    for (std::size_t i = 0; i < P.size(); ++i)
-      if (P.kind[i] != kFluid) predicted[i] = P.v[i];
-    wall_normals = AdamiWall<D>::normals(P, nh.list(), K, AdamiWall<D>::stencil(P, nh.list(), K));
-    // An impact is a free surface meeting a wall. Fluid already against a wall moves along it, and the
-    // term on its small normal velocity (zero at the wall, O(dx) at the first particles) damps smooth
-    // flows along walls (docs/verification/free_surface.md, the standing wave).
-    impacting = phys.free_surface ? surface_flags_with_ghosts(surface, P, nh) : std::vector<double>(P.size(), 1.0);
-    check_ghosts(nh.list(), predicted, "the impact term's velocity");
+// -ppe_wall_impact: the velocities and wall normals of the walls' impact term.
+template <int D> void IsphSolver<D>::prepare_wall_impact(const std::vector<Vector<D>>& u_star, Projection& j) {
+  const Particles<D>& P = disc_->particles;
+  const NeighbourList<D>& list = disc_->neighbourhood.list();
+  const Kernel<D>& K = disc_->kernel;
+  j.predicted = u_star;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (P.kind[i] != kFluid) j.predicted[i] = P.v[i];
+  j.wall_normals = AdamiWall<D>::normals(P, list, K, AdamiWall<D>::stencil(P, list, K));
+  // An impact is a free surface meeting a wall. Fluid already against a wall moves along it, and the
+  // term on its small normal velocity (zero at the wall, O(dx) at the first particles) damps smooth
+  // flows along walls (docs/verification/free_surface.md, the standing wave).
+  j.impacting = disc_->physics.free_surface ? surface_flags_with_ghosts(j.surface, P, disc_->neighbourhood)
+                                            : std::vector<double>(P.size(), 1.0);
+  check_ghosts(list, j.predicted, "the impact term's velocity");
+}
+
+// The rows that hold a pressure: with surface nodes, p = 0 only where a particle has none (a sheet or
+// a drop too thin for one, SurfaceNodes::splash, or a particle with no fluid neighbour and no node:
+// alone on a wall, a node fixes its pressure level); outlets hold theirs.
+template <int D> void IsphSolver<D>::set_dirichlet_rows(Projection& j) {
+  Particles<D>& P = disc_->particles;
+  const NeighbourList<D>& list = disc_->neighbourhood.list();
+  if (j.nodes) {
+    if (j.consistent) add_surface_nodes(P, list, disc_->kernel, nodes_, j.corrections);
+    j.dirichlet = isolated_fluid_particles(P, list, disc_->kernel);
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      j.dirichlet[i] = nodes_.is_splash(i) || (j.dirichlet[i] && !nodes_.has(i));
   }
-  // With surface nodes, p = 0 only where a particle has none: a sheet or a drop too thin for one
-  // (SurfaceNodes::splash), or a particle with no fluid neighbour and no node (alone on a wall, a node
-  // fixes its pressure level).
-  std::vector<char> dirichlet;
-  if (nodes) {
-    if (consistent) add_surface_nodes(P, nh.list(), K, nodes_, corrections);
-    dirichlet = isolated_fluid_particles(P, nh.list(), K);
-    for (std::size_t i = 0; i < P.n_owned; ++i) dirichlet[i] = nodes_.is_splash(i) || (dirichlet[i] && !nodes_.has(i));
-  }
-  // Outlets hold their pressure: Dirichlet rows beside the surface's.
-  if (!nodes && surface_flags && disc_->open.has_outlet()) dirichlet = surface;
-  const bool outlets = disc_->open.mark_outlets(P, dirichlet);
-  // Moving bodies' rows extrapolate with g - a_w (Adami et al. 2012).
-  const std::vector<Vector<D>> wall_acceleration = disc_->bodies.accelerations(P, disc_->bodies.time());
-  auto assemble = [&] {
-    ppe_.assemble(P, nh, K, phys.gravity, nodes || outlets ? &dirichlet : surface_flags,
-                  consistent ? &corrections : nullptr, nodes ? &nodes_ : nullptr, wall_impact_ ? &impact : nullptr,
-                  wall_acceleration.empty() ? nullptr : &wall_acceleration);
-  };
-  assemble();
-  // Only a surface particle released below assembles again: otherwise the factors go before the
-  // solve, where the step's memory peaks (docs/performance.md, "Memory per particle").
-  if (!nodes) corrections = {};
-  log_assembly.end();
-  LogEventScope log_solve(ppe_solve_event());
+  if (!j.nodes && j.surface_flags && disc_->open.has_outlet()) j.dirichlet = j.surface;
+  j.outlets = disc_->open.mark_outlets(P, j.dirichlet);
+}
+
+template <int D> void IsphSolver<D>::assemble(Projection& j) {
+  const WallImpact<D> impact{&j.predicted, &j.wall_normals, &j.impacting, j.tau};
+  ppe_.assemble(disc_->particles, disc_->neighbourhood, disc_->kernel, disc_->physics.gravity,
+                j.nodes || j.outlets ? &j.dirichlet : j.surface_flags, j.consistent ? &j.corrections : nullptr,
+                j.nodes ? &nodes_ : nullptr, wall_impact_ ? &impact : nullptr,
+                j.wall_acceleration.empty() ? nullptr : &j.wall_acceleration);
+}
+
+// Solves for the pressure. A free surface holds no tension: a surface particle that the solve puts
+// under tension (p < 0) is being pulled away from the fluid. It is let go (p = 0 on it) and the system
+// solved again, at most twice a step. Held, such particles were sucked into the walls they slid along
+// (a dam break's column corner, left behind on the wall by the no-slip condition).
+template <int D> StepReport IsphSolver<D>::solve_releasing_tension(const std::vector<double>& source, Projection& j) {
+  Particles<D>& P = disc_->particles;
   // Each solve writes the owned pressures; their ghosts follow at once (a second assembly's pair loop
   // reads the particles' fields).
   auto solve = [&](bool warm_start) {
     const StepReport r = ppe_.solve(source, P.m, P.p, warm_start);
-    nh.halo().update(P.p);
+    disc_->neighbourhood.halo().update(P.p);
     return r;
   };
   // The first solve starts from zero: the case's initial pressure is not the projection's.
   StepReport report = solve(solves_ > 0);
-  // A free surface holds no tension: a surface particle that the solve puts under tension (p < 0) is
-  // being pulled away from the fluid. It is let go (p = 0 on it) and the system solved again, at most
-  // twice a step. Held, such particles were sucked into the walls they slid along (a dam break's
-  // column corner, left behind on the wall by the no-slip condition).
   constexpr int max_release_passes = 2;
-  for (int pass = 0; pass < max_release_passes && nodes; ++pass) {
+  for (int pass = 0; pass < max_release_passes && j.nodes; ++pass) {
     int released = 0;
     for (std::size_t i = 0; i < P.n_owned; ++i)
-      if (nodes_.has(i) && !dirichlet[i] && P.p[i] < 0.0) dirichlet[i] = 1, released = 1;
+      if (nodes_.has(i) && !j.dirichlet[i] && P.p[i] < 0.0) j.dirichlet[i] = 1, released = 1;
     MPI_Allreduce(MPI_IN_PLACE, &released, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
     if (!released) break;
-    assemble();
+    assemble(j);
     const StepReport again = solve(true);
     report.linear_iterations += again.linear_iterations;
     report.linear_residual = again.linear_residual, report.linear_reason = again.linear_reason;
   }
-  ++solves_;
-  // After the step's last solve the system goes before the forces, which would otherwise add to the
-  // step's memory peak (docs/performance.md, "Memory per particle").
-  if (projection_corrections_ == 0) ppe_.release();
-  log_solve.end();
-
-  LogEventScope log_correction(LogEvent::Forces);
-  const std::vector<Vector<D>> grad_p = pressure_gradient(P.p);
-  for (std::size_t i = 0; i < P.n_owned; ++i)
-    if (P.kind[i] == kFluid) P.v[i] = u_star[i] - (tau / P.rho[i]) * grad_p[i];
-  log_correction.end();
-
-  // Correction passes: u^{n+1} keeps the divergence tau (L - D G) psi (isph_solver.hpp). Its kernel
-  // average is the resolved part, which a second solve with the same matrix (the preconditioner is
-  // reused) removes up to the relative size of L - D G again; the particle-scale rest is what no
-  // projection removes, and dividing it by tau once more would add the 1/dt pressure noise.
-  for (PetscInt pass = 0; pass < projection_corrections_; ++pass) {
-    LogEventScope log_pass_source(ppe_assembly_event());
-    nh.halo().update(P.v);
-    std::vector<double> remaining = ppe_divergences({&P.v}, near_surface, 0.0)[0];
-    std::vector<double> increment_source =
-        kernel_average_in_fluid(P, nh, K, remaining, surface_flags, average_cut).average;
-    for (double& s : increment_source) s /= tau;
-    log_pass_source.end();
-    LogEventScope log_pass_solve(ppe_solve_event());
-    std::vector<double> increment(P.n_owned, 0.0);
-    const StepReport pass_report = ppe_.solve(increment_source, P.m, increment, false, true);
-    report.linear_iterations += pass_report.linear_iterations;
-    if (pass + 1 == projection_corrections_) ppe_.release();
-    log_pass_solve.end();
-    const LogEventScope log_pass_correction(LogEvent::Forces);
-    increment.resize(P.size());
-    nh.halo().update(increment);
-    const std::vector<Vector<D>> grad_increment = pressure_gradient(increment);
-    for (std::size_t i = 0; i < P.n_owned; ++i) {
-      if (P.kind[i] == kFluid) P.v[i] -= (tau / P.rho[i]) * grad_increment[i];
-      P.p[i] += increment[i];
-    }
-    nh.halo().update(P.p);
-  }
   return report;
+}
+
+// A correction pass: u^{n+1} keeps the divergence tau (L - D G) psi (isph_solver.hpp). Its kernel
+// average is the resolved part, which a second solve with the same matrix (the preconditioner is
+// reused) removes up to the relative size of L - D G again; the particle-scale rest is what no
+// projection removes, and dividing it by tau once more would add the 1/dt pressure noise.
+template <int D> void IsphSolver<D>::correction_pass(const Projection& j, PetscInt pass, StepReport& report) {
+  Particles<D>& P = disc_->particles;
+  Neighbourhood<D>& nh = disc_->neighbourhood;
+  const double tau = j.tau;
+  LogEventScope log_pass_source(ppe_assembly_event());
+  nh.halo().update(P.v);
+  std::vector<double> remaining = ppe_divergences({&P.v}, j.near_surface, 0.0)[0];
+  std::vector<double> increment_source =
+      kernel_average_in_fluid(P, nh, disc_->kernel, remaining, j.surface_flags, j.nodes).average;
+  for (double& s : increment_source) s /= tau;
+  log_pass_source.end();
+  LogEventScope log_pass_solve(ppe_solve_event());
+  std::vector<double> increment(P.n_owned, 0.0);
+  const StepReport pass_report = ppe_.solve(increment_source, P.m, increment, false, true);
+  report.linear_iterations += pass_report.linear_iterations;
+  if (pass + 1 == projection_corrections_) ppe_.release();
+  log_pass_solve.end();
+  const LogEventScope log_pass_correction(LogEvent::Forces);
+  increment.resize(P.size());
+  nh.halo().update(increment);
+  const std::vector<Vector<D>> grad_increment = pressure_gradient(increment);
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    if (P.kind[i] == kFluid) P.v[i] -= (tau / P.rho[i]) * grad_increment[i];
+    P.p[i] += increment[i];
+  }
+  nh.halo().update(P.p);
 }
 
 // One step of the projection scheme, phase by phase (each phase is one log event, or the PPE's own).

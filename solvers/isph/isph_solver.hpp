@@ -128,6 +128,23 @@ template <int D> class IsphSolver : public Solver<D> {
   // Makes P.v = u_star - tau grad p / rho divergence-free at the current positions; returns the solve.
   // The factors are taken: freed once the system is assembled.
   StepReport project(const std::vector<Vector<D>>& u_star, double tau, std::vector<LaplacianCorrection<D>> corrections);
+  // What the projection's phases share: its pressure system's free surface and boundary rows.
+  struct Projection {
+    double tau = 0.0;
+    bool consistent = false, nodes = false, outlets = false;
+    std::vector<char> surface, near_surface, dirichlet;
+    const std::vector<char>* surface_flags = nullptr;  // &surface with a free surface
+    std::vector<Vector<D>> predicted, wall_normals, wall_acceleration;
+    std::vector<double> impacting;
+    std::vector<LaplacianCorrection<D>> corrections;
+  };
+  void detect_free_surface(Projection& j);
+  std::vector<double> ppe_source(const std::vector<Vector<D>>& u_star, const Projection& j) const;
+  void prepare_wall_impact(const std::vector<Vector<D>>& u_star, Projection& j);
+  void set_dirichlet_rows(Projection& j);
+  void assemble(Projection& j);
+  StepReport solve_releasing_tension(const std::vector<double>& source, Projection& j);
+  void correction_pass(const Projection& j, PetscInt pass, StepReport& report);
   void shift(double dt);
   void bound_to_walls();
   void credit_velocity_update(double dt, const StepState& s);
