@@ -78,16 +78,36 @@ template <int D> struct RateSums {
   explicit RateSums(LaplacianPairs<D>& pairs) : viscous(pairs) {}
 };
 
+// Which forms of the rates a run evaluates, fixed by its options and physics (WcsphSolver::rate_forms).
+struct RateForms {
+  bool viscous = false;               // a laminar viscosity (nu > 0)
+  bool consistent_viscous = false;    // ... by the consistent Laplacian (else Morris's)
+  bool corrected_gradient = false;    // the corrected pressure gradient (else the symmetric force)
+  bool continuity = false;            // the density by the continuity equation (else by summation)
+  bool corrected_continuity = false;  // ... with the corrected divergence
+  bool diffuse = false;               // delta-SPH density diffusion
+};
+
 // The fields and settings of one rates evaluation that the pair physics reads.
 template <int D> struct RatesInputs {
+  RatesInputs(const Particles<D>& particles, const std::vector<Vector<D>>& viscous_velocity,
+              const std::vector<Vector<D>>& density_gradient, const std::vector<double>& diffused_density,
+              const TaitEos& tait, const MonaghanAV& artificial_viscosity)
+      : P(particles),
+        uv(viscous_velocity),
+        grad_rho(density_gradient),
+        diffused(diffused_density),
+        eos(tait),
+        av(artificial_viscosity) {}
   const Particles<D>& P;
   const std::vector<Vector<D>>& uv;        // velocities the viscous term sees (walls mirrored)
   const std::vector<Vector<D>>& grad_rho;  // Antuono's density gradients (empty: Molteni)
   const std::vector<double>& diffused;     // the density field the diffusion acts on
   const TaitEos& eos;
   const MonaghanAV& av;
-  double h, inv_R, nu, delta_h_c0;
-  bool viscous, consistent, corrected_gradient, continuity, corrected_continuity, diffuse;
+  RateForms forms;
+  double h = 0.0, inv_R = 0.0, nu = 0.0;
+  double delta_h_c0 = 0.0;                                     // the diffusion's delta h c0
   Vector<D> hydrostatic_density_gradient = Vector<D>::Zero();  // Fourtakas et al. (2019): rho0 g / c0^2
   const std::vector<Vector<D>>* wall_velocity = nullptr;       // moving bodies' (others zero); null: none
   // Free-surface flags (owned and ghosts): no density diffusion out of the surface layer
@@ -119,7 +139,7 @@ template <int D> [[gnu::always_inline]] inline void add_rates_pair(const RatesIn
   const Vector<D> uij = P.v[i] - P.v[j];
   const double Vj = P.m[j] / P.rho[j];
   const double Pi = in.av.active() ? in.av.Pi(in.h, in.eos, P.rho[i], P.rho[j], uij, g) : 0.0;
-  if (in.corrected_gradient) {
+  if (in.forms.corrected_gradient) {
     s.M += correction_moment_term(Vj, g);
     s.grad_p += difference_gradient_term(Vj, P.p[i], P.p[j], g);
   } else {
@@ -127,13 +147,13 @@ template <int D> [[gnu::always_inline]] inline void add_rates_pair(const RatesIn
   }
   if (Pi != 0.0) s.acc_av -= (P.m[j] * Pi) * g.gradW;
   const double F = morris_factor(g, in.h);
-  if (in.viscous) {
-    if (in.consistent) s.viscous.add(Vj, g, in.inv_R, Vector<D>(in.uv[j] - in.uv[i]));
+  if (in.forms.viscous) {
+    if (in.forms.consistent_viscous) s.viscous.add(Vj, g, in.inv_R, Vector<D>(in.uv[j] - in.uv[i]));
     else
       s.acc_viscous +=
           morris_viscous_acceleration(P.m[j], P.rho[i], P.rho[j], in.nu, in.nu, F, Vector<D>(in.uv[i] - in.uv[j]));
   }
-  if (in.continuity) {
+  if (in.forms.continuity) {
     // Walls count as at rest here (moving bodies aside): every wall is fixed or slides along itself
     // (the cavity lid), so no mass crosses it, and the sliding velocity must stay out of the density. Where the lid
     // ends at a fixed corner block its velocity jumps from U to 0 inside the kernel support, and the discrete
@@ -146,11 +166,11 @@ template <int D> [[gnu::always_inline]] inline void add_rates_pair(const RatesIn
     const Vector<D> u_j = P.kind[j] != kWall ? Vector<D>(P.v[j])
                           : in.wall_velocity ? Vector<D>((*in.wall_velocity)[j])
                                              : Vector<D>::Zero();
-    if (in.corrected_continuity) s.grad_u += difference_vector_gradient_term(Vj, P.v[i], u_j, g);
+    if (in.forms.corrected_continuity) s.grad_u += difference_vector_gradient_term(Vj, P.v[i], u_j, g);
     else s.drho += continuity_pair(P.rho[i], Vj, Vector<D>(P.v[i] - u_j), g);
     // Fourtakas et al. (2019): the hydrostatic density difference of the pair, (rho0 g / c0^2) . (x_j - x_i)
     // to first order in g h / c0^2, is not diffused: still water stays still.
-    if (in.diffuse) {
+    if (in.forms.diffuse) {
       const double rho_j = in.diffused[j] + in.hydrostatic_density_gradient.dot(g.rij);
       if (!drains_surface_layer(in, i, j, rho_j - in.diffused[i]))
         s.drho_diffusion += density_diffusion_pair(in.delta_h_c0, in.diffused[i], rho_j, Vj, F,

@@ -163,85 +163,24 @@ template <int D> void WcsphSolver<D>::sum_densities() {
 
 template <int D> void WcsphSolver<D>::compute_rates() {
   Particles<D>& P = disc_->particles;
-  std::vector<Vector<D>>& acc = P.fields[acc_];
-  std::vector<double>& drho = P.fields[drho_];
   const Neighbourhood<D>& nh = disc_->neighbourhood;
   const NeighbourList<D>& nl = nh.list();
   const Kernel<D>& K = disc_->kernel;
   const Physics<D>& phys = disc_->physics;
-  const std::size_t n = P.n_owned;
-  const double h = K.h();
 
   LogEventScope log_density(LogEvent::Density);
-  if (density_ == DensityMethod::Summation) sum_densities();
-  update_pressure();
-
-  // Antuono's correction needs the renormalised density gradient on both sides of each pair.
-  std::vector<Vector<D>> grad_rho;
-  if (diffusion_ == DensityDiffusion::Antuono) {
-    grad_rho = gradient_corrected(P, nl, K, P.rho);
-    nh.halo().update(grad_rho);
-  }
-  // -density_diffusion particle: the diffusion acts on rho minus its kernel average (every support is
-  // all fluid: setup refuses walls and free surfaces).
-  std::vector<double> rho_fine;
-  if (diffusion_ == DensityDiffusion::Particle && density_ == DensityMethod::Continuity) {
-    rho_fine.assign(P.rho.begin(), P.rho.begin() + n);
-    const KernelAverage<double> average = kernel_average_in_fluid(P, disc_->neighbourhood, K, rho_fine, nullptr);
-    for (std::size_t i = 0; i < n; ++i) rho_fine[i] = P.rho[i] - average.average[i];
-    nh.halo().update(rho_fine);
-  }
+  const DiffusionFields diffusion = densities_and_pressures();
   log_density.end();
   const LogEventScope log_forces(LogEvent::Forces);
-  const double delta_h_c0 = delta_ * h * eos_.c0;
-  const bool diffuse = diffusion_ != DensityDiffusion::None && density_ == DensityMethod::Continuity;
-
   // No-slip walls: the viscous term sees the mirrored wall velocity (Adami et al. 2012).
   std::vector<Vector<D>> u_visc;
   if (walls_ && phys.viscous()) u_visc = AdamiWall<D>::viscous_velocity(nh, K, P, nullptr, &disc_->bodies);
   const std::vector<Vector<D>>& uv = u_visc.empty() ? P.v : u_visc;
-
-  const bool consistent = operators_ == OperatorSet::Consistent;
-  const bool corrected_gradient = gradient_ == WcsphGradient::Corrected;
-  const bool continuity = density_ == DensityMethod::Continuity;
-  // The corrected divergence goes with the corrected pressure gradient. The symmetric gradient's
-  // discrete adjoint is nearly the plain divergence: together they exchange energy between pressure
-  // work and compression but for the factor rho_i / rho_j in each continuity pair
-  // (docs/verification/free_surface.md, "Energy budgets"). Mixed with the corrected divergence (a free surface, where
-  // auto picks the symmetric gradient) the dam-break front runs far ahead of the experiment
-  // (docs/verification/dam_break.md, "Design measurements").
-  const bool corrected_continuity = consistent && corrected_gradient && continuity;
-  // Sums finished after the pair loop: the moment matrix of the kernel-gradient correction, the
-  // velocity gradient of the corrected continuity equation and the pressure-difference sum.
-  std::vector<Tensor<D>> M(corrected_gradient ? n : 0, Tensor<D>::Zero()),
-      grad_u(corrected_continuity ? n : 0, Tensor<D>::Zero());
-  std::vector<Vector<D>> grad_p(corrected_gradient ? n : 0, Vector<D>::Zero());
-
-  acc.assign(n, Vector<D>::Zero());
-  drho.assign(n, 0.0);
-  // The rates' parts by cause, for the energy budget (the pressure's is the rest of acc).
-  const Vector<D> zero = Vector<D>::Zero();
-  std::vector<Vector<D>>* viscous_part = zeroed(viscous_acc_, zero);
-  std::vector<Vector<D>>* av_part = zeroed(av_acc_, zero);
-  std::vector<double>* diffusion_part = zeroed(diffusion_rate_, 0.0);
-  const double inv_R = 1.0 / K.support_radius();
-  const std::vector<double>& diffused = rho_fine.empty() ? P.rho : rho_fine;
-  wcsph::RatesInputs<D> in{P,
-                           uv,
-                           grad_rho,
-                           diffused,
-                           eos_,
-                           av_,
-                           h,
-                           inv_R,
-                           phys.nu,
-                           delta_h_c0,
-                           phys.viscous(),
-                           consistent,
-                           corrected_gradient,
-                           continuity,
-                           corrected_continuity,
-                           diffuse};
+  const std::vector<double>& diffused = diffusion.rho_fine.empty() ? P.rho : diffusion.rho_fine;
+  wcsph::RatesInputs<D> in(P, uv, diffusion.grad_rho, diffused, eos_, av_);
+  in.forms = rate_forms();
+  in.h = K.h(), in.inv_R = 1.0 / K.support_radius(), in.nu = phys.nu;
+  in.delta_h_c0 = delta_ * K.h() * eos_.c0;
   // Moving bodies push the fluid: the continuity equation sees their velocity (sliding walls at rest).
   std::vector<Vector<D>> wall_velocity;
   if (disc_->bodies.any()) {
@@ -251,7 +190,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   if (phys.free_surface) {
     // Remembered: the flags' hysteresis, and the shift at the end of the step reuses them.
     surface_ = free_surface_.detect(P, nl, K, true);
-    if (diffuse && !diffusion_at_surface_) {
+    if (in.forms.diffuse && !diffusion_at_surface_) {
       surface_flags_ = surface_flags_with_ghosts(surface_, P, nh);
       in.surface = &surface_flags_;
     }
@@ -260,37 +199,104 @@ template <int D> void WcsphSolver<D>::compute_rates() {
     in.hydrostatic_density_gradient = eos_.rho0 * phys.gravity / (eos_.c0 * eos_.c0);
   check_ghosts(nl, uv, "the viscous term's velocity");
   check_ghosts(nl, diffused, "the diffused density");
-  if (!grad_rho.empty()) check_ghosts(nl, grad_rho, "the density gradient");
+  if (!in.grad_rho.empty()) check_ghosts(nl, in.grad_rho, "the density gradient");
   if (in.surface) check_ghosts(nl, *in.surface, "the surface flags");
   if (in.wall_velocity) check_ghosts(nl, *in.wall_velocity, "the walls' velocity");
-  const bool consistent_viscous = consistent && phys.viscous();
+  sum_rates(in);
+  add_body_force_and_limit();
+}
+
+// The forms this run's options and physics choose.
+template <int D> wcsph::RateForms WcsphSolver<D>::rate_forms() const {
+  wcsph::RateForms f;
+  f.viscous = disc_->physics.viscous();
+  f.consistent_viscous = operators_ == OperatorSet::Consistent && f.viscous;
+  f.corrected_gradient = gradient_ == WcsphGradient::Corrected;
+  f.continuity = density_ == DensityMethod::Continuity;
+  // The corrected divergence goes with the corrected pressure gradient. The symmetric gradient's
+  // discrete adjoint is nearly the plain divergence: together they exchange energy between pressure
+  // work and compression but for the factor rho_i / rho_j in each continuity pair
+  // (docs/verification/free_surface.md, "Energy budgets"). Mixed with the corrected divergence (a free surface, where
+  // auto picks the symmetric gradient) the dam-break front runs far ahead of the experiment
+  // (docs/verification/dam_break.md, "Design measurements").
+  f.corrected_continuity = operators_ == OperatorSet::Consistent && f.corrected_gradient && f.continuity;
+  f.diffuse = diffusion_ != DensityDiffusion::None && f.continuity;
+  return f;
+}
+
+// The densities (by summation, if chosen) and pressures at the current positions, and the fields the
+// density diffusion reads beside them.
+template <int D> typename WcsphSolver<D>::DiffusionFields WcsphSolver<D>::densities_and_pressures() {
+  Particles<D>& P = disc_->particles;
+  Neighbourhood<D>& nh = disc_->neighbourhood;
+  const std::size_t n = P.n_owned;
+  if (density_ == DensityMethod::Summation) sum_densities();
+  update_pressure();
+  DiffusionFields f;
+  // Antuono's correction needs the renormalised density gradient on both sides of each pair.
+  if (diffusion_ == DensityDiffusion::Antuono) {
+    f.grad_rho = gradient_corrected(P, nh.list(), disc_->kernel, P.rho);
+    nh.halo().update(f.grad_rho);
+  }
+  // -density_diffusion particle: the diffusion acts on rho minus its kernel average (every support is
+  // all fluid: setup refuses walls and free surfaces).
+  if (diffusion_ == DensityDiffusion::Particle && density_ == DensityMethod::Continuity) {
+    f.rho_fine.assign(P.rho.begin(), P.rho.begin() + n);
+    const KernelAverage<double> average = kernel_average_in_fluid(P, nh, disc_->kernel, f.rho_fine, nullptr);
+    for (std::size_t i = 0; i < n; ++i) f.rho_fine[i] = P.rho[i] - average.average[i];
+    nh.halo().update(f.rho_fine);
+  }
+  return f;
+}
+
+// The pair loop: each fluid particle's acceleration and density rate (and their parts by cause), the
+// corrected forms and the viscous Laplacian's smoothing error finished after it.
+template <int D> void WcsphSolver<D>::sum_rates(const wcsph::RatesInputs<D>& in) {
+  Particles<D>& P = disc_->particles;
+  std::vector<Vector<D>>& acc = P.fields[acc_];
+  std::vector<double>& drho = P.fields[drho_];
+  const std::size_t n = P.n_owned;
+  const wcsph::RateForms& forms = in.forms;
+  // Sums finished after the pair loop: the moment matrix of the kernel-gradient correction, the
+  // velocity gradient of the corrected continuity equation and the pressure-difference sum.
+  std::vector<Tensor<D>> M(forms.corrected_gradient ? n : 0, Tensor<D>::Zero()),
+      grad_u(forms.corrected_continuity ? n : 0, Tensor<D>::Zero());
+  std::vector<Vector<D>> grad_p(forms.corrected_gradient ? n : 0, Vector<D>::Zero());
+  acc.assign(n, Vector<D>::Zero());
+  drho.assign(n, 0.0);
+  // The rates' parts by cause, for the energy budget (the pressure's is the rest of acc).
+  const Vector<D> zero = Vector<D>::Zero();
+  std::vector<Vector<D>>* viscous_part = zeroed(viscous_acc_, zero);
+  std::vector<Vector<D>>* av_part = zeroed(av_acc_, zero);
+  std::vector<double>* diffusion_part = zeroed(diffusion_rate_, 0.0);
   // Each particle's sums live in locals while its pairs are visited, and are stored once. The
   // consistent viscous Laplacian is gathered in the same loop as the rest, which saves a pass over the
   // pairs (docs/performance.md, "Design measurements").
   // The viscous Laplacian's smoothing error removed (src/sph/laplacian_smoothing.hpp) needs its
   // factors and values after the loop; the free surface cuts the supports, where it is left off.
-  const bool smoothing = consistent_viscous && viscous_laplacian_ == ViscousLaplacian::Fourth && !phys.free_surface;
+  const bool smoothing =
+      forms.consistent_viscous && viscous_laplacian_ == ViscousLaplacian::Fourth && !disc_->physics.free_surface;
   std::vector<LaplacianCorrection<D>> lap_factors(smoothing ? n : 0);
   std::vector<Vector<D>> lap_u(smoothing ? n : 0, Vector<D>::Zero());
-  for_each_particle_pairs(P, nl, K, [&](std::size_t i, auto&& visit_pairs) {
+  const double nu = disc_->physics.nu;
+  for_each_particle_pairs(P, disc_->neighbourhood.list(), disc_->kernel, [&](std::size_t i, auto&& visit_pairs) {
     if (P.kind[i] != kFluid) return;  // walls move as prescribed
     wcsph::RateSums<D> sums(laplacian_pair_buffer<D>());
     visit_pairs([&](int, int j, const PairGeometry<D>& g) { wcsph::add_rates_pair(in, sums, i, j, g); });
-    if (consistent_viscous) {
-      const Vector<D> lap = sums.viscous.finish(inv_R, smoothing ? &lap_factors[i] : nullptr);
-      sums.acc_viscous += phys.nu * lap;
+    if (forms.consistent_viscous) {
+      const Vector<D> lap = sums.viscous.finish(in.inv_R, smoothing ? &lap_factors[i] : nullptr);
+      sums.acc_viscous += nu * lap;
       if (smoothing) lap_u[i] = lap;
     }
     acc[i] = sums.acc + sums.acc_av + sums.acc_viscous, drho[i] = sums.drho + sums.drho_diffusion;
     if (viscous_part) (*viscous_part)[i] = sums.acc_viscous;
     if (av_part) (*av_part)[i] = sums.acc_av;
     if (diffusion_part) (*diffusion_part)[i] = sums.drho_diffusion;
-    if (corrected_gradient) M[i] = sums.M, grad_p[i] = sums.grad_p;
-    if (corrected_continuity) grad_u[i] = sums.grad_u;
+    if (forms.corrected_gradient) M[i] = sums.M, grad_p[i] = sums.grad_p;
+    if (forms.corrected_continuity) grad_u[i] = sums.grad_u;
   });
   if (smoothing) remove_viscous_smoothing_error(lap_factors, lap_u, viscous_part);
-  if (corrected_gradient) apply_corrected_forms(M, grad_p, grad_u);
-  add_body_force_and_limit();
+  if (forms.corrected_gradient) apply_corrected_forms(M, grad_p, grad_u);
 }
 
 // The viscous Laplacian's smoothing error removed after the pair loop (src/sph/laplacian_smoothing.hpp),

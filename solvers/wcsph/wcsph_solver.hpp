@@ -75,6 +75,14 @@ template <int D> class WcsphSolver : public Solver<D> {
   void shift(double dt);
   // Accelerations and density rates at the current positions, velocities and densities.
   void compute_rates();
+  // The density diffusion's fields beside the densities: Antuono's gradient, the particle-scale part.
+  struct DiffusionFields {
+    std::vector<Vector<D>> grad_rho;
+    std::vector<double> rho_fine;
+  };
+  DiffusionFields densities_and_pressures();
+  wcsph::RateForms rate_forms() const;
+  void sum_rates(const wcsph::RatesInputs<D>& in);
   void update_pressure();
   // The largest speed whose square sets a pressure scale of the scene; c0 = c0_factor times it.
   double speed_scale();
