@@ -252,25 +252,35 @@ std::vector<FreeBody<D>> SceneCase<D>::free_bodies_of(const std::vector<MotionSp
 }
 
 template <int D> void SceneCase<D>::resolve_parameters() {
-  auto field = [&](const char* name, std::size_t want, const std::string& shape) -> const std::vector<double>* {
-    const auto it = file_.field.find(name);
-    if (it == file_.field.end()) return nullptr;
-    if (it->second.size() != want)
-      throw Error(file_.error(std::string("field data '") + name + "' has " + std::to_string(it->second.size()) +
-                              " values; give " + shape));
-    for (double value : it->second)
-      if (!std::isfinite(value))
-        throw Error(
-            file_.error(std::string("field data '") + name + "' holds " + number(value) + "; give a finite number"));
-    return &it->second;
-  };
-  auto scalar = [&](const char* name, PetscBool set, double opt, double fallback) {
-    if (set) return opt;
-    const std::vector<double>* f = field(name, 1, "one");
-    return f ? (*f)[0] : fallback;
-  };
-  const std::string vec = D == 2 ? "2 (x, y)" : "3 (x, y, z)";
+  resolve_spacing();
+  resolve_box();
+  resolve_physics();
+  resolve_reference_speed();
+}
 
+// The field data `name`, checked to hold `want` finite values (`shape` says them); null when absent.
+template <int D>
+const std::vector<double>* SceneCase<D>::field(const char* name, std::size_t want, const std::string& shape) const {
+  const auto it = file_.field.find(name);
+  if (it == file_.field.end()) return nullptr;
+  if (it->second.size() != want)
+    throw Error(file_.error(std::string("field data '") + name + "' has " + std::to_string(it->second.size()) +
+                            " values; give " + shape));
+  for (double value : it->second)
+    if (!std::isfinite(value))
+      throw Error(
+          file_.error(std::string("field data '") + name + "' holds " + number(value) + "; give a finite number"));
+  return &it->second;
+}
+
+// An option's value where it was set, else the field data's, else the fallback.
+template <int D> double SceneCase<D>::scalar(const char* name, PetscBool set, double opt, double fallback) const {
+  if (set) return opt;
+  const std::vector<double>* f = field(name, 1, "one");
+  return f ? (*f)[0] : fallback;
+}
+
+template <int D> void SceneCase<D>::resolve_spacing() {
   dx_ = scalar("dx", opt_.dx_set, opt_.dx, 0.0);
   if (!opt_.dx_set && !file_.field.count("dx"))
     throw Error(file_.error("gives no particle spacing; add field data 'dx' or pass -scene_dx"));
@@ -288,7 +298,9 @@ template <int D> void SceneCase<D>::resolve_parameters() {
                        : "set field data dx to " + number(measured) + " or pass -scene_dx " + number(measured))));
     }
   }
+}
 
+template <int D> void SceneCase<D>::resolve_box() {
   // Box: option, field data, or the particles' bounding box grown by half a spacing.
   const std::vector<double>* box = nullptr;
   std::vector<double> box_values;
@@ -324,7 +336,10 @@ template <int D> void SceneCase<D>::resolve_parameters() {
       box_.lo[a] -= 0.5 * dx_, box_.hi[a] += 0.5 * dx_;
     }
   }
+}
 
+template <int D> void SceneCase<D>::resolve_physics() {
+  const std::string vec = D == 2 ? "2 (x, y)" : "3 (x, y, z)";
   physics_.rho0 = scalar("rho0", opt_.rho0_set, opt_.rho0, 1.0);
   require(physics_.rho0 > 0, opt_.rho0_set ? "-rho0" : "the scene's field data rho0", "positive", physics_.rho0);
   physics_.nu = scalar("nu", opt_.nu_set, opt_.nu, 0.0);
@@ -346,7 +361,9 @@ template <int D> void SceneCase<D>::resolve_parameters() {
   else if (const std::vector<double>* f = field("free_surface", 1, "one (0 or 1)"))
     physics_.free_surface = (*f)[0] != 0.0;
   free_surface_given_ = opt_.free_surface_set || file_.field.count("free_surface");
+}
 
+template <int D> void SceneCase<D>::resolve_reference_speed() {
   // Reference speed: given, else the fastest particle or the fall over the fluid's height.
   double U = 0.0, lo = 1e300, hi = -1e300;
   const double g = physics_.gravity.norm();

@@ -62,6 +62,12 @@ template <int D> class SceneCase : public Case<D> {
  private:
   void read_file();           // the .vtp file, or the YAML file sampled at -nx, -scene_dx or its dx
   void resolve_parameters();  // file field data, then the options that override it
+  void resolve_spacing();
+  void resolve_box();
+  void resolve_physics();          // rho0, nu, t_end, gravity, free surface
+  void resolve_reference_speed();  // U: given, else the fastest particle, body or inlet, or the fall
+  const std::vector<double>* field(const char* name, std::size_t want, const std::string& shape) const;
+  double scalar(const char* name, PetscBool set, double opt, double fallback) const;
   void check_particles_in_box() const;
   std::vector<FreeBody<D>> free_bodies_of(const std::vector<MotionSpec>& specs, double dx) const;
   void check_moving_walls(const PointGrid<D>& grid, const std::vector<Vector<D>>& x) const;
