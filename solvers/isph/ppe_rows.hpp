@@ -56,6 +56,15 @@ struct PpeRows {
   void release() { *this = PpeRows(); }
 
  private:
+  template <int D> void lay_out(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                const std::vector<char>& dirichlet);
+  template <int D> void add_pairs(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                  const Vector<D>& body_force, const std::vector<char>& dirichlet,
+                                  const std::vector<LaplacianCorrection<D>>* consistent, const WallImpact<D>* impact,
+                                  const std::vector<Vector<D>>* wall_acceleration);
+  template <int D> void finish_rows(const Particles<D>& P, const Kernel<D>& K, const std::vector<char>& dirichlet,
+                                    const std::vector<LaplacianCorrection<D>>* consistent,
+                                    const SurfaceNodes<D>* nodes);
   std::vector<PetscInt> dlen_, olen_;  // entries filled per row
   std::vector<double> head_;           // wall rows: sum over fluid neighbours of W_wf rho_f g . r_wf
 };
@@ -91,27 +100,43 @@ inline void close_gaps(std::vector<PetscInt>& ptr, const std::vector<PetscInt>& 
 
 }  // namespace detail
 
+namespace detail {
+
+// Row i has an entry for neighbour j: fluid rows for every neighbour, wall rows for fluid ones,
+// one-entry rows for none. A periodic image of i itself has none (p_i - p_i = 0).
+template <int D> bool ppe_has_entry(const Particles<D>& P, const std::vector<char>& dirichlet, int i, int j) {
+  if (P.gid[j] == P.gid[i]) return false;
+  if (extrapolates_pressure(P.kind[i])) return P.kind[j] == kFluid;
+  return !dirichlet[i];
+}
+
+// Whether particle j's column lies in this rank's diagonal block.
+template <int D> bool owned_column(const Particles<D>& P, int j) {
+  const PetscInt first = P.first_gid, end = first + static_cast<PetscInt>(P.n_owned);
+  return P.gid[j] >= first && P.gid[j] < end;
+}
+
+}  // namespace detail
+
 template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                                      const Vector<D>& body_force, const std::vector<char>& dirichlet,
                                      const std::vector<LaplacianCorrection<D>>* consistent,
                                      const SurfaceNodes<D>* nodes, const WallImpact<D>* impact,
                                      const std::vector<Vector<D>>* wall_acceleration) {
-  const std::size_t n = P.n_owned;
-  auto surface_row = [&](int i) { return nodes && nodes->has(static_cast<std::size_t>(i)); };
-  const PetscInt first = P.first_gid, end = first + static_cast<PetscInt>(n);
-  auto owned_column = [&](int j) { return P.gid[j] >= first && P.gid[j] < end; };
-  // Row i has an entry for neighbour j: fluid rows for every neighbour, wall rows for fluid ones,
-  // one-entry rows for none. A periodic image of i itself has none (p_i - p_i = 0).
-  auto has_entry = [&](int i, int j) {
-    if (P.gid[j] == P.gid[i]) return false;
-    if (extrapolates_pressure(P.kind[i])) return P.kind[j] == kFluid;
-    return !dirichlet[i];
-  };
+  lay_out(P, nl, K, dirichlet);
+  add_pairs(P, nl, K, body_force, dirichlet, consistent, impact, wall_acceleration);
+  finish_rows(P, K, dirichlet, consistent, nodes);
+}
 
-  // Count, then lay the rows out: the diagonal comes first in its row until the rows are sorted.
+// Counts each row's entries, then lays the rows out: the diagonal comes first in its row until the
+// rows are sorted.
+template <int D> void PpeRows::lay_out(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                       const std::vector<char>& dirichlet) {
+  const std::size_t n = P.n_owned;
+  const PetscInt first = P.first_gid;
   dlen_.assign(n, 1), olen_.assign(n, 0);
   for_each_pair_index(P, nl, K, [&](int i, int j) {
-    if (has_entry(i, j)) ++(owned_column(j) ? dlen_[i] : olen_[i]);
+    if (detail::ppe_has_entry(P, dirichlet, i, j)) ++(detail::owned_column(P, j) ? dlen_[i] : olen_[i]);
   });
   di.resize(n + 1), oi.resize(n + 1);
   di[0] = oi[0] = 0;
@@ -120,19 +145,25 @@ template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<
   dj.resize(di[n] + 1), da.resize(di[n] + 1), oj.resize(oi[n] + 1), oa.resize(oi[n] + 1);
   rhs.assign(n, 0.0), head_.assign(n, 0.0), isolated.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) dj[di[i]] = P.gid[i] - first, da[di[i]] = 0.0, dlen_[i] = 1, olen_[i] = 0;
+}
 
-  // Fluid rows: c_ij off the diagonal, -sum_j c_ij on it; row i is div(grad p / rho)_i times -m_i.
-  // Wall rows keep their diagonal (the scale of a fluid row, from Cummins & Rudman's coefficients)
-  // and, for now, the kernel weights W_wf of their fluid neighbours.
+// Fluid rows: c_ij off the diagonal, -sum_j c_ij on it; row i is div(grad p / rho)_i times -m_i.
+// Wall rows keep their diagonal (the scale of a fluid row, from Cummins & Rudman's coefficients)
+// and, for now, the kernel weights W_wf of their fluid neighbours.
+template <int D> void PpeRows::add_pairs(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                         const Vector<D>& body_force, const std::vector<char>& dirichlet,
+                                         const std::vector<LaplacianCorrection<D>>* consistent,
+                                         const WallImpact<D>* impact, const std::vector<Vector<D>>* wall_acceleration) {
+  const PetscInt first = P.first_gid;
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     if (P.gid[j] == P.gid[i]) return;
     const double c = consistent && P.kind[i] == kFluid
                          ? -P.m[i] / P.rho[i] * consistent_laplacian_coefficient((*consistent)[i], P.m[j] / P.rho[j], g)
                          : P.m[i] * ppe_pair_coefficient(P.m[j], P.rho[i], P.rho[j], morris_factor(g, K.h()));
     da[di[i]] -= c;
-    if (!has_entry(i, j)) return;
+    if (!detail::ppe_has_entry(P, dirichlet, i, j)) return;
     const double value = extrapolates_pressure(P.kind[i]) ? g.W : c;
-    if (owned_column(j)) dj[di[i] + dlen_[i]] = P.gid[j] - first, da[di[i] + dlen_[i]++] = value;
+    if (detail::owned_column(P, j)) dj[di[i] + dlen_[i]] = P.gid[j] - first, da[di[i] + dlen_[i]++] = value;
     else oj[oi[i] + olen_[i]] = P.gid[j], oa[oi[i] + olen_[i]++] = value;
     if (extrapolates_pressure(P.kind[i])) {
       // A moving body's wall rows take its acceleration: (g - a_w) . r_wf (Adami et al. 2012).
@@ -147,8 +178,15 @@ template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<
       head_[i] += g.W * P.rho[j] * head;
     }
   });
+}
 
-  const std::ptrdiff_t rows = static_cast<std::ptrdiff_t>(n);
+// Each row finished by its kind (wall rows scaled and given their head, surface rows their node,
+// Dirichlet rows their diagonal), then sorted by column with repeated columns merged.
+template <int D>
+void PpeRows::finish_rows(const Particles<D>& P, const Kernel<D>& K, const std::vector<char>& dirichlet,
+                          const std::vector<LaplacianCorrection<D>>* consistent, const SurfaceNodes<D>* nodes) {
+  auto surface_row = [&](int i) { return nodes && nodes->has(static_cast<std::size_t>(i)); };
+  const std::ptrdiff_t rows = static_cast<std::ptrdiff_t>(P.n_owned);
   int merged = 0;  // some row had repeated columns
 #pragma omp parallel reduction(| : merged)
   {
