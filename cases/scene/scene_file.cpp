@@ -76,6 +76,82 @@ void check_array_names(const SceneFile& s, vtkPointData* pd) {
 
 }  // namespace
 
+namespace {
+
+// The point arrays a scene's particles are read from, each checked for its components.
+struct SceneArrays {
+  vtkDataArray *kind, *velocity, *pressure, *free_slip;
+};
+
+SceneArrays scene_arrays(const SceneFile& s, vtkPointData* pd) {
+  vtkDataArray* kind = pd->GetArray("kind");
+  if (!kind)
+    throw Error(
+        s.error("has no point array 'kind' (one value per particle: 0 fluid, 1 fixed wall, 2 moving wall); add it"));
+  if (kind->GetNumberOfComponents() != 1)
+    throw Error(s.error("point array 'kind' has " + std::to_string(kind->GetNumberOfComponents()) +
+                        " components; give one (0 fluid, 1 fixed wall, 2 moving wall per particle)"));
+  check_array_names(s, pd);
+  vtkDataArray* vel = pd->GetArray("velocity");
+  if (vel && (vel->GetNumberOfComponents() < 2 || vel->GetNumberOfComponents() > 3))
+    throw Error(s.error("point array 'velocity' has " + std::to_string(vel->GetNumberOfComponents()) +
+                        " component(s); give 2 or 3 (x, y[, z])"));
+  vtkDataArray* pres = pd->GetArray("pressure");
+  if (pres && pres->GetNumberOfComponents() != 1)
+    throw Error(s.error("point array 'pressure' must have one component"));
+  vtkDataArray* slip = pd->GetArray("free_slip");
+  if (slip && slip->GetNumberOfComponents() != 1)
+    throw Error(s.error("point array 'free_slip' must have one component (1 on free-slip wall particles, else 0)"));
+  return {kind, vel, pres, slip};
+}
+
+// Particle i's position, kind, velocity, pressure and slip flag, each checked.
+void read_particle(SceneFile& s, vtkPolyData* poly, const SceneArrays& arrays, vtkIdType i) {
+  poly->GetPoint(i, s.x[i].data());
+  if (!std::isfinite(s.x[i][0]) || !std::isfinite(s.x[i][1]) || !std::isfinite(s.x[i][2]))
+    throw Error(s.error("particle " + std::to_string(i) + " has a coordinate that is not a number " + point(s.x[i], 3) +
+                        "; fix or remove it"));
+  const double k = arrays.kind->GetComponent(i, 0);
+  if (k != kSceneFluid && k != kSceneFixedWall && k != kSceneMovingWall) {
+    std::ostringstream v;
+    v << k;
+    throw Error(s.error("particle " + std::to_string(i) + " has kind " + v.str() +
+                        "; kind must be 0 (fluid), 1 (fixed wall) or 2 (moving wall)"));
+  }
+  s.kind[i] = static_cast<int>(k);
+  if (vtkDataArray* vel = arrays.velocity)
+    for (int a = 0; a < vel->GetNumberOfComponents(); ++a) s.v[i][a] = vel->GetComponent(i, a);
+  if (arrays.pressure) s.p[i] = arrays.pressure->GetComponent(i, 0);
+  if (arrays.free_slip) {
+    const double f = arrays.free_slip->GetComponent(i, 0);
+    if (f != 0 && f != 1) {
+      std::ostringstream v;
+      v << f;
+      throw Error(s.error("particle " + std::to_string(i) + " has free_slip " + v.str() +
+                          "; give 1 on free-slip wall particles, else 0"));
+    }
+    if (f == 1 && s.kind[i] == kSceneFluid)
+      throw Error(s.error("particle " + std::to_string(i) +
+                          " is fluid with free_slip 1; only wall particles have a slip condition"));
+    s.free_slip[i] = static_cast<char>(f);
+  }
+  if (!std::isfinite(s.v[i][0]) || !std::isfinite(s.v[i][1]) || !std::isfinite(s.v[i][2]) || !std::isfinite(s.p[i]))
+    throw Error(s.error("particle " + std::to_string(i) + " has a velocity or pressure that is not a number; fix it"));
+}
+
+// The field data: the scene's parameters by name (string arrays are not parameters).
+void read_field_data(SceneFile& s, vtkFieldData* fd) {
+  for (int k = 0; fd && k < fd->GetNumberOfArrays(); ++k) {
+    vtkDataArray* a = fd->GetArray(k);  // null for string arrays
+    if (!a || !a->GetName()) continue;
+    std::vector<double>& values = s.field[a->GetName()];
+    for (vtkIdType t = 0; t < a->GetNumberOfTuples(); ++t)
+      for (int c = 0; c < a->GetNumberOfComponents(); ++c) values.push_back(a->GetComponent(t, c));
+  }
+}
+
+}  // namespace
+
 SceneFile read_scene_file(const std::string& path) {
   SceneFile s;
   s.path = path;
@@ -100,78 +176,19 @@ SceneFile read_scene_file(const std::string& path) {
   if (reader->GetErrorCode() != 0 || n == 0)
     throw Error(s.error("holds no particles (no points could be read); check that the file is complete"));
 
-  vtkPointData* pd = poly->GetPointData();
-  vtkDataArray* kind = pd->GetArray("kind");
-  if (!kind)
-    throw Error(
-        s.error("has no point array 'kind' (one value per particle: 0 fluid, 1 fixed wall, 2 moving wall); add it"));
-  if (kind->GetNumberOfComponents() != 1)
-    throw Error(s.error("point array 'kind' has " + std::to_string(kind->GetNumberOfComponents()) +
-                        " components; give one (0 fluid, 1 fixed wall, 2 moving wall per particle)"));
-  check_array_names(s, pd);
-  vtkDataArray* vel = pd->GetArray("velocity");
-  if (vel && (vel->GetNumberOfComponents() < 2 || vel->GetNumberOfComponents() > 3))
-    throw Error(s.error("point array 'velocity' has " + std::to_string(vel->GetNumberOfComponents()) +
-                        " component(s); give 2 or 3 (x, y[, z])"));
-  vtkDataArray* pres = pd->GetArray("pressure");
-  if (pres && pres->GetNumberOfComponents() != 1)
-    throw Error(s.error("point array 'pressure' must have one component"));
-  vtkDataArray* slip = pd->GetArray("free_slip");
-  if (slip && slip->GetNumberOfComponents() != 1)
-    throw Error(s.error("point array 'free_slip' must have one component (1 on free-slip wall particles, else 0)"));
-  if (slip) s.free_slip.assign(n, 0);
-
+  const SceneArrays arrays = scene_arrays(s, poly->GetPointData());
+  if (arrays.free_slip) s.free_slip.assign(n, 0);
   s.x.resize(n), s.v.assign(n, {0.0, 0.0, 0.0}), s.p.assign(n, 0.0), s.kind.resize(n);
-  double z0 = 0.0;
   bool flat = true;
   long fluid = 0;
   for (vtkIdType i = 0; i < n; ++i) {
-    poly->GetPoint(i, s.x[i].data());
-    if (!std::isfinite(s.x[i][0]) || !std::isfinite(s.x[i][1]) || !std::isfinite(s.x[i][2]))
-      throw Error(s.error("particle " + std::to_string(i) + " has a coordinate that is not a number " +
-                          point(s.x[i], 3) + "; fix or remove it"));
-    if (i == 0) z0 = s.x[i][2];
-    flat = flat && s.x[i][2] == z0;
-    const double k = kind->GetComponent(i, 0);
-    if (k != kSceneFluid && k != kSceneFixedWall && k != kSceneMovingWall) {
-      std::ostringstream v;
-      v << k;
-      throw Error(s.error("particle " + std::to_string(i) + " has kind " + v.str() +
-                          "; kind must be 0 (fluid), 1 (fixed wall) or 2 (moving wall)"));
-    }
-    s.kind[i] = static_cast<int>(k);
+    read_particle(s, poly, arrays, i);
+    flat = flat && s.x[i][2] == s.x[0][2];
     fluid += s.kind[i] == kSceneFluid;
-    if (vel)
-      for (int a = 0; a < vel->GetNumberOfComponents(); ++a) s.v[i][a] = vel->GetComponent(i, a);
-    if (pres) s.p[i] = pres->GetComponent(i, 0);
-    if (slip) {
-      const double f = slip->GetComponent(i, 0);
-      if (f != 0 && f != 1) {
-        std::ostringstream v;
-        v << f;
-        throw Error(s.error("particle " + std::to_string(i) + " has free_slip " + v.str() +
-                            "; give 1 on free-slip wall particles, else 0"));
-      }
-      if (f == 1 && s.kind[i] == kSceneFluid)
-        throw Error(s.error("particle " + std::to_string(i) +
-                            " is fluid with free_slip 1; only wall particles have a slip condition"));
-      s.free_slip[i] = static_cast<char>(f);
-    }
-    if (!std::isfinite(s.v[i][0]) || !std::isfinite(s.v[i][1]) || !std::isfinite(s.v[i][2]) || !std::isfinite(s.p[i]))
-      throw Error(
-          s.error("particle " + std::to_string(i) + " has a velocity or pressure that is not a number; fix it"));
   }
   if (fluid == 0) throw Error(s.error("has no fluid particle (kind 0); a scene needs fluid to move"));
   s.dim = flat ? 2 : 3;
-
-  vtkFieldData* fd = poly->GetFieldData();
-  for (int k = 0; fd && k < fd->GetNumberOfArrays(); ++k) {
-    vtkDataArray* a = fd->GetArray(k);  // null for string arrays: not scene parameters
-    if (!a || !a->GetName()) continue;
-    std::vector<double>& values = s.field[a->GetName()];
-    for (vtkIdType t = 0; t < a->GetNumberOfTuples(); ++t)
-      for (int c = 0; c < a->GetNumberOfComponents(); ++c) values.push_back(a->GetComponent(t, c));
-  }
+  read_field_data(s, poly->GetFieldData());
   return s;
 }
 

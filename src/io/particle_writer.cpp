@@ -10,6 +10,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 #include <vtkTypeInt64Array.h>
 #include <vtkXMLPolyDataWriter.h>
 
@@ -75,18 +76,17 @@ template <int D> ParticleWriter<D>::ParticleWriter(const std::string& output_dir
                 "; choose another -output_dir");
 }
 
-template <int D>
-std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const std::vector<ScalarField>& extra) {
-  const std::size_t n = P.n_owned;
-  for (const ScalarField& f : extra)
-    if (!f.values || f.values->size() < n)
-      throw Error("internal: output field '" + f.name + "' has " + std::to_string(f.values ? f.values->size() : 0) +
-                  " values for " + std::to_string(n) + " particles");
+namespace {
 
+// The owned particles as VTK polydata: one vertex cell each (ParaView renders them as points), their
+// velocity, pressure, density, mass, kind and id, the extra fields, and the time as field data.
+template <int D>
+vtkSmartPointer<vtkPolyData> particle_poly(const Particles<D>& P, double time, const std::vector<ScalarField>& extra) {
+  const std::size_t n = P.n_owned;
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(static_cast<vtkIdType>(n));
-  vtkNew<vtkCellArray> verts;  // one vertex cell per particle, so ParaView renders them as points
+  vtkNew<vtkCellArray> verts;
   verts->AllocateExact(static_cast<vtkIdType>(n), static_cast<vtkIdType>(n));
   vtkNew<vtkDoubleArray> velocity;
   velocity->SetName("velocity");
@@ -108,7 +108,7 @@ std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const s
     kind->SetValue(k, P.kind[i]);
     id->SetValue(k, static_cast<vtkTypeInt64>(P.id[i]));
   }
-  vtkNew<vtkPolyData> poly;
+  vtkSmartPointer<vtkPolyData> poly = vtkSmartPointer<vtkPolyData>::New();
   poly->SetPoints(points);
   poly->SetVerts(verts);
   vtkPointData* pd = poly->GetPointData();
@@ -124,43 +124,56 @@ std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const s
   t->SetNumberOfTuples(1);
   t->SetValue(0, time);
   poly->GetFieldData()->AddArray(t);
+  return poly;
+}
 
+// The .pvtp index of a frame written in `ranks` pieces: the point arrays' names and types, and the pieces.
+std::string parallel_index(vtkPointData* pd, const std::string& base, int frame, int ranks) {
+  std::string m =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"PPolyData\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+      "  <PPolyData GhostLevel=\"0\">\n"
+      "    <PPointData>\n";
+  for (int k = 0; k < pd->GetNumberOfArrays(); ++k) {
+    vtkDataArray* a = pd->GetArray(k);
+    m += "      <PDataArray type=\"" + std::string(xml_type(a)) + "\" Name=\"" + xml_attr(a->GetName()) + "\"";
+    if (a->GetNumberOfComponents() > 1)
+      m += " NumberOfComponents=\"" + std::to_string(a->GetNumberOfComponents()) + "\"";
+    m += "/>\n";
+  }
+  m += "    </PPointData>\n"
+       "    <PPoints>\n"
+       "      <PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n"
+       "    </PPoints>\n";
+  for (int r = 0; r < ranks; ++r) m += "    <Piece Source=\"" + xml_attr(piece_name(base, frame, r)) + "\"/>\n";
+  m += "  </PPolyData>\n</VTKFile>\n";
+  return m;
+}
+
+}  // namespace
+
+template <int D>
+std::string ParticleWriter<D>::write(const Particles<D>& P, double time, const std::vector<ScalarField>& extra) {
+  const std::size_t n = P.n_owned;
+  for (const ScalarField& f : extra)
+    if (!f.values || f.values->size() < n)
+      throw Error("internal: output field '" + f.name + "' has " + std::to_string(f.values ? f.values->size() : 0) +
+                  " values for " + std::to_string(n) + " particles");
+  const vtkSmartPointer<vtkPolyData> poly = particle_poly(P, time, extra);
   const int frame = frames_written();
   const bool parallel = size_ > 1;
   const std::string own = parallel ? piece_name(base_, frame, rank_) : frame_stem(base_, frame) + ".vtp";
-  const std::string own_path = dir_ + "/" + own;
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(poly);
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();  // raw binary
   writer->SetCompressorTypeToZLib();
   writer->SetHeaderTypeToUInt64();  // no 4 GiB limit on a block
-  write_frame(writer, own_path);
-
+  write_frame(writer, dir_ + "/" + own);
   std::string listed = own;
   if (parallel) {
     listed = frame_stem(base_, frame) + ".pvtp";
-    if (rank_ == 0) {
-      std::string m =
-          "<?xml version=\"1.0\"?>\n"
-          "<VTKFile type=\"PPolyData\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-          "  <PPolyData GhostLevel=\"0\">\n"
-          "    <PPointData>\n";
-      for (int k = 0; k < pd->GetNumberOfArrays(); ++k) {
-        vtkDataArray* a = pd->GetArray(k);
-        m += "      <PDataArray type=\"" + std::string(xml_type(a)) + "\" Name=\"" + xml_attr(a->GetName()) + "\"";
-        if (a->GetNumberOfComponents() > 1)
-          m += " NumberOfComponents=\"" + std::to_string(a->GetNumberOfComponents()) + "\"";
-        m += "/>\n";
-      }
-      m += "    </PPointData>\n"
-           "    <PPoints>\n"
-           "      <PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n"
-           "    </PPoints>\n";
-      for (int r = 0; r < size_; ++r) m += "    <Piece Source=\"" + xml_attr(piece_name(base_, frame, r)) + "\"/>\n";
-      m += "  </PPolyData>\n</VTKFile>\n";
-      write_atomically(dir_ + "/" + listed, m);
-    }
+    if (rank_ == 0) write_atomically(dir_ + "/" + listed, parallel_index(poly->GetPointData(), base_, frame, size_));
   }
   series_.add(time, listed);
   return dir_ + "/" + listed;
