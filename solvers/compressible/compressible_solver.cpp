@@ -152,13 +152,55 @@ template <int D> bool CompressibleSolver<D>::pairs_valid() const {
   return ok;
 }
 
+// One Newton step of particle i's smoothing length: the density and its h-derivative summed at the
+// current h (with div v and |curl v| where the switches need them); true, with rho, omega and the
+// velocity's derivatives stored, when h has converged, else h moved to its update.
+template <int D> bool CompressibleSolver<D>::newton_h_step(const Fields& f, const NeighbourList<D>& nl, std::size_t i,
+                                                           int iteration, compressible::HBracket& bracket,
+                                                           bool need_div) {
+  using namespace compressible;
+  Particles<D>& P = disc_->particles;
+  const KernelType type = disc_->kernel.type();
+  const double h = f.h[i];
+  const Kernel<D> K(type, h);
+  DensitySums s;
+  const double W0 = K.W(0.0);
+  s.rho = P.m[i] * W0;
+  s.drho_dh = P.m[i] * dW_dh(D, W0, 0.0, 0.0, h);
+  double div = 0.0;
+  Eigen::Vector3d curl = Eigen::Vector3d::Zero();
+  auto gather = [&](int j, const Vector<D>& rij, double r) {
+    const double W = K.W(r), dW = K.dWdr(r);
+    s.rho += P.m[j] * W;
+    s.drho_dh += P.m[j] * dW_dh(D, W, r, dW, h);
+    if (need_div) {
+      const Vector<D> vij = P.v[i] - P.v[j], gradW = (dW / r) * rij;
+      div += divergence_term(P.m[j], vij, gradW);
+      curl += curl_term(P.m[j], vij, gradW);
+    }
+  };
+  // The pruned list while it covers this h, the full list when the iteration has gone beyond it.
+  if (K.support_radius() <= pairs_.reach(i)) for_each_gather_neighbour(P, pairs_, i, K, gather);
+  else for_each_gather_neighbour(P, nl, i, K, gather);
+  const double h_new = newton_h_update(D, P.m[i], eta_, h, s, bracket, iteration > kNewtonIterationsBeforeBisection);
+  const bool closed = bracket.hi > 0.0 && bracket.hi - bracket.lo <= h_tolerance_ * h;
+  if (std::abs(h_new - h) <= h_tolerance_ * h || closed) {
+    // Converged: the sums were taken at this h.
+    P.rho[i] = s.rho;
+    omega_[i] = grad_h_factor(D, h, s);
+    if (need_div) divv_[i] = div / (omega_[i] * s.rho), curlv_[i] = curl.norm() / (omega_[i] * s.rho);
+    return true;
+  }
+  f.h[i] = h_new;
+  return false;
+}
+
 template <int D> void CompressibleSolver<D>::solve_density() {
   const Fields f = fields();
   using namespace compressible;
   const LogEventScope log_density_h(density_h_event());
   Particles<D>& P = disc_->particles;
   const std::size_t n = P.n_owned;
-  const KernelType type = disc_->kernel.type();
   const bool need_div = switch_ == ViscositySwitch::MorrisMonaghan || balsara_;
   omega_.resize(std::max(omega_.size(), n));
   divv_.assign(n, 0.0), curlv_.assign(n, 0.0);
@@ -182,42 +224,8 @@ template <int D> void CompressibleSolver<D>::solve_density() {
     std::vector<char> converged(active.size(), 0);
     const std::ptrdiff_t n_active = static_cast<std::ptrdiff_t>(active.size());
 #pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t k = 0; k < n_active; ++k) {
-      const std::size_t i = active[k];
-      const double h = f.h[i];
-      const Kernel<D> K(type, h);
-      DensitySums s;
-      const double W0 = K.W(0.0);
-      s.rho = P.m[i] * W0;
-      s.drho_dh = P.m[i] * dW_dh(D, W0, 0.0, 0.0, h);
-      double div = 0.0;
-      Eigen::Vector3d curl = Eigen::Vector3d::Zero();
-      auto gather = [&](int j, const Vector<D>& rij, double r) {
-        const double W = K.W(r), dW = K.dWdr(r);
-        s.rho += P.m[j] * W;
-        s.drho_dh += P.m[j] * dW_dh(D, W, r, dW, h);
-        if (need_div) {
-          const Vector<D> vij = P.v[i] - P.v[j], gradW = (dW / r) * rij;
-          div += divergence_term(P.m[j], vij, gradW);
-          curl += curl_term(P.m[j], vij, gradW);
-        }
-      };
-      // The pruned list while it covers this h, the full list when the iteration has gone beyond it.
-      if (K.support_radius() <= pairs_.reach(i)) for_each_gather_neighbour(P, pairs_, i, K, gather);
-      else for_each_gather_neighbour(P, nl, i, K, gather);
-      const double h_new =
-          newton_h_update(D, P.m[i], eta_, h, s, bracket[i], iteration > kNewtonIterationsBeforeBisection);
-      const bool closed = bracket[i].hi > 0.0 && bracket[i].hi - bracket[i].lo <= h_tolerance_ * h;
-      if (std::abs(h_new - h) <= h_tolerance_ * h || closed) {
-        // Converged: the sums were taken at this h.
-        P.rho[i] = s.rho;
-        omega_[i] = grad_h_factor(D, h, s);
-        if (need_div) divv_[i] = div / (omega_[i] * s.rho), curlv_[i] = curl.norm() / (omega_[i] * s.rho);
-        converged[k] = 1;
-      } else {
-        f.h[i] = h_new;
-      }
-    }
+    for (std::ptrdiff_t k = 0; k < n_active; ++k)
+      converged[k] = newton_h_step(f, nl, active[k], iteration, bracket[active[k]], need_div);
     std::vector<std::size_t> still;
     for (std::size_t k = 0; k < active.size(); ++k)
       if (!converged[k]) still.push_back(active[k]);

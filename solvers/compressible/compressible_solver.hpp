@@ -90,6 +90,8 @@ template <int D> class CompressibleSolver : public Solver<D> {
   };
   void declare_fields(Particles<D>& P);
   Fields fields() const;
+  bool newton_h_step(const Fields& f, const NeighbourList<D>& nl, std::size_t i, int iteration,
+                     compressible::HBracket& bracket, bool need_div);
   FieldIds ids_;
 
   // Per particle (owned + ghost where the pair loop reads neighbours' values).
