@@ -49,10 +49,6 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
     for (std::size_t i = 0; i < n; ++i) any_dirichlet |= nodes->has(i);
   MPI_Allreduce(MPI_IN_PLACE, &any_dirichlet, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
 
-  int any_wall = 0;
-  for (std::size_t i = 0; i < n; ++i) any_wall |= P.kind[i] == kWall;
-  MPI_Allreduce(MPI_IN_PLACE, &any_wall, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
-
   // A non-symmetric singular matrix (no Dirichlet rows: a periodic or a closed walled domain) has an
   // unknown left null space, so the right-hand side cannot be projected onto its range. Its fluid rows
   // get eps * mean(diag) added to their diagonal instead. With p = c v + q (v the null vector: 1 on
@@ -74,6 +70,20 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   // (docs/pressure-solve.md, "Design measurements").
   // Made first: its preconditioner decides which matrix that is built from.
   create_ksp();
+  make_matrices(n);
+  if (!nonsymmetric_ && !any_dirichlet) {  // symmetric and singular: the constants span both null spaces
+    SPH_PETSC(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_TRUE, 0, nullptr, &nullspace_));
+    SPH_PETSC(MatSetNullSpace(A_, nullspace_));
+    SPH_PETSC(MatSetTransposeNullSpace(A_, nullspace_));
+  }
+  SPH_PETSC(MatCreateVecs(A_, &x_, &b_));
+  SPH_PETSC(MatCreateVecs(A_, &x_, &b_));
+  if (regularised_) regularise(n);
+  SPH_PETSC(KSPSetOperators(ksp_, A_, P_ ? P_ : A_));
+}
+
+// The matrix, and the preconditioner's own where it drops weak entries.
+template <int D> void PressurePoisson<D>::make_matrices(std::size_t n) {
   // BoomerAMG only: a one-level preconditioner loses by it (docs/pressure-solve.md, "The preconditioner's
   // matrix"). A row's own diagonal decides what it drops, which would
   // make the preconditioner of a symmetric matrix non-symmetric, and CG needs a symmetric one:
@@ -92,34 +102,28 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
     SPH_PETSC(MatGetInfo(P_, MAT_GLOBAL_SUM, &p));
     if (a.nz_used > 0) pc_kept_entries_ = p.nz_used / a.nz_used;
   }
+}
 
-  if (!nonsymmetric_ && !any_dirichlet) {  // symmetric and singular: the constants span both null spaces
-    SPH_PETSC(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_TRUE, 0, nullptr, &nullspace_));
-    SPH_PETSC(MatSetNullSpace(A_, nullspace_));
-    SPH_PETSC(MatSetTransposeNullSpace(A_, nullspace_));
+// The fluid rows' diagonal shifted by eps * mean(diag), and the null vector (assemble).
+template <int D> void PressurePoisson<D>::regularise(std::size_t n) {
+  PetscScalar trace;
+  PetscInt rows;
+  SPH_PETSC(MatGetDiagonal(A_, x_));
+  SPH_PETSC(VecSum(x_, &trace));
+  SPH_PETSC(VecGetSize(x_, &rows));
+  const PetscScalar shift = regularisation * trace / rows;
+  SPH_PETSC(VecDuplicate(x_, &null_vector_));
+  PetscScalar *d, *v;
+  SPH_PETSC(VecGetArray(x_, &d));
+  SPH_PETSC(VecGetArray(null_vector_, &v));
+  for (std::size_t i = 0; i < n; ++i) {
+    d[i] = kind_[i] == kFluid ? shift : 0.0;
+    v[i] = rows_.isolated[i] ? 0.0 : 1.0;
   }
-  SPH_PETSC(MatCreateVecs(A_, &x_, &b_));
-  if (regularised_) {
-    PetscScalar trace;
-    PetscInt rows;
-    SPH_PETSC(MatGetDiagonal(A_, x_));
-    SPH_PETSC(VecSum(x_, &trace));
-    SPH_PETSC(VecGetSize(x_, &rows));
-    const PetscScalar shift = regularisation * trace / rows;
-    SPH_PETSC(VecDuplicate(x_, &null_vector_));
-    PetscScalar *d, *v;
-    SPH_PETSC(VecGetArray(x_, &d));
-    SPH_PETSC(VecGetArray(null_vector_, &v));
-    for (std::size_t i = 0; i < n; ++i) {
-      d[i] = kind_[i] == kFluid ? shift : 0.0;
-      v[i] = rows_.isolated[i] ? 0.0 : 1.0;
-    }
-    SPH_PETSC(VecRestoreArray(x_, &d));
-    SPH_PETSC(VecRestoreArray(null_vector_, &v));
-    SPH_PETSC(MatDiagonalSet(A_, x_, ADD_VALUES));
-    if (P_) SPH_PETSC(MatDiagonalSet(P_, x_, ADD_VALUES));
-  }
-  SPH_PETSC(KSPSetOperators(ksp_, A_, P_ ? P_ : A_));
+  SPH_PETSC(VecRestoreArray(x_, &d));
+  SPH_PETSC(VecRestoreArray(null_vector_, &v));
+  SPH_PETSC(MatDiagonalSet(A_, x_, ADD_VALUES));
+  if (P_) SPH_PETSC(MatDiagonalSet(P_, x_, ADD_VALUES));
 }
 
 // PETSc prints -ppe_ksp_view and the like itself; -ppe_pc_view (the PC's prefix is the KSP's) is left

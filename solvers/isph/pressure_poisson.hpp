@@ -112,6 +112,8 @@ template <int D> class PressurePoisson {
   void view_solve() const;
   void announce_solve(const char* which) const;
   void destroy_system();
+  void make_matrices(std::size_t n);
+  void regularise(std::size_t n);
   void create_ksp();
   void right_preconditioning();
   void check_ksp_choice();
