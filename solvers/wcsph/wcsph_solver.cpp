@@ -20,6 +20,26 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
   refuse_unmodelled_open_boundaries(disc, name(), true);
   disc_ = &disc;
   Particles<D>& P = disc.particles;
+  set_start_state(disc);
+  walls_ = has_walls(P);
+  extrapolated_ = walls_ || disc.open.any();
+  acc_ = P.fields.declare_vector("acceleration", kCarried, P.size());
+  drho_ = P.fields.declare_scalar("density_rate", kCarried, P.size());
+  free_surface_.setup(P, disc.physics.free_surface);
+  // Under gravity Molteni's term diffuses the hydrostatic stratification: mass flows down, and still
+  // water sank into its floor (t = 19 at 40 particles a unit). Fourtakas et al. (2019) diffuse the
+  // density's difference from the hydrostatic one instead.
+  if (!diffusion_chosen_ && diffusion_ == DensityDiffusion::Molteni && disc.physics.has_body_force())
+    diffusion_ = DensityDiffusion::Fourtakas;
+  declare_energy_budget(disc);
+  resolve_choices(disc);
+  disc.neighbourhood.update(P, true);
+  compute_rates();  // the start's densities (by summation, if chosen), pressures and rates
+}
+
+// The sound speed, and the start's velocity (-prepared_start) and density from the case's pressure.
+template <int D> void WcsphSolver<D>::set_start_state(Discretisation<D>& disc) {
+  Particles<D>& P = disc.particles;
   eos_.rho0 = disc.physics.rho0;
   eos_.c0 = c0_ > 0 ? c0_ : c0_factor_ * speed_scale();
   // The Tait EOS cannot give a density for p <= -B: such a start would be NaN from t = 0.
@@ -52,17 +72,11 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
     P.m[i] *= rho / P.rho[i];
     P.rho[i] = rho;
   }
-  walls_ = has_walls(P);
-  extrapolated_ = walls_ || disc.open.any();
-  acc_ = P.fields.declare_vector("acceleration", kCarried, P.size());
-  drho_ = P.fields.declare_scalar("density_rate", kCarried, P.size());
-  free_surface_.setup(P, disc.physics.free_surface);
-  // Under gravity Molteni's term diffuses the hydrostatic stratification: mass flows down, and still
-  // water sank into its floor (t = 19 at 40 particles a unit). Fourtakas et al. (2019) diffuse the
-  // density's difference from the hydrostatic one instead.
-  if (!diffusion_chosen_ && diffusion_ == DensityDiffusion::Molteni && disc.physics.has_body_force())
-    diffusion_ = DensityDiffusion::Fourtakas;
-  declare_energy_budget(disc);
+}
+
+// The choices that depend on the scene (diffusion, closed volume, wall bounding, pressure gradient),
+// and the refusal of those it cannot take.
+template <int D> void WcsphSolver<D>::resolve_choices(const Discretisation<D>& disc) {
   // Where a wall or a free surface cuts the kernel support, the kernel average of rho is not its
   // resolved part, and rho minus it would not be particle-scale noise.
   if (diffusion_ == DensityDiffusion::Particle && (walls_ || disc.physics.free_surface))
@@ -93,8 +107,6 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
         "-pressure_gradient auto or symmetric");
   if (gradient_ == WcsphGradient::Auto)
     gradient_ = disc.physics.free_surface ? WcsphGradient::Symmetric : WcsphGradient::Corrected;
-  disc.neighbourhood.update(P, true);
-  compute_rates();  // the start's densities (by summation, if chosen), pressures and rates
 }
 
 // The sound speed keeps density variations near 1/c0_factor^2 only if c0 exceeds every speed whose

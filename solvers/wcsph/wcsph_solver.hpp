@@ -68,6 +68,8 @@ template <int D> class WcsphSolver : public Solver<D> {
     return &f;
   }
   void declare_energy_budget(const Discretisation<D>& disc);
+  void set_start_state(Discretisation<D>& disc);
+  void resolve_choices(const Discretisation<D>& disc);
   // Credits a kick u -> u + dt/2 a, rho -> rho + dt/2 drho with the current rates to their causes.
   void credit_kick(double half_dt, const std::vector<Vector<D>>& u, const std::vector<double>& rho);
   // The step's phases (step()).
