@@ -136,6 +136,46 @@ std::pair<Point3, Point3> Reader::box(const YAML::Node& n, const std::string& ke
   return {lo, hi};
 }
 
+// polygon: [[x, y], ...], at least 3 vertices enclosing an area.
+ShapePtr Reader::polygon(const YAML::Node& v, const std::string& k) const {
+  if (!v.IsSequence() || v.size() < 3) fail(v, k, "needs a list of at least 3 vertices [[x, y], ...]");
+  std::vector<Eigen::Vector2d> vertices;
+  for (std::size_t i = 0; i < v.size(); ++i)
+    vertices.push_back(point(v[i], k + "[" + std::to_string(i) + "]").head<2>());
+  // Collinear vertices enclose nothing: the lattice points on the line would be a region of no area.
+  double area = 0, extent = 0;
+  for (std::size_t i = 0, j = vertices.size() - 1; i < vertices.size(); j = i++) {
+    area += 0.5 * (vertices[j].x() * vertices[i].y() - vertices[i].x() * vertices[j].y());
+    extent = std::max(extent, (vertices[i] - vertices[0]).norm());
+  }
+  if (!(std::abs(area) > 1e-12 * extent * extent))
+    fail(v, k, "encloses no area (its vertices lie on one line); give vertices around the region");
+  return make_polygon(vertices);
+}
+
+// mesh: FILE (.stl, .obj, .vtp; relative to the scene file), a closed surface; its bytes enter the checksum.
+ShapePtr Reader::mesh(const YAML::Node& v, const std::string& k) {
+  if (!v.IsScalar() || v.Scalar().empty()) fail(v, k, "needs a file name: mesh: surface.stl");
+  std::filesystem::path file(v.Scalar());
+  if (file.is_relative()) file = dir_ / file;
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    fail(v, k,
+         "'" + file.string() +
+             "' is a folder, not a mesh; give an .stl, .obj or .vtp file (paths are "
+             "relative to the scene file)");
+  try {
+    ShapePtr surface = make_mesh(file.string());
+    meshes.push_back({v, k, file.string(), surface->bounds()});
+    std::ifstream in(file, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    checksum = fnv1a(checksum, bytes.data(), bytes.size());
+    return surface;
+  } catch (const Error& e) {
+    fail(v, k, std::string(e.what()) + " (paths are relative to the scene file)");
+  }
+}
+
 ShapePtr Reader::shape(const YAML::Node& n, const std::string& key) {
   const std::string known = dim == 2 ? "box, circle, polygon, half_space, union, intersection, difference"
                                      : "box, sphere, cylinder, half_space, mesh, union, intersection, difference";
@@ -160,19 +200,7 @@ ShapePtr Reader::shape(const YAML::Node& n, const std::string& key) {
   }
   if (kind == "polygon") {
     need_dim(2, "a mesh, or a union of boxes, spheres and cylinders");
-    if (!v.IsSequence() || v.size() < 3) fail(v, k, "needs a list of at least 3 vertices [[x, y], ...]");
-    std::vector<Eigen::Vector2d> vertices;
-    for (std::size_t i = 0; i < v.size(); ++i)
-      vertices.push_back(point(v[i], k + "[" + std::to_string(i) + "]").head<2>());
-    // Collinear vertices enclose nothing: the lattice points on the line would be a region of no area.
-    double area = 0, extent = 0;
-    for (std::size_t i = 0, j = vertices.size() - 1; i < vertices.size(); j = i++) {
-      area += 0.5 * (vertices[j].x() * vertices[i].y() - vertices[i].x() * vertices[j].y());
-      extent = std::max(extent, (vertices[i] - vertices[0]).norm());
-    }
-    if (!(std::abs(area) > 1e-12 * extent * extent))
-      fail(v, k, "encloses no area (its vertices lie on one line); give vertices around the region");
-    return make_polygon(vertices);
+    return polygon(v, k);
   }
   if (kind == "cylinder") {
     need_dim(3, "circle");
@@ -204,25 +232,7 @@ ShapePtr Reader::shape(const YAML::Node& n, const std::string& key) {
   }
   if (kind == "mesh") {
     need_dim(3, "polygon");
-    if (!v.IsScalar() || v.Scalar().empty()) fail(v, k, "needs a file name: mesh: surface.stl");
-    std::filesystem::path file(v.Scalar());
-    if (file.is_relative()) file = dir_ / file;
-    std::error_code ec;
-    if (std::filesystem::is_directory(file, ec))
-      fail(v, k,
-           "'" + file.string() +
-               "' is a folder, not a mesh; give an .stl, .obj or .vtp file (paths are "
-               "relative to the scene file)");
-    try {
-      ShapePtr mesh = make_mesh(file.string());
-      meshes.push_back({v, k, file.string(), mesh->bounds()});
-      std::ifstream in(file, std::ios::binary);
-      const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      checksum = fnv1a(checksum, bytes.data(), bytes.size());
-      return mesh;
-    } catch (const Error& e) {
-      fail(v, k, std::string(e.what()) + " (paths are relative to the scene file)");
-    }
+    return mesh(v, k);
   }
   fail(n.begin()->first, key, "unknown shape '" + kind + "'; use one of " + known);
 }
@@ -316,11 +326,8 @@ OpenBoundarySpec Reader::open_boundary_condition(const YAML::Node& n, const std:
   return b;
 }
 
-Region Reader::region(const YAML::Node& n, const std::string& key, std::vector<std::string>& bodies, const Point3& g) {
-  only_keys(n, key, {"role",   "shape",    "velocity", "pressure",  "motion",  "slip",   "name", "of",
-                     "bounds", "vertices", "file",     "centre",    "center",  "radius", "ends", "point",
-                     "normal", "from",     "to",       "thickness", "density", "mass"});
-  Region r;
+// role: fluid, wall, body (with name: NAME) or {body: NAME}; a body's name added to `bodies`.
+void Reader::read_role(const YAML::Node& n, const std::string& key, Region& r, std::vector<std::string>& bodies) const {
   const YAML::Node role = n["role"];
   if (!role.IsDefined())
     fail(n, key, "has no role; add role: fluid, wall, inlet, outlet, or role: body with name: NAME");
@@ -348,6 +355,14 @@ Region Reader::region(const YAML::Node& n, const std::string& key, std::vector<s
   } else if (n["name"].IsDefined()) {
     fail(n["name"], key + ".name", "names a region that is no body; only role: body takes a name");
   }
+}
+
+Region Reader::region(const YAML::Node& n, const std::string& key, std::vector<std::string>& bodies, const Point3& g) {
+  only_keys(n, key, {"role",   "shape",    "velocity", "pressure",  "motion",  "slip",   "name", "of",
+                     "bounds", "vertices", "file",     "centre",    "center",  "radius", "ends", "point",
+                     "normal", "from",     "to",       "thickness", "density", "mass"});
+  Region r;
+  read_role(n, key, r, bodies);
   const YAML::Node s = n["shape"];
   if (!s.IsDefined()) fail(n, key, "has no shape; add shape: {box: [...]} or another shape");
   const bool inline_form = s.IsScalar();

@@ -83,6 +83,8 @@ class Reader {
   // The lower and upper corners of a box [x0, x1, y0, y1(, z0, z1)], each pair increasing.
   std::pair<Point3, Point3> box(const YAML::Node& n, const std::string& key) const;
   ShapePtr shape(const YAML::Node& n, const std::string& key);
+  ShapePtr polygon(const YAML::Node& v, const std::string& k) const;
+  ShapePtr mesh(const YAML::Node& v, const std::string& k);
   // A shape written inline, `shape: NAME` with its parameters beside it in the region (`shape: circle,
   // centre: [..], radius: R`; `shape: difference, of: [..]`; box: bounds, polygon: vertices, mesh: file),
   // as the nested form {NAME: value}.
@@ -99,6 +101,7 @@ class Reader {
   OpenBoundarySpec open_boundary_condition(const YAML::Node& n, const std::string& key) const;
   // One region of regions:, its keys checked; a body's name added to `bodies`; g: the scene's gravity,
   // for a hydrostatic start.
+  void read_role(const YAML::Node& n, const std::string& key, Region& r, std::vector<std::string>& bodies) const;
   Region region(const YAML::Node& n, const std::string& key, std::vector<std::string>& bodies, const Point3& g);
 
   // Motions (scene_motions.cpp).
