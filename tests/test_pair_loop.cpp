@@ -109,6 +109,41 @@ TEST(GhostCheck, APairLoopStopsAtGhostsThatMissedAWrite) {
   EXPECT_NO_THROW(divergence(L.P, L.nl(), L.K, w));
 }
 
+// Marked writes (Particles::written): a particle column or a registry field written on owned particles
+// and marked is fresh in the ghosts of the next pair loop or ghost check, and the marks are spent; a
+// step-local field cannot be marked (its owner refreshes it); a rebuild leaves no particle column marked.
+TEST(GhostCheck, AMarkedWriteIsFreshInTheNextPairLoop) {
+  ASSERT_TRUE(ghost_checks());
+  Lattice L(16, kCases[0]);
+  ASSERT_GT(L.P.n_ghost, 0u);
+  const std::vector<V2> u = L.sample<V2>(u_tg);
+  const FieldId<double> q = L.P.fields.declare_scalar("q", kCarried, L.P.size());
+  L.P.p[0] += 1.0, L.P.v[0] *= 2.0, L.P.fields[q][0] = 3.0;
+  L.P.written(L.P.p), L.P.written(L.P.v), L.P.written(L.P.fields[q]);
+  EXPECT_TRUE(L.P.stale.any());
+  EXPECT_NO_THROW(divergence(L.P, L.nl(), L.K, u));  // the loop refreshes them first
+  EXPECT_FALSE(L.P.stale.any());
+  EXPECT_NO_THROW(check_ghosts(L.nl(), L.P.fields[q], "q"));
+  // Fresh bit for bit (the checks compare with a new copy), and particle 0's images hold its new values.
+  EXPECT_NO_THROW(check_ghosts(L.nl(), L.P.p, "p"));
+  EXPECT_NO_THROW(check_ghosts(L.nl(), L.P.v, "v"));
+  std::size_t images = 0;
+  for (std::size_t g = L.P.n_owned; g < L.P.size(); ++g)
+    images += L.P.p[g] == L.P.p[0] && L.P.v[g] == L.P.v[0] && L.P.fields[q][g] == 3.0;
+  EXPECT_GT(images, 0u);
+  // A ghost check on a marked field refreshes it too (a function that reads ghost slots directly
+  // checks its fields first).
+  L.P.fields[q][0] = 4.0;
+  L.P.written(L.P.fields[q]);
+  EXPECT_NO_THROW(check_ghosts(L.nl(), L.P.fields[q], "q"));
+  std::vector<double> local(L.P.size(), 0.0);
+  EXPECT_THROW(L.P.written(local), std::logic_error);
+  L.P.rho[0] *= 1.5;
+  L.P.written(L.P.rho);
+  L.nh->update(L.P, true);
+  EXPECT_FALSE(L.P.stale.any());
+}
+
 // The compressible solver's variable-h loop runs over its pruned lists, which know the halo of the
 // list they were pruned from: a stale ghost stops it too.
 TEST(GhostCheck, TheVariableHLoopStopsAtGhostsThatMissedAWrite) {

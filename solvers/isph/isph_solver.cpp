@@ -129,6 +129,9 @@ template <int D> std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences
   // vortex's weakness (docs/verification/lid_driven_cavity.md, "Why the best corner depends on Re").
   // A moving body's normal velocity is what the constraint is about: it keeps it.
   const Vector<D> g = disc_->physics.gravity;
+  // The walls' entries below are written over the fields' ghost slots too, from P.v's: both fresh first.
+  check_ghosts(nl, P.v, "the particles' velocity");
+  for (const auto* u : fields) check_ghosts(nl, *u, "the divergence's field");
   std::vector<std::vector<Vector<D>>> at_rest;
   std::vector<const std::vector<Vector<D>>*> us = fields;
   if (source_walls_at_rest_ && walls_) {
@@ -200,6 +203,7 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
   const std::vector<Vector<D>> grad_p = pressure_gradient(P.p);
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (P.kind[i] == kFluid) P.v[i] = u_star[i] - (tau / P.rho[i]) * grad_p[i];
+  P.written(P.v);
   log_correction.end();
   for (PetscInt pass = 0; pass < projection_corrections_; ++pass) correction_pass(j, pass, report);
   return report;
@@ -307,11 +311,9 @@ template <int D> void IsphSolver<D>::assemble(Projection& j) {
 // (a dam break's column corner, left behind on the wall by the no-slip condition).
 template <int D> StepReport IsphSolver<D>::solve_releasing_tension(const std::vector<double>& source, Projection& j) {
   Particles<D>& P = disc_->particles;
-  // Each solve writes the owned pressures; their ghosts follow at once (a second assembly's pair loop
-  // reads the particles' fields).
   auto solve = [&](bool warm_start) {
     const StepReport r = ppe_.solve(source, P.m, P.p, warm_start);
-    disc_->neighbourhood.halo().update(P.p);
+    P.written(P.p);
     return r;
   };
   // The first solve starts from zero: the case's initial pressure is not the projection's.
@@ -340,7 +342,6 @@ template <int D> void IsphSolver<D>::correction_pass(const Projection& j, PetscI
   Neighbourhood<D>& nh = disc_->neighbourhood;
   const double tau = j.tau;
   LogEventScope log_pass_source(ppe_assembly_event());
-  nh.halo().update(P.v);
   std::vector<double> remaining = ppe_divergences({&P.v}, j.near_surface, 0.0)[0];
   std::vector<double> increment_source =
       kernel_average_in_fluid(P, nh, disc_->kernel, remaining, j.surface_flags, j.nodes).average;
@@ -354,13 +355,13 @@ template <int D> void IsphSolver<D>::correction_pass(const Projection& j, PetscI
   log_pass_solve.end();
   const LogEventScope log_pass_correction(LogEvent::Forces);
   increment.resize(P.size());
-  nh.halo().update(increment);
+  nh.halo().update(increment);  // step-local: refreshed by hand
   const std::vector<Vector<D>> grad_increment = pressure_gradient(increment);
   for (std::size_t i = 0; i < P.n_owned; ++i) {
     if (P.kind[i] == kFluid) P.v[i] -= (tau / P.rho[i]) * grad_increment[i];
     P.p[i] += increment[i];
   }
-  nh.halo().update(P.p);
+  P.written(P.v), P.written(P.p);
 }
 
 // One step of the projection scheme, phase by phase (each phase is one log event, or the PPE's own).
@@ -444,7 +445,7 @@ template <int D> void IsphSolver<D>::closing_kick_without_pressure(double dt, St
   const std::size_t n = P.n_owned;
   auto fluid = [&](std::size_t i) { return P.kind[i] == kFluid; };
   nh.update(P);
-  nh.halo().update(s.u_half);
+  nh.halo().update(s.u_half);  // step-local: refreshed by hand
   const bool consistent = operators_ == OperatorSet::Consistent;
   const LogEventScope log_forces(LogEvent::Forces);
   s.u_star = s.u_half;
@@ -452,7 +453,7 @@ template <int D> void IsphSolver<D>::closing_kick_without_pressure(double dt, St
     std::vector<Vector<D>> u_pred = s.u_half;
     for (std::size_t i = 0; i < n; ++i)
       if (fluid(i)) u_pred[i] += (0.5 * dt) * s.acc[i];
-    nh.halo().update(u_pred);
+    nh.halo().update(u_pred);  // step-local: refreshed by hand
     const std::vector<Vector<D>> visc = viscous_acceleration(u_pred, consistent ? &s.corrections : nullptr);
     for (std::size_t i = 0; i < n; ++i)
       if (fluid(i)) s.u_star[i] += (0.5 * dt) * visc[i], s.viscous_kick[i] += (0.5 * dt) * visc[i];
@@ -469,7 +470,7 @@ template <int D> void IsphSolver<D>::closing_kick_without_pressure(double dt, St
 template <int D> StepReport IsphSolver<D>::project_and_update_pressure(double dt, StepState& s) {
   Particles<D>& P = disc_->particles;
   const std::size_t n = P.n_owned;
-  disc_->neighbourhood.halo().update(s.u_star);
+  disc_->neighbourhood.halo().update(s.u_star);  // step-local: refreshed by hand
   const std::vector<double> p_start(P.p.begin(), P.p.begin() + n);
   const StepReport report = project(s.u_star, s.have_pressure ? 0.5 * dt : dt, std::move(s.corrections));
   credit_velocity_update(dt, s);
@@ -483,7 +484,7 @@ template <int D> StepReport IsphSolver<D>::project_and_update_pressure(double dt
     P.p[i] = s.have_pressure ? mean + 0.5 * (mean - mean_pressure[i]) : mean;
     mean_pressure[i] = mean;
   }
-  disc_->neighbourhood.halo().update(P.p);
+  P.written(P.p), P.written(mean_pressure);
   return report;
 }
 
@@ -517,7 +518,6 @@ template <int D> void IsphSolver<D>::shift(double dt) {
     boundary = free_surface_model_.shift_boundary(P, nh, K, free_surface_model_.detect(P, nh.list(), K, false));
   // The pressures move with the particles too: the next opening kick and extrapolation use them.
   std::vector<double>& mean_pressure = P.fields[mean_pressure_];
-  nh.halo().update(mean_pressure);
   shift_particles(P, nh, K, shifting_model_, disc_->dx, largest_speed(P), dt, {&P.p, &mean_pressure},
                   disc_->physics.free_surface ? &boundary : nullptr);
 }

@@ -149,7 +149,8 @@ template <int D> double WcsphSolver<D>::speed_scale() {
 
 template <int D> void WcsphSolver<D>::update_pressure() {
   Particles<D>& P = disc_->particles;
-  for (std::size_t i = 0; i < P.size(); ++i) P.p[i] = eos_.pressure(P.rho[i]);  // ghosts too: rho is current there
+  for (std::size_t i = 0; i < P.n_owned; ++i) P.p[i] = eos_.pressure(P.rho[i]);
+  P.written(P.p);
   if (!extrapolated_) return;
   // Adami et al. (2012): wall (and inlet) pressure extrapolated from the fluid, their density from the EOS.
   const Neighbourhood<D>& nh = disc_->neighbourhood;
@@ -158,8 +159,7 @@ template <int D> void WcsphSolver<D>::update_pressure() {
                                      &wall_acceleration);
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (extrapolates_pressure(P.kind[i])) P.rho[i] = eos_.density(std::max(P.p[i], -0.9 * eos_.B()));
-  nh.halo().update(P.p);
-  nh.halo().update(P.rho);
+  P.written(P.p), P.written(P.rho);
 }
 
 // Densities by summation (-density summation), their change of elastic energy credited to pressure.
@@ -170,7 +170,7 @@ template <int D> void WcsphSolver<D>::sum_densities() {
   std::copy(rho.begin(), rho.end(), P.rho.begin());
   if (energy_.started())
     energy_.add_change(EnergyCause::Pressure, EnergyForm::Internal, before, energy_.internal_energy(P));
-  disc_->neighbourhood.halo().update(P.rho);
+  P.written(P.rho);
 }
 
 template <int D> void WcsphSolver<D>::compute_rates() {
@@ -248,7 +248,7 @@ template <int D> typename WcsphSolver<D>::DiffusionFields WcsphSolver<D>::densit
   // Antuono's correction needs the renormalised density gradient on both sides of each pair.
   if (diffusion_ == DensityDiffusion::Antuono) {
     f.grad_rho = gradient_corrected(P, nh.list(), disc_->kernel, P.rho);
-    nh.halo().update(f.grad_rho);
+    nh.halo().update(f.grad_rho);  // step-local: refreshed by hand
   }
   // -density_diffusion particle: the diffusion acts on rho minus its kernel average (every support is
   // all fluid: setup refuses walls and free surfaces).
@@ -256,7 +256,7 @@ template <int D> typename WcsphSolver<D>::DiffusionFields WcsphSolver<D>::densit
     f.rho_fine.assign(P.rho.begin(), P.rho.begin() + n);
     const KernelAverage<double> average = kernel_average_in_fluid(P, nh, disc_->kernel, f.rho_fine, nullptr);
     for (std::size_t i = 0; i < n; ++i) f.rho_fine[i] = P.rho[i] - average.average[i];
-    nh.halo().update(f.rho_fine);
+    nh.halo().update(f.rho_fine);  // step-local: refreshed by hand
   }
   return f;
 }
@@ -444,9 +444,8 @@ template <int D> void WcsphSolver<D>::kick_drift_rates_kick(double dt) {
       dt, n, P.x, P.v, acc, scalars, [&](std::size_t i) { return P.kind[i] == kFluid; },
       [&] {
         disc_->open.drift(P, t_start, dt);
-        disc_->bodies.move_to(P, t_end);  // with the fluid's drift
-        if (!nh.update(P)) nh.halo().update(P.v);
-        nh.halo().update(P.rho);
+        disc_->bodies.move_to(P, t_end);      // with the fluid's drift
+        if (!nh.update(P)) P.written(P.rho);  // a rebuild refreshed every particle column, an update x and v
         compute_rates();
       },
       [&](const std::vector<Vector<D>>& u, const std::vector<const std::vector<double>*>& f) {
@@ -455,7 +454,7 @@ template <int D> void WcsphSolver<D>::kick_drift_rates_kick(double dt) {
   energy_.add_change(EnergyCause::Gravity, EnergyForm::Potential, potential_before_drift, energy_.potential_energy(P));
   disc_->bodies.move_to(P, t_end);  // the closing kick left the walls' velocity of the step's start
   disc_->open.prescribe(P, t_end);  // and the inlets'
-  nh.halo().update(P.rho);          // the closing kick's densities, for the shift and the pressures
+  P.written(P.rho);                 // the closing kick's densities, for the shift and the pressures
 }
 
 template <int D>

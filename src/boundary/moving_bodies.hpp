@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "src/boundary/free_body.hpp"
@@ -274,6 +275,8 @@ template <int D> class MovingBodies {
   // source see, the body's current velocity on moving bodies (P.v, kept current in ghosts by the
   // neighbourhood's update) and `fixed` on the other walls. Fluid entries are zero.
   std::vector<Vector<D>> wall_velocities(const Particles<D>& P, const Vector<D>& fixed) const {
+    // Ghost slots read here, outside a pair loop: a velocity marked written must be refreshed first.
+    if (P.stale.v) throw std::logic_error("MovingBodies::wall_velocities: P.v's ghosts are stale (marked written)");
     std::vector<Vector<D>> u(P.size(), Vector<D>::Zero());
     for (std::size_t i = 0; i < P.size(); ++i)
       if (P.kind[i] == kWall) u[i] = moves(P, i) ? Vector<D>(P.v[i]) : fixed;

@@ -81,9 +81,11 @@ template <int D>
 
 // A list is a NeighbourList or any other list whose halo() names the halo its ghost indices refer to.
 
-// Throws std::logic_error when f's ghost slots differ, bit for bit, from their owners' values.
+// Throws std::logic_error when f's ghost slots differ, bit for bit, from their owners' values (after
+// the columns marked written are refreshed: a marked column is fresh when read).
 template <class List, class T>
 void check_ghosts(const List& nl, const std::vector<T>& f, const char* field, CallSite at = CallSite()) {
+  if (nl.halo()) nl.halo()->refresh_stale();
   if (ghost_checks() && nl.halo()) detail::compare_ghosts(*nl.halo(), f, field, at);
 }
 
@@ -93,8 +95,11 @@ void check_position_ghosts(const Particles<D>& P, const List& nl, CallSite at = 
   if (ghost_checks() && nl.halo()) detail::compare_position_ghosts(*nl.halo(), P, at);
 }
 
-// The particles' own fields, which every pair loop may read; positions with the ghosts' periodic shifts.
+// Every pair loop starts here: the columns marked written are refreshed (Particles::written), then the
+// particles' own fields, which any pair loop may read, are checked (positions with the ghosts' periodic
+// shifts).
 template <int D, class List> void check_particle_ghosts(const Particles<D>& P, const List& nl, CallSite at) {
+  if (nl.halo()) nl.halo()->refresh_stale();
   if (ghost_checks() && nl.halo()) detail::compare_particle_ghosts(*nl.halo(), P, at);
 }
 

@@ -125,6 +125,7 @@ template <int D> void Halo<D>::build(Particles<D>& P, const Domain<D>& domain, d
                             PETSC_COPY_VALUES, root.data(), PETSC_COPY_VALUES));
   SPH_PETSC(PetscSFSetUp(sf_));
   P.set_ghost_count(n_ghost);
+  particles_ = &P;
   update_all(P);
 }
 
@@ -142,6 +143,20 @@ template <int D> void Halo<D>::update_all(Particles<D>& P) const {
   update(P.kind);
   update(P.gid);
   update(P.id);
+  P.stale.v = P.stale.m = P.stale.rho = P.stale.p = false;  // the registry's columns are not refreshed here
+}
+
+template <int D> void Halo<D>::refresh_stale() const {
+  if (!particles_ || !particles_->stale.any()) return;
+  Particles<D>& P = *particles_;
+  StaleGhosts<D>& s = P.stale;
+  if (s.v) update(P.v);
+  if (s.m) update(P.m);
+  if (s.rho) update(P.rho);
+  if (s.p) update(P.p);
+  for (std::vector<double>* f : s.scalars) update(*f);
+  for (std::vector<Vector<D>>* f : s.vectors) update(*f);
+  s = StaleGhosts<D>();
 }
 
 template class Halo<1>;

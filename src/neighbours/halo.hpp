@@ -32,6 +32,10 @@ template <int D> class Halo {
   void update_positions(std::vector<Vector<D>>& x) const;
   // Every field the Particles struct holds.
   void update_all(Particles<D>& P) const;
+  // The columns of the particles this halo serves (the last built or refreshed for) that were marked
+  // written (Particles::written): refreshed, and the marks cleared. Pair loops and ghost checks call it.
+  void refresh_stale() const;
+  void serve(Particles<D>& P) { particles_ = &P; }
 
   std::size_t n_owned() const { return n_owned_; }
   std::size_t n_ghost() const { return shift_.size(); }
@@ -43,6 +47,7 @@ template <int D> class Halo {
   std::vector<Vector<D>> shift_;
   std::vector<PetscMPIInt> owner_rank_;
   PetscSF sf_ = nullptr;
+  Particles<D>* particles_ = nullptr;
 };
 
 template <int D> template <class T> void Halo<D>::update(std::vector<T>& field) const {

@@ -35,8 +35,10 @@ template <int D> bool Neighbourhood<D>::update(Particles<D>& P, bool force) {
 }
 
 template <int D> void Neighbourhood<D>::refresh(Particles<D>& P) {
+  halo_.serve(P);
   halo_.update_positions(P.x);
   halo_.update(P.v);
+  P.stale.v = false;
   if (domain_.screens && domain_.screens->any()) screen(P);
 }
 

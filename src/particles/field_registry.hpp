@@ -49,6 +49,18 @@ template <int D> class FieldRegistry {
   std::vector<Vector<D>>& operator[](FieldId<Vector<D>> f) { return vectors_.at(f.index).values; }
   const std::vector<Vector<D>>& operator[](FieldId<Vector<D>> f) const { return vectors_.at(f.index).values; }
 
+  // Whether f is one of the registry's columns.
+  bool holds(const std::vector<double>& f) const {
+    for (const auto& c : scalars_)
+      if (&c.values == &f) return true;
+    return false;
+  }
+  bool holds(const std::vector<Vector<D>>& f) const {
+    for (const auto& c : vectors_)
+      if (&c.values == &f) return true;
+    return false;
+  }
+
   // Every column to `rows` (new rows zero): Particles call it as particles come and go.
   void resize(std::size_t rows) {
     for (auto& c : scalars_) c.values.resize(rows, 0.0);

@@ -3,6 +3,8 @@
 // Indices [0, n_owned) are the particles this rank owns and integrates; [n_owned, size()) are ghost
 // copies (periodic images, and on several ranks the halo of neighbouring ranks) that only supply
 // neighbour data. Ghosts are (re)made by the Halo; solvers never write to them directly.
+#include <algorithm>
+#include <stdexcept>
 #include <vector>
 
 #include "src/core/types.hpp"
@@ -17,6 +19,16 @@ enum ParticleKind : int { kFluid = 0, kWall = 1, kInlet = 2, kOutlet = 3 };
 // The particles whose pressure is extrapolated from the fluid's (Adami et al. 2012): walls, and the
 // inlets' buffers (their velocity is given, their pressure gradient the fluid's).
 inline bool extrapolates_pressure(int kind) { return kind == kWall || kind == kInlet; }
+
+// The columns written on owned particles since their ghost copies were last refreshed: marked by the
+// writer (Particles::written), refreshed by the halo before the next pair loop reads them
+// (Halo::refresh_stale; docs/developer.md, "Ghosts").
+template <int D> struct StaleGhosts {
+  bool v = false, m = false, rho = false, p = false;
+  std::vector<std::vector<double>*> scalars;  // registry columns
+  std::vector<std::vector<Vector<D>>*> vectors;
+  bool any() const { return v || m || rho || p || !scalars.empty() || !vectors.empty(); }
+};
 
 template <int D> struct Particles {
   std::size_t n_owned = 0;
@@ -35,7 +47,30 @@ template <int D> struct Particles {
   // The schemes' own per-particle state, declared by name (field_registry.hpp), sized with the above.
   FieldRegistry<D> fields;
 
+  // The columns whose ghosts are stale (marked by written()).
+  StaleGhosts<D> stale;
+
   std::size_t size() const { return n_owned + n_ghost; }
+
+  // Marks a column as written on the owned particles: its ghost copies are refreshed before the next
+  // pair loop (or ghost check) reads them. For the particles' own columns and registry fields; a
+  // step-local field is refreshed by its owner (halo().update).
+  void written(std::vector<double>& f) {
+    if (&f == &m) stale.m = true;
+    else if (&f == &rho) stale.rho = true;
+    else if (&f == &p) stale.p = true;
+    else if (fields.holds(f)) mark(stale.scalars, &f);
+    else
+      throw std::logic_error(
+          "Particles::written: not a particle column; refresh a step-local field with halo().update");
+  }
+  void written(std::vector<Vector<D>>& f) {
+    if (&f == &v) stale.v = true;
+    else if (fields.holds(f)) mark(stale.vectors, &f);
+    else
+      throw std::logic_error(
+          "Particles::written: not a particle column; refresh a step-local field with halo().update");
+  }
 
   // Appends an owned particle; only valid before ghosts exist.
   void add(const Vector<D>& pos, const Vector<D>& vel, double mass, double density, double pressure = 0.0,
@@ -59,6 +94,11 @@ template <int D> struct Particles {
     const std::size_t n = size();
     x.resize(n), v.resize(n), m.resize(n), rho.resize(n), p.resize(n), kind.resize(n), gid.resize(n), id.resize(n);
     fields.resize(n);
+  }
+
+ private:
+  template <class T> static void mark(std::vector<T*>& marks, T* f) {
+    if (std::find(marks.begin(), marks.end(), f) == marks.end()) marks.push_back(f);
   }
 };
 
