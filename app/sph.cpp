@@ -25,10 +25,10 @@ namespace {
 // -help prints this first (PETSc's own options follow, then every block of this program's, each with
 // its default): the options most runs need. cli.options checks that each one exists.
 const char kEssentialHelp[] =
-    "sph: ISPH and WCSPH smoothed particle hydrodynamics. Essential options (every option is listed\n"
+    "sph: ISPH, WCSPH and compressible SPH. Essential options (every option is listed\n"
     "below with its default, and in docs/options.md; \"(expert)\" marks the numerical method's settings\n"
     "that few runs change):\n"
-    "  -case NAME             the scene: taylor_green, lid_driven_cavity, dam_break, still_water, ...,\n"
+    "  -case NAME             the case: taylor_green, lid_driven_cavity, dam_break, still_water, ...,\n"
     "                         or scene with -scene_file FILE (a YAML scene of shapes or a .vtp)\n"
     "  -solver NAME           isph (the default), wcsph or compressible\n"
     "  -nx N                  resolution: particles per unit length (the case says which length)\n"
@@ -50,8 +50,8 @@ PetscErrorCode read_names(sph::RunOptions* o, PetscInt* dim, PetscBool* dim_set)
   for (const auto& e : sph::case_registry()) cases.push_back(e.name.c_str());
   for (const auto& s : sph::solver_names()) solvers.push_back(s.c_str());
   PetscInt c = 0, s = 0;
-  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Scene and scheme", "sph");
-  PetscCall(sph::option_choice(PetscOptionsObject, "-case", "Scene to run", cases.data(),
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Case and scheme", "sph");
+  PetscCall(sph::option_choice(PetscOptionsObject, "-case", "Case to run", cases.data(),
                                static_cast<PetscInt>(cases.size()), cases[0], &c, nullptr));
   PetscCall(sph::option_choice(PetscOptionsObject, "-solver", "Time-stepping scheme", solvers.data(),
                                static_cast<PetscInt>(solvers.size()), solvers[0], &s, nullptr));

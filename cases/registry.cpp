@@ -52,7 +52,7 @@ const std::vector<CaseEntry>& case_registry() {
        [] { return std::make_unique<ToyStar>(); }, nullptr, nullptr},
       {"sedov", "2D Sedov-Taylor blast wave (gamma = 1.4), periodic box; self-similar solution (Sedov 1959)", 2,
        nullptr, [] { return std::make_unique<SedovBlast>(); }, nullptr},
-      {"scene", "particles read from a VTK .vtp file (-scene_file; scripts/make-scene writes examples), 2D or 3D", 2,
+      {"scene", "a scene file (-scene_file): shapes in YAML sampled at -nx, or particles in a .vtp file; 2D or 3D", 2,
        nullptr, [] { return std::make_unique<SceneCase<2>>(); }, [] { return std::make_unique<SceneCase<3>>(); },
        scene_file_dimension},
   };

@@ -1,6 +1,6 @@
 #pragma once
-// A scene: initial particles, the box, the physics it needs, and (where one exists) the reference
-// solution its errors are measured against. Cases use core types only.
+// A case (what -case runs): initial particles, the box, the physics it needs, and (where one exists)
+// the reference solution its errors are measured against. Cases use core types only.
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
