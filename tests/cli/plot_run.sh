@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# scripts/plot-run: a run with a body (the baffle, nx 12) and one on 2 ranks (.pvtp frames) each give a
+# PNG holding the frame and the force histories; the frame nearest --time is taken; a field or a column
+# the run lacks, or a folder that is no run, gives one error line naming what exists, exit non-zero.
+#   usage: plot_run.sh <sph executable> <source dir>; $MPIEXEC names mpiexec.
+set -u
+sph="$1"; src="$2"; tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+mpiexec="${MPIEXEC:-mpiexec}"
+fail=0
+pr="$src/scripts/plot-run"
+bad() { echo "FAIL: $*"; fail=1; }
+ok() { echo "ok: $*"; }
+
+args=(-case scene -scene_file "$src/cases/scenes/baffle_sloshing.yaml" -nx 12 -t_end 0.1 -output_interval 0.05
+      -threads 1 -progress 0)
+"$sph" "${args[@]}" -output_dir "$tmp/one" >"$tmp/one.log" 2>&1 || { bad "sph run exited non-zero"; cat "$tmp/one.log"; }
+"$mpiexec" -n 2 "$sph" "${args[@]}" -output_dir "$tmp/two" >"$tmp/two.log" 2>&1 ||
+  { bad "2-rank run exited non-zero"; cat "$tmp/two.log"; }
+
+for run in one two; do
+  out=$("$pr" "$tmp/$run" -o "$tmp/$run.png" 2>&1)
+  # A PNG starts with its 8-byte signature; the figure is two panels, so it is wide.
+  if [ -s "$tmp/$run.png" ] && [ "$(head -c 8 "$tmp/$run.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ]; then
+    ok "plot-run $run: $out"
+  else
+    bad "plot-run $run wrote no PNG: $out"
+  fi
+done
+out=$("$pr" "$tmp/one" --time 0.04 --field speed --columns force_baffle_x -o "$tmp/t.png" 2>&1)
+# Three frames: at 0, near 0.05 (the first step past it) and at 0.1; 0.04 is nearest the middle one.
+t=$(echo "$out" | sed -n 's/.*frame at t = \([0-9.e-]*\)).*/\1/p')
+[ -s "$tmp/t.png" ] && python3 -c "import sys; sys.exit(not 0.04 < float('$t') < 0.07)" 2>/dev/null &&
+  ok "--time 0.04 --field speed --columns force_baffle_x: $out" || bad "--time 0.04: $out"
+
+expect_error() {  # expect_error <what the message must name> <args...>
+  local want="$1"; shift
+  local out; out=$("$pr" "$@" -o "$tmp/x.png" 2>&1) && { bad "plot-run $* succeeded"; return; }
+  [ "$(echo "$out" | wc -l)" -eq 1 ] && echo "$out" | grep -q -- "$want" && ok "refused: $out" ||
+    bad "plot-run $*: wanted one line naming '$want', got: $out"
+}
+expect_error "choose one of speed, pressure" "$tmp/one" --field nope
+expect_error "has no column force_nope; it has step" "$tmp/one" --columns force_nope
+expect_error "is not a folder" "$tmp/missing"
+mkdir "$tmp/empty"
+expect_error "has no particles.pvd" "$tmp/empty"
+exit $fail
