@@ -2,6 +2,7 @@
 
 #include <petscsys.h>
 #include <vtkCellArray.h>
+#include <vtkCellData.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
@@ -14,7 +15,7 @@ namespace sph {
 SurfaceWriter::SurfaceWriter(const std::string& output_dir, const std::string& body)
     : dir_(output_dir.empty() ? std::string(".") : output_dir), base_("body_" + body), series_(dir_, base_) {}
 
-void SurfaceWriter::write(const SurfaceMesh& surface, double time) {
+void SurfaceWriter::write(const SurfaceMesh& surface, double time, const std::vector<double>* pressure) {
   const std::string file = frame_stem(base_, series_.size()) + ".vtp";
   PetscMPIInt rank = 0;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -31,6 +32,21 @@ void SurfaceWriter::write(const SurfaceMesh& surface, double time) {
     poly->SetPoints(points);
     if (surface.lines) poly->SetLines(cells);
     else poly->SetPolys(cells);
+    if (pressure && pressure->size() == surface.cells.size()) {
+      vtkNew<vtkDoubleArray> p, traction;
+      p->SetName("pressure");
+      traction->SetName("traction");
+      traction->SetNumberOfComponents(3);
+      for (std::size_t c = 0; c < surface.cells.size(); ++c) {
+        const Eigen::Vector3d an = face_area_normal(surface, surface.cells[c]);
+        const double area = an.norm();
+        const Eigen::Vector3d t = area > 0.0 ? Eigen::Vector3d(-(*pressure)[c] / area * an) : Eigen::Vector3d::Zero();
+        p->InsertNextValue((*pressure)[c]);
+        traction->InsertNextTuple(t.data());
+      }
+      poly->GetCellData()->AddArray(p);
+      poly->GetCellData()->AddArray(traction);
+    }
     vtkNew<vtkDoubleArray> t;
     t->SetName("TIME");
     t->SetNumberOfTuples(1);

@@ -43,7 +43,8 @@ inline Eigen::Vector3d face_area_normal(const SurfaceMesh& mesh, const std::vect
 class SurfaceWriter {
  public:
   SurfaceWriter(const std::string& output_dir, const std::string& body);
-  void write(const SurfaceMesh& surface, double time);
+  // With `pressure` (one value a cell), the cells carry it and the traction -p n it exerts on the body.
+  void write(const SurfaceMesh& surface, double time, const std::vector<double>* pressure = nullptr);
   void resume(double t) { series_.resume(t); }
   int frames_written() const { return series_.size(); }
   std::string basename() const { return base_; }

@@ -205,6 +205,7 @@ template <int D> void TimeLoop<D>::advance() {
   }
   if (wall_groups_) {
     const std::vector<GroupForce<D>> F = wall_groups_->forces(s_.P, s_.nh, s_.kernel, s_.disc.physics, s_.disc.bodies);
+    faces_t_ = t_;  // the frames' surface loads are these
     const std::vector<double> forces = wall_groups_->row(F);
     row.insert(row.end(), forces.begin(), forces.end());
     if (s_.disc.bodies.any_free()) {  // the free bodies' closing kick, with the load at the step's end

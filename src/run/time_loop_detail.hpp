@@ -163,6 +163,7 @@ template <int D> class TimeLoop {
   int interrupted_ = 0;  // the signal that stopped the run
   bool warned_dt_ = false;
   double contact_step_ = 0.0;                           // > 0: a free body is near a contact, the step held to this
+  double faces_t_ = -1.0;                               // when wall_groups_ last computed the bodies' face pressures
   bool surface_column_ = false, walls_column_ = false;  // timeseries.csv's free_surface_share, fluid_in_walls
   RemovedFluid removed_;  // -box_exit auto or remove: the fluid taken out so far (timeseries.csv's removed_fluid)
   int removal_events_ = 0;

@@ -99,7 +99,9 @@ template <int D> void TimeLoop<D>::write_frame(bool derived) {
         p = free ? free->placed(p) : motions[b].moved(p, 0.0, t_);
         for (int a = 0; a < D; ++a) x[a] = p[a];
       }
-    surface_writers_[b].write(surface, t_);
+    // The faces' pressures where the step's forces took them (not in the first frame, before any step).
+    const bool loads = wall_groups_ && faces_t_ == t_;
+    surface_writers_[b].write(surface, t_, loads ? &wall_groups_->face_pressure(b) : nullptr);
   }
 }
 

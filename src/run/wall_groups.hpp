@@ -50,12 +50,16 @@ template <int D> class WallGroups {
         for (int a = 0; a < D; ++a) about_[g][a] = about[g].at(static_cast<std::size_t>(a)).get<double>();
     const std::vector<SurfaceMesh> meshes = run_case.body_surfaces();
     faces_.resize(names.size());
+    face_pressure_.resize(names.size());
     if (surface_pressure)
       for (std::size_t b = 0; b < names.size() && b < meshes.size(); ++b)
         if (meshes[b].closed && count[b + 1] > 0) faces_[b] = faces_of(meshes[b]);
   }
 
   bool empty() const { return names_.empty(); }
+  // Body b's faces' pressures from the last forces() (in its surface's cell order); empty where the
+  // body's pressure force comes from the pair sums.
+  const std::vector<double>& face_pressure(std::size_t b) const { return face_pressure_[b]; }
 
   // force_<g>_x (total), force_<g>_pressure_x, force_<g>_viscous_x (and _y, _z), moment_<g> (2D;
   // moment_<g>_x, _y, _z in 3D), for every group.
@@ -76,7 +80,7 @@ template <int D> class WallGroups {
   // velocities as the step left the owned ones (as the solvers do before their own pair loops); the
   // pressure's and density's ghosts are fresh (docs/developer.md, "Ghosts").
   std::vector<GroupForce<D>> forces(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K,
-                                    const Physics<D>& physics, const MovingBodies<D>& bodies) const {
+                                    const Physics<D>& physics, const MovingBodies<D>& bodies) {
     nh.update(P);
     std::vector<int> group(P.n_owned, -1);
     for (std::size_t i = 0; i < P.n_owned; ++i)
@@ -90,6 +94,7 @@ template <int D> class WallGroups {
                                                        nh.domain().screens.get(), physics.free_surface);
       F[b].moment += S.moment - F[b].pressure_moment;
       F[b].pressure = S.force, F[b].pressure_moment = S.moment;
+      face_pressure_[b] = S.face_pressure;
     }
     // The pair sums carry the traction of the viscous term's Laplacian form, mu du/dn; the stress's
     // other part, mu (grad u)^T n, integrates over a body turning at w to a torque -2 mu V w (in 2D
@@ -180,9 +185,10 @@ template <int D> class WallGroups {
     return about;
   }
 
-  std::vector<int> label_;      // by id: the body's index, -1 for none
-  std::vector<Faces> faces_;    // per body: empty where its pressure force comes from the pairs
-  std::vector<double> volume_;  // per body, as laid out
+  std::vector<int> label_;                          // by id: the body's index, -1 for none
+  std::vector<Faces> faces_;                        // per body: empty where its pressure force comes from the pairs
+  std::vector<std::vector<double>> face_pressure_;  // per body, per face, from the last forces()
+  std::vector<double> volume_;                      // per body, as laid out
   std::vector<PrescribedMotion<D>> motions_;
   std::vector<char> free_;  // per body: 1 for a free body
   std::vector<std::string> names_;

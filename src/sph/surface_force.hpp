@@ -28,6 +28,7 @@ namespace sph {
 template <int D> struct SurfaceForce {
   Vector<D> force = Vector<D>::Zero();
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();  // about the given point (the z component in 2D)
+  std::vector<double> face_pressure;                 // per face, the pressure its force was taken with
 };
 
 // p: the fluid particles' pressure (owned values; every rank gets the whole sum). Faces with no fluid
@@ -103,10 +104,12 @@ SurfaceForce<D> surface_pressure_force(const Particles<D>& P, const Kernel<D>& K
       wet[q] = linear[bin[q]] ? std::clamp((1.5 * h - nearest[q]) / (0.5 * h), 0.0, 1.0) : 0.0;
   }
   SurfaceForce<D> out;
+  out.face_pressure.resize(centre.size());
   for (std::size_t q = 0; q < centre.size(); ++q) {
     const std::size_t b = bin[q];
     double pq = value[b] + slope[b].dot(centre[q] - fit_at[b]);
     if (free_surface) pq = wet[q] * std::max(pq, 0.0);
+    out.face_pressure[q] = pq;
     const Vector<D> f = -pq * area_normal[q];
     out.force += f, out.moment += moment_of<D>(Vector<D>(centre[q] - about), f);
   }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # scripts/plot-run: a run with a body (the baffle, nx 12) and one on 2 ranks (.pvtp frames) each give a
-# PNG holding the frame and the force histories; the frame nearest --time is taken; a field or a column
+# PNG holding the frame and the force histories; the body's surface file carries the pressure and
+# traction its force was taken with; the frame nearest --time is taken; a field or a column
 # the run lacks, or a folder that is no run, gives one error line naming what exists, exit non-zero.
 #   usage: plot_run.sh <sph executable> <source dir>; $MPIEXEC names mpiexec.
 set -u
@@ -31,6 +32,28 @@ out=$("$pr" "$tmp/one" --time 0.04 --field speed --columns force_baffle_x -o "$t
 t=$(echo "$out" | sed -n 's/.*frame at t = \([0-9.e-]*\)).*/\1/p')
 [ -s "$tmp/t.png" ] && python3 -c "import sys; sys.exit(not 0.04 < float('$t') < 0.07)" 2>/dev/null &&
   ok "--time 0.04 --field speed --columns force_baffle_x: $out" || bad "--time 0.04: $out"
+
+# The surface files carry each face's pressure and traction from the step's force: their integral is
+# the force_baffle_pressure column at that time; the first frame, before any step, carries none.
+/usr/bin/python3 - "$tmp/one" <<'PY' && ok "the baffle's surface traction sums to its pressure force" || bad "surface loads"
+import csv, sys
+import numpy as np
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy as n
+run = sys.argv[1]
+def read(k):
+    r = vtk.vtkXMLPolyDataReader(); r.SetFileName(f"{run}/body_baffle_{k:05d}.vtp"); r.Update(); return r.GetOutput()
+o = read(2)
+pts, lines = n(o.GetPoints().GetData()), o.GetLines()
+ids, off = n(lines.GetConnectivityArray()), n(lines.GetOffsetsArray())
+traction = n(o.GetCellData().GetArray("traction"))
+F = sum(traction[c] * np.linalg.norm(pts[ids[b - 1]] - pts[ids[a]]) for c, (a, b) in enumerate(zip(off[:-1], off[1:])))
+row = list(csv.DictReader(open(f"{run}/timeseries.csv")))[-1]
+want = np.array([float(row["force_baffle_pressure_x"]), float(row["force_baffle_pressure_y"])])
+print(f"surface {F[:2]}, force columns {want}")
+sys.exit(not (abs(F[:2] - want).max() <= 1e-9 * abs(want).max() and abs(want).max() > 0
+              and read(0).GetCellData().GetNumberOfArrays() == 0))
+PY
 
 expect_error() {  # expect_error <what the message must name> <args...>
   local want="$1"; shift
