@@ -143,7 +143,10 @@ template <int D> void Halo<D>::update_all(Particles<D>& P) const {
   update(P.kind);
   update(P.gid);
   update(P.id);
-  P.stale.v = P.stale.m = P.stale.rho = P.stale.p = false;  // the registry's columns are not refreshed here
+  // And the registry's: a new ghost layer holds rows of other particles, or zeros, until they are
+  // copied (a 2-rank run read an outlet's stale flags on its ghosts when they were not).
+  P.fields.for_each_column([this](auto& column) { update(column); });
+  P.stale = StaleGhosts<D>{};
 }
 
 template <int D> void Halo<D>::refresh_stale() const {

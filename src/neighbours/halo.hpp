@@ -30,7 +30,7 @@ template <int D> class Halo {
   template <class T> void update(std::vector<T>& field) const;
   // Positions: a copy plus the ghost's periodic shift.
   void update_positions(std::vector<Vector<D>>& x) const;
-  // Every field the Particles struct holds.
+  // Every field the Particles struct holds, the registry's columns included; the stale marks cleared.
   void update_all(Particles<D>& P) const;
   // The columns of the particles this halo serves (the last built or refreshed for) that were marked
   // written (Particles::written): refreshed, and the marks cleared. Pair loops and ghost checks call it.

@@ -61,6 +61,12 @@ template <int D> class FieldRegistry {
     return false;
   }
 
+  // f(column) for every column, scalar and vector.
+  template <class Fn> void for_each_column(Fn&& f) {
+    for (auto& c : scalars_) f(c.values);
+    for (auto& c : vectors_) f(c.values);
+  }
+
   // Every column to `rows` (new rows zero): Particles call it as particles come and go.
   void resize(std::size_t rows) {
     for (auto& c : scalars_) c.values.resize(rows, 0.0);
