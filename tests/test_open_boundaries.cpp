@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "src/boundary/open_boundaries.hpp"
 #include "src/kernels/kernel_options.hpp"
@@ -26,7 +27,7 @@ struct Channel {
     in.section_lo = V2(0, 0), in.section_hi = V2(0, 1);
     in.inflow.profile = InletVelocity<2>::Profile::Parabolic, in.inflow.peak = 1.5;
     out.type = OpenBoundary<2>::Type::Outlet, out.axis = 0, out.side = 1, out.plane = 1.0, out.depth = kDepth;
-    out.pressure = 2.0;
+    out.section_lo = V2(0, 0), out.section_hi = V2(0, 1), out.pressure = 2.0;
     open = OpenBoundaries<2>({in, out});
   }
   std::size_t add(const V2& x, int kind, const V2& v = V2::Zero()) {
@@ -111,6 +112,89 @@ TEST(OpenBoundaries, OutletParticlesTakeTheirFluidNeighboursVelocity) {
       EXPECT_NEAR(c.P.v[i][0], 1.0, 1e-14) << "outlet particle " << i;
     }
   }
+}
+
+// A block of fluid against a transmissive outlet (src/boundary/open_boundaries.hpp): five fluid
+// columns and three outlet columns, ten rows, at pressure p0 and speed u0 along x.
+struct TransmissiveOutlet : Channel {
+  static constexpr double kImpedance = 10.0, p0 = 2.0, u0 = 1.0;
+  Domain<2> box;
+  Kernel<2> K = KernelChoice{}.make<2>(kDx);
+  Neighbourhood<2> nh;
+
+  TransmissiveOutlet() : nh(make_box(), K.support_radius(), 0.0) {
+    for (int j = 0; j < 10; ++j)
+      for (int i = 0; i < 8; ++i) {
+        const std::size_t k = add(V2(0.55 + i * kDx, (j + 0.5) * kDx), i < 5 ? kFluid : kOutlet, V2(u0, 0));
+        P.p[k] = p0;
+      }
+    open.use_transmissive_outlets(P, kImpedance);
+    open.start_ids(P);
+    nh.update(P, true);
+  }
+  static Domain<2> make_box() {
+    Domain<2> b;
+    b.lo = V2(-1, -1), b.hi = V2(2, 2);
+    return b;
+  }
+  double outlet_pressure(std::size_t i) const { return P.kind[i] == kOutlet ? P.p[i] : p0; }
+};
+
+// An outgoing plane sound wave carries p' = rho0 c0 u': the outlet's pressure follows the fluid's
+// velocity by that impedance, so the wave meets no jump at the outlet and is not reflected.
+TEST(OpenBoundaries, ATransmissiveOutletsPressureFollowsAnOutgoingPlaneWave) {
+  TransmissiveOutlet c;
+  ASSERT_TRUE(c.open.transmit_outlet_pressure(c.P, c.nh.list(), c.K));  // the first call: no change
+  for (std::size_t i = 0; i < c.P.n_owned; ++i) EXPECT_EQ(c.outlet_pressure(i), c.p0);
+  const double du = 0.03;
+  for (std::size_t i = 0; i < c.P.n_owned; ++i) c.P.v[i][0] += du;
+  c.P.written(c.P.v);
+  c.open.transmit_outlet_pressure(c.P, c.nh.list(), c.K);
+  for (std::size_t i = 0; i < c.P.n_owned; ++i) {
+    if (c.P.kind[i] == kOutlet) {
+      EXPECT_NEAR(c.P.p[i], c.p0 + c.kImpedance * du, 1e-12) << "outlet particle " << i;
+    }
+  }
+  // Called again without a change of velocity: nothing more.
+  c.open.transmit_outlet_pressure(c.P, c.nh.list(), c.K);
+  for (std::size_t i = 0; i < c.P.n_owned; ++i) {
+    if (c.P.kind[i] == kOutlet) {
+      EXPECT_NEAR(c.P.p[i], c.p0 + c.kImpedance * du, 1e-12);
+    }
+  }
+}
+
+// Its level relaxes to the outlet's at K = sigma c0 / L: after n steps p - p_out is (1 - K dt)^n of
+// what it was.
+TEST(OpenBoundaries, ATransmissiveOutletsLevelRelaxesToItsPressure) {
+  TransmissiveOutlet c;
+  const double sigma_c0 = 0.25 * 10.0, dt = 0.01;
+  const V2 length(4.0, 3.0);                                     // K = 2.5 / 4 along the outlet's axis x
+  for (std::size_t i = 0; i < c.P.n_owned; ++i) c.P.p[i] = 5.0;  // the outlet's pressure is 2
+  for (int n = 0; n < 50; ++n) c.open.relax_outlet_pressure(c.P, dt, sigma_c0, length);
+  for (std::size_t i = 0; i < c.P.n_owned; ++i) {
+    const double expected = c.P.kind[i] == kOutlet ? 2.0 + 3.0 * std::pow(1.0 - 0.625 * dt, 50) : 5.0;
+    EXPECT_NEAR(c.P.p[i], expected, 1e-13);
+  }
+}
+
+// Fluid that crosses into a transmissive outlet takes the pressure the outlet holds there, not its own:
+// the outlet particles around it carry the condition's memory at that place.
+TEST(OpenBoundaries, FluidEnteringATransmissiveOutletTakesThePressureAroundIt) {
+  TransmissiveOutlet c;
+  c.open.transmit_outlet_pressure(c.P, c.nh.list(), c.K);
+  std::size_t crossing = 0;
+  for (std::size_t i = 0; i < c.P.n_owned; ++i) {
+    if (c.P.kind[i] == kFluid && c.P.x[i][0] > 0.9 && c.P.x[i][1] > 0.4 && c.P.x[i][1] < 0.5) crossing = i;
+    if (c.P.kind[i] == kOutlet) c.P.p[i] = 3.0;
+  }
+  c.P.x[crossing][0] = 1.01, c.P.p[crossing] = 7.0;
+  ASSERT_TRUE(c.open.exchange(c.P, 0.0, [](double) { return 1.0; }));
+  ASSERT_EQ(c.P.kind[crossing], kOutlet);
+  EXPECT_EQ(c.P.p[crossing], 7.0);  // until the outlet's pressure is transmitted
+  c.nh.update(c.P, true);
+  c.open.transmit_outlet_pressure(c.P, c.nh.list(), c.K);
+  EXPECT_NEAR(c.P.p[crossing], 3.0, 1e-14);
 }
 
 }  // namespace

@@ -16,10 +16,11 @@ const char* const diffusion_names[] = {"none", "molteni", "antuono", "particle",
 const char* const diffusion_models[] = {"none", "MolteniColagrossi", "Antuono", "MolteniColagrossiParticleScale",
                                         "Fourtakas"};
 const char* const gradient_names[] = {"auto", "corrected", "symmetric"};
+const char* const outlet_names[] = {"fixed", "transmissive"};
 
 struct RawOptions {
-  PetscReal c0, c0_factor, gamma, cfl, delta, alpha, beta, epsilon;
-  PetscInt density, diffusion, operators, viscous_laplacian, gradient;
+  PetscReal c0, c0_factor, gamma, cfl, delta, alpha, beta, epsilon, outlet_relaxation;
+  PetscInt density, diffusion, operators, viscous_laplacian, gradient, outlet;
   PetscBool closed_volume, closed_volume_set;
   PetscBool diffusion_set;
   PetscBool prepared_start;
@@ -77,6 +78,15 @@ PetscErrorCode read_options(RawOptions* o) {
                           "conserving), auto (symmetric with a free surface, whose zero pressure it imposes; "
                           "else corrected)",
                           gradient_names, 3, gradient_names[o->gradient], &o->gradient, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-outlet_pressure",
+                          "Outlets' pressure: transmissive (the fluid's, carried outwards, its level relaxed to "
+                          "the outlet's: sound leaves the box) or fixed (the outlet's on every buffer particle: "
+                          "sound reflects back into the box)",
+                          outlet_names, 2, outlet_names[o->outlet], &o->outlet, nullptr));
+  PetscCall(option_real(PetscOptionsObject, "-outlet_relaxation",
+                        "Transmissive outlets: sigma, the level's relaxation rate sigma c0 / L (L the box's length "
+                        "along the outlet's axis; Poinsot & Lele 1992)",
+                        o->outlet_relaxation, &o->outlet_relaxation, nullptr, OptionLevel::expert));
   PetscCall(option_bool(PetscOptionsObject, "-closed_volume",
                         "Keep the fluid volume of a scene without a free surface: the net volume rate of the "
                         "continuity equation, which a closed or periodic box does not allow, is removed "
@@ -108,11 +118,13 @@ template <int D> void WcsphSolver<D>::set_from_options() {
                av_.alpha,
                av_.beta,
                av_.epsilon,
+               outlet_relaxation_,
                static_cast<PetscInt>(density_),
                static_cast<PetscInt>(diffusion_),
                static_cast<PetscInt>(operators_),
                static_cast<PetscInt>(viscous_laplacian_),
                static_cast<PetscInt>(gradient_),
+               static_cast<PetscInt>(outlet_pressure_),
                closed_volume_option_ > 0 ? PETSC_TRUE : PETSC_FALSE,
                PETSC_FALSE,
                PETSC_FALSE,
@@ -129,6 +141,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   require(o.alpha >= 0, "-av_alpha", "non-negative", o.alpha);
   require(o.beta >= 0, "-av_beta", "non-negative", o.beta);
   require(o.epsilon > 0, "-av_epsilon", "positive", o.epsilon);
+  require(o.outlet_relaxation >= 0, "-outlet_relaxation", "non-negative", o.outlet_relaxation);
   if (o.closed_volume_set) closed_volume_option_ = o.closed_volume ? 1 : 0;
   prepared_start_ = o.prepared_start;
   diffusion_at_surface_ = o.diffusion_at_surface;
@@ -139,6 +152,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   operators_ = static_cast<OperatorSet>(o.operators);
   viscous_laplacian_ = static_cast<ViscousLaplacian>(o.viscous_laplacian);
   gradient_ = static_cast<WcsphGradient>(o.gradient);
+  outlet_pressure_ = static_cast<OutletPressure>(o.outlet), outlet_relaxation_ = o.outlet_relaxation;
   diffusion_ = static_cast<DensityDiffusion>(o.diffusion);
   diffusion_chosen_ = o.diffusion_set;
   if (delta_ == 0.0) diffusion_ = DensityDiffusion::None;
@@ -168,6 +182,10 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
                                      viscous_laplacian_ == ViscousLaplacian::Fourth && !phys.free_surface)}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
   if (walls_) models["walls"] = {{"model", "AdamiWall"}};
+  if (disc_->open.has_outlet()) {
+    models["outlets"] = {{"pressure", outlet_names[static_cast<int>(outlet_pressure_)]}};
+    if (outlet_pressure_ == OutletPressure::Transmissive) models["outlets"]["relaxation_sigma"] = outlet_relaxation_;
+  }
   if (walls_ && bound_to_walls_) models["walls"]["bounding"] = {{"moves", bounded_}};  // particle-steps
   models["operators"] = operator_set_names[static_cast<int>(operators_)];
   models["pressure_gradient"] = gradient_names[static_cast<int>(gradient_)];

@@ -23,6 +23,8 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
   set_start_state(disc);
   walls_ = has_walls(P);
   extrapolated_ = walls_ || disc.open.any();
+  if (outlet_pressure_ == OutletPressure::Transmissive && disc.open.has_outlet())
+    disc.open.use_transmissive_outlets(P, disc.physics.rho0 * eos_.c0);
   acc_ = P.fields.declare_vector("acceleration", kCarried, P.size());
   drho_ = P.fields.declare_scalar("density_rate", kCarried, P.size());
   free_surface_.setup(P, disc.physics.free_surface);
@@ -149,7 +151,11 @@ template <int D> double WcsphSolver<D>::speed_scale() {
 
 template <int D> void WcsphSolver<D>::update_pressure() {
   Particles<D>& P = disc_->particles;
-  for (std::size_t i = 0; i < P.n_owned; ++i) P.p[i] = eos_.pressure(P.rho[i]);
+  // A transmissive outlet's particles carry their pressure (src/boundary/open_boundaries.hpp), their
+  // density follows it.
+  const bool transmissive = disc_->open.outlet_pressure() == OutletPressure::Transmissive;
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (!transmissive || P.kind[i] != kOutlet) P.p[i] = eos_.pressure(P.rho[i]);
   P.written(P.p);
   if (!extrapolated_) return;
   // Adami et al. (2012): wall (and inlet) pressure extrapolated from the fluid, their density from the EOS.
@@ -157,8 +163,11 @@ template <int D> void WcsphSolver<D>::update_pressure() {
   const std::vector<Vector<D>> wall_acceleration = disc_->bodies.accelerations(P, disc_->bodies.time());
   AdamiWall<D>::extrapolate_pressure(AdamiWall<D>::stencil(P, nh.list(), disc_->kernel), P, disc_->physics.gravity,
                                      &wall_acceleration);
+  P.written(P.p);
+  const bool outlets = disc_->open.transmit_outlet_pressure(P, nh.list(), disc_->kernel);
   for (std::size_t i = 0; i < P.n_owned; ++i)
-    if (extrapolates_pressure(P.kind[i])) P.rho[i] = eos_.density(std::max(P.p[i], -0.9 * eos_.B()));
+    if (extrapolates_pressure(P.kind[i]) || (outlets && P.kind[i] == kOutlet))
+      P.rho[i] = eos_.density(std::max(P.p[i], -0.9 * eos_.B()));
   P.written(P.p), P.written(P.rho);
 }
 
@@ -420,6 +429,8 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
     energy_.add_change(EnergyCause::WallBounding, before, energy_.energies(P));
   }
   const LogEventScope log_density(LogEvent::Density);
+  disc_->open.relax_outlet_pressure(disc_->particles, dt, outlet_relaxation_ * eos_.c0,
+                                    disc_->neighbourhood.domain().length());
   update_pressure();
   return {};
 }

@@ -118,6 +118,8 @@ template <int D> class WcsphSolver : public Solver<D> {
   double max_acc_ = 0.0;
   bool walls_ = false;
   bool extrapolated_ = false;  // walls or inlets: pressures extrapolated from the fluid (update_pressure)
+  OutletPressure outlet_pressure_ = OutletPressure::Transmissive;  // -outlet_pressure
+  PetscReal outlet_relaxation_ = 0.25;                             // -outlet_relaxation: sigma
   std::string speed_scale_name_;
   int closed_volume_option_ = -1;      // -closed_volume: -1 unset (on without a free surface), 0 off, 1 on
   bool prepared_start_ = false;        // -prepared_start: the case's slow-manifold velocity added at set-up

@@ -6,10 +6,11 @@
 //   extrapolated from the fluid as a wall's is (Adami et al. 2012: a zero normal gradient but for the
 //   body force's head). One that crosses into the box becomes fluid, and a new inlet particle takes
 //   its place one buffer depth behind it, so the buffer's lattice stays whole;
-// - an outlet's particles (kind kOutlet) hold the outlet's pressure (a Dirichlet condition for ISPH's
-//   pressure system; the density of that pressure for WCSPH) and drift with the velocity they had when
-//   they left the fluid (a zero normal gradient). One that comes back into the box is fluid again; one
-//   that leaves the buffer's far end leaves the run, counted as outflow, never as lost fluid.
+// - an outlet's particles (kind kOutlet) drift with the fluid's velocity carried outwards (a zero normal
+//   gradient). Their pressure is the outlet's (OutletPressure::Fixed: a Dirichlet condition for ISPH's
+//   pressure system, the density of that pressure for WCSPH), or, for WCSPH, one that lets sound out
+//   (OutletPressure::Transmissive, below). One that comes back into the box is fluid again; one that
+//   leaves the buffer's far end leaves the run, counted as outflow, never as lost fluid.
 // The particles' count changes during a run: new particles take ids from next_id, which the
 // checkpoint keeps (docs/verification/open_boundaries.md).
 #include <mpi.h>
@@ -59,6 +60,12 @@ template <int D> struct OpenBoundary {
   int kind() const { return type == Type::Inlet ? kInlet : kOutlet; }
   // How far x lies beyond the plane, outwards (negative inside the box).
   double beyond(const Vector<D>& x) const { return side * (x[axis] - plane); }
+  // Whether x lies across the boundary's section (its extent along the other axes).
+  bool in_section(const Vector<D>& x) const {
+    for (int a = 0; a < D; ++a)
+      if (a != axis && (x[a] < section_lo[a] || x[a] > section_hi[a])) return false;
+    return true;
+  }
   Vector<D> inward() const {
     Vector<D> n = Vector<D>::Zero();
     n[axis] = -side;
@@ -85,10 +92,32 @@ struct OpenBoundaryFlux {
   double in_mass = 0.0, out_mass = 0.0;
 };
 
+// How an outlet's particles get their pressure. A fixed pressure reflects a sound wave back into the
+// box with its sign turned (and a zero gradient, with it unchanged), so in a weakly compressible fluid
+// the start's pressure wave rings between an inlet and an outlet. A transmissive outlet keeps the
+// incoming characteristic's amplitude at its place zero but for a slow relaxation of the pressure to
+// the outlet's (Rudy & Strikwerda 1980; Poinsot & Lele 1992, eq. 40, Mach number neglected):
+//   dp/dt - rho0 c0 dU/dt = -K (p - p_out),   K = sigma c0 / L,
+// U the outward velocity across the outlet's section, averaged over a slab of a support's half-width
+// about its plane (plane waves, the modes that ring along a channel, leave; waves across it do not),
+// and L the box's length along the outlet's axis. An outgoing plane wave (p' = rho0 c0 U') passes, and
+// the mean level settles on p_out over 1/K. Each outlet particle integrates it along its path; one that
+// has just left the fluid takes the pressure of the outlet particles around it, which hold the
+// condition's memory at that place, instead of its own.
+enum class OutletPressure { Fixed, Transmissive };
+
 template <int D> class OpenBoundaries {
  public:
   OpenBoundaries() = default;
   explicit OpenBoundaries(std::vector<OpenBoundary<D>> b) : b_(std::move(b)) {}
+
+  OutletPressure outlet_pressure() const { return outlet_pressure_; }
+  // Transmissive outlets, for a fluid of acoustic impedance rho0 c0: declares the outlet particles' flag
+  // "just left the fluid" (1).
+  void use_transmissive_outlets(Particles<D>& P, double impedance) {
+    outlet_pressure_ = OutletPressure::Transmissive, impedance_ = impedance;
+    entered_ = P.fields.declare_scalar("outlet_entered", kCarried, P.size());
+  }
 
   bool any() const { return !b_.empty(); }
   const std::vector<OpenBoundary<D>>& boundaries() const { return b_; }
@@ -128,7 +157,10 @@ template <int D> class OpenBoundaries {
   // Outlet particles take the kernel-weighted mean velocity of their fluid and outlet neighbours nearer
   // the box (upwind: nothing comes back from deeper in the buffer): a zero normal gradient, carried a
   // support outwards a step, so that particles placed in the buffer at rest, or that left while the flow
-  // was slower, do not block the outlet. Positions and velocities current on the ghosts; the caller
+  // was slower, do not block the outlet. A neighbour's weight grows from zero as it lies nearer, over
+  // h / 2: a particle beside it in the same lattice column, its distance from the plane equal but for
+  // round-off, must not count on one run and not on another (the choice moved a 2-rank run's answer
+  // by 2e-5 from the 1-rank run's). Positions and velocities current on the ghosts; the caller
   // refreshes the ghosts' velocities after.
   void extrapolate_outlet_velocity(Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) const {
     if (!has_outlet()) return;
@@ -139,14 +171,59 @@ template <int D> class OpenBoundaries {
     std::vector<const OpenBoundary<D>*> of(P.n_owned, nullptr);
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (P.kind[i] == kOutlet) of[i] = boundary_of(P, i);
+    const double ramp = 0.5 * K.h();
     const std::vector<Mean> mean =
         sum_over_pairs(P, nl, K, Mean{}, [&](Mean& m, int i, int j, const PairGeometry<D>& g) {
           const OpenBoundary<D>* b = of[i];
-          if (!b || (P.kind[j] != kFluid && P.kind[j] != kOutlet) || b->beyond(P.x[j]) >= b->beyond(P.x[i])) return;
-          m.sum += g.W * P.v[j], m.weight += g.W;
+          if (!b || (P.kind[j] != kFluid && P.kind[j] != kOutlet)) return;
+          const double nearer = std::min((b->beyond(P.x[i]) - b->beyond(P.x[j])) / ramp, 1.0);
+          if (nearer <= 0.0) return;
+          m.sum += (nearer * g.W) * P.v[j], m.weight += nearer * g.W;
         });
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (P.kind[i] == kOutlet && mean[i].weight > 0.0) P.v[i] = mean[i].sum / mean[i].weight;
+  }
+
+  // Transmissive outlets: on the outlet particles that just left the fluid, the mean pressure of the
+  // others around them; on every outlet particle, impedance times the change of its outlet's mean
+  // outward velocity since the last call (none the first time, or if it did not change). Positions,
+  // velocities, pressures and flags current on the ghosts. Returns whether it wrote any pressure.
+  // Collective.
+  bool transmit_outlet_pressure(Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) {
+    if (!has_outlet() || outlet_pressure_ != OutletPressure::Transmissive) return false;
+    std::vector<double>& entered = P.fields[entered_];
+    struct Mean {
+      double sum = 0.0, weight = 0.0;
+    };
+    const std::vector<Mean> around =
+        sum_over_pairs(P, nl, K, Mean{}, [&](Mean& m, int i, int j, const PairGeometry<D>& g) {
+          if (P.kind[i] != kOutlet || entered[i] == 0.0 || P.kind[j] != kOutlet || entered[j] != 0.0) return;
+          m.sum += g.W * P.p[j], m.weight += g.W;
+        });
+    const std::vector<double> outward = mean_outward_velocities(P, K.support_radius());
+    if (last_outward_.empty()) last_outward_ = outward;
+    for (std::size_t i = 0; i < P.n_owned; ++i) {
+      if (P.kind[i] != kOutlet) continue;
+      if (entered[i] != 0.0 && around[i].weight > 0.0) P.p[i] = around[i].sum / around[i].weight;
+      entered[i] = 0.0;
+      if (const OpenBoundary<D>* b = boundary_of(P, i)) {
+        const std::size_t k = static_cast<std::size_t>(b - b_.data());
+        P.p[i] += impedance_ * (outward[k] - last_outward_[k]);
+      }
+    }
+    last_outward_ = outward;
+    P.written(entered);
+    return true;
+  }
+
+  // Transmissive outlets: the relaxation of their pressure to the outlet's over a step, K = sigma c0 / L.
+  void relax_outlet_pressure(Particles<D>& P, double dt, double sigma_c0, const Vector<D>& box_length) const {
+    if (!has_outlet() || outlet_pressure_ != OutletPressure::Transmissive) return;
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      if (P.kind[i] == kOutlet)
+        if (const OpenBoundary<D>* b = boundary_of(P, i))
+          P.p[i] -= std::min(1.0, sigma_c0 / box_length[b->axis] * dt) * (P.p[i] - b->pressure);
+    P.written(P.p);
   }
 
   // The buffers' drift from t to t + dt: inlet particles at the prescribed velocity of the step's middle
@@ -184,7 +261,9 @@ template <int D> class OpenBoundaries {
       } else if (P.kind[i] == kFluid) {
         for (const OpenBoundary<D>& b : b_)
           if (b.type == OpenBoundary<D>::Type::Outlet && b.beyond(P.x[i]) >= 0.0) {
-            P.kind[i] = kOutlet, P.p[i] = b.pressure, P.rho[i] = density_of(b.pressure), changed = 1;
+            P.kind[i] = kOutlet, changed = 1;
+            if (outlet_pressure_ == OutletPressure::Fixed) P.p[i] = b.pressure, P.rho[i] = density_of(b.pressure);
+            else P.fields[entered_][i] = 1.0;
             out[0] += 1.0, out[1] += P.m[i];
             break;
           }
@@ -195,6 +274,7 @@ template <int D> class OpenBoundaries {
     if (!entered.empty()) changed = 1;
     MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
     if (!changed) return false;
+    if (outlet_pressure_ == OutletPressure::Transmissive) P.written(P.fields[entered_]);
     // New inlet particles, one buffer depth behind those that entered, with ids from next_id (the
     // ranks in order).
     long long first = 0;
@@ -237,15 +317,17 @@ template <int D> class OpenBoundaries {
   }
   long long next_id() const { return next_id_; }
 
-  // The state a restart needs: the next id and the fluxes so far.
+  // The state a restart needs: the next id, the fluxes so far and the outlets' last mean velocity.
   nlohmann::json state() const {
     return {{"next_id", next_id_},
             {"inflow", {{"particles", flux_.in_count}, {"mass", flux_.in_mass}}},
-            {"outflow", {{"particles", flux_.out_count}, {"mass", flux_.out_mass}}}};
+            {"outflow", {{"particles", flux_.out_count}, {"mass", flux_.out_mass}}},
+            {"outlet_mean_outward_velocity", last_outward_}};
   }
   void restore(const nlohmann::json& s) {
     if (!s.is_object()) return;
     next_id_ = s.value("next_id", next_id_);
+    last_outward_ = s.value("outlet_mean_outward_velocity", std::vector<double>());
     flux_.in_count = s["inflow"].value("particles", 0LL), flux_.in_mass = s["inflow"].value("mass", 0.0);
     flux_.out_count = s["outflow"].value("particles", 0LL), flux_.out_mass = s["outflow"].value("mass", 0.0);
   }
@@ -254,6 +336,33 @@ template <int D> class OpenBoundaries {
   std::vector<OpenBoundary<D>> b_;
   long long next_id_ = 0;
   OpenBoundaryFlux flux_;
+  // Per boundary, the mean outward velocity across its section, over the fluid and its own buffer's
+  // particles within `slab` of its plane, each weighted by (1 - distance / slab)^2 so that a particle's
+  // weight falls to zero where it joins or leaves the slab (zero for inlets). Collective.
+  std::vector<double> mean_outward_velocities(const Particles<D>& P, double slab) const {
+    std::vector<double> sums(2 * b_.size(), 0.0);
+    for (std::size_t i = 0; i < P.n_owned; ++i) {
+      if (P.kind[i] != kFluid && P.kind[i] != kOutlet) continue;
+      for (std::size_t k = 0; k < b_.size(); ++k) {
+        const OpenBoundary<D>& b = b_[k];
+        const double d = std::abs(b.beyond(P.x[i]));
+        if (b.type != OpenBoundary<D>::Type::Outlet || d >= slab || !b.in_section(P.x[i])) continue;
+        if (P.kind[i] == kOutlet && boundary_of(P, i) != &b) continue;
+        const double w = (1.0 - d / slab) * (1.0 - d / slab);
+        sums[2 * k] -= w * P.v[i].dot(b.inward()), sums[2 * k + 1] += w;
+      }
+    }
+    MPI_Allreduce(MPI_IN_PLACE, sums.data(), static_cast<int>(sums.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    std::vector<double> mean(b_.size(), 0.0);
+    for (std::size_t k = 0; k < b_.size(); ++k)
+      if (sums[2 * k + 1] > 0.0) mean[k] = sums[2 * k] / sums[2 * k + 1];
+    return mean;
+  }
+
+  OutletPressure outlet_pressure_ = OutletPressure::Fixed;
+  double impedance_ = 0.0;            // rho0 c0 (transmissive outlets)
+  FieldId<double> entered_;           // 1: just left the fluid (transmissive outlets)
+  std::vector<double> last_outward_;  // per boundary, at the last transmit_outlet_pressure (empty: none yet)
 };
 
 }  // namespace sph

@@ -162,6 +162,7 @@ template <int D> void TimeLoop<D>::finish(const std::string& status, const std::
   if (s_.disc.open.any()) {
     j["conservation"]["open_boundaries"] = s_.disc.open.state();
     j["conservation"]["open_boundaries"].erase("next_id");
+    j["conservation"]["open_boundaries"].erase("outlet_mean_outward_velocity");
     j["n_particles_final"] = s_.P.n_global;
   }
   if (s_.disc.bodies.any_free()) j["free_bodies"] = free_body_states(case_.body_names(), s_.disc.bodies);
