@@ -159,8 +159,8 @@ template <int D> class OpenBoundaries {
   // support outwards a step, so that particles placed in the buffer at rest, or that left while the flow
   // was slower, do not block the outlet. A neighbour's weight grows from zero as it lies nearer, over
   // h / 2: a particle beside it in the same lattice column, its distance from the plane equal but for
-  // round-off, must not count on one run and not on another (the choice moved a 2-rank run's answer
-  // by 2e-5 from the 1-rank run's). Positions and velocities current on the ghosts; the caller
+  // round-off, must not count on one run and not on another (docs/verification/open_boundaries.md).
+  // Positions and velocities current on the ghosts; the caller
   // refreshes the ghosts' velocities after.
   void extrapolate_outlet_velocity(Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K) const {
     if (!has_outlet()) return;
@@ -195,11 +195,15 @@ template <int D> class OpenBoundaries {
     struct Mean {
       double sum = 0.0, weight = 0.0;
     };
-    const std::vector<Mean> around =
-        sum_over_pairs(P, nl, K, Mean{}, [&](Mean& m, int i, int j, const PairGeometry<D>& g) {
-          if (P.kind[i] != kOutlet || entered[i] == 0.0 || P.kind[j] != kOutlet || entered[j] != 0.0) return;
-          m.sum += g.W * P.p[j], m.weight += g.W;
-        });
+    // The pair loop only on a step after which some particle entered (on any rank): most steps none did.
+    int any_entered = std::any_of(entered.begin(), entered.begin() + P.n_owned, [](double e) { return e != 0.0; });
+    MPI_Allreduce(MPI_IN_PLACE, &any_entered, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+    std::vector<Mean> around;
+    if (any_entered)
+      around = sum_over_pairs(P, nl, K, Mean{}, [&](Mean& m, int i, int j, const PairGeometry<D>& g) {
+        if (P.kind[i] != kOutlet || entered[i] == 0.0 || P.kind[j] != kOutlet || entered[j] != 0.0) return;
+        m.sum += g.W * P.p[j], m.weight += g.W;
+      });
     const std::vector<double> outward = mean_outward_velocities(P, K.support_radius());
     if (last_outward_.empty()) last_outward_ = outward;
     for (std::size_t i = 0; i < P.n_owned; ++i) {

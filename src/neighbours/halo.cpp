@@ -144,7 +144,7 @@ template <int D> void Halo<D>::update_all(Particles<D>& P) const {
   update(P.gid);
   update(P.id);
   // And the registry's: a new ghost layer holds rows of other particles, or zeros, until they are
-  // copied (a 2-rank run read an outlet's stale flags on its ghosts when they were not).
+  // copied.
   P.fields.for_each_column([this](auto& column) { update(column); });
   P.stale = StaleGhosts<D>{};
 }
