@@ -108,6 +108,7 @@ template <int D> class PressurePoisson {
   void remove_net_source(const std::vector<double>& source, const std::vector<double>& mass, PetscScalar* b,
                          PetscInt n) const;
   void remove_null_part();
+  void drop_guess_the_divergence_test_fails();
   void hand_preconditioner_matrix_to_hypre();  // the lumped matrix, BoomerAMG's, in hypre's format
   void view_solve() const;
   void announce_solve(const char* which) const;
