@@ -1,6 +1,7 @@
 // The ISPH solver's options (-help's "ISPH projection solver" block), their checks, and its
 // description in summary.json. The step: isph_solver.cpp.
 #include "solvers/isph/isph_solver.hpp"
+#include "src/boundary/wall_options.hpp"
 #include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 #include "src/sph/step_limits.hpp"
@@ -15,7 +16,8 @@ const char* const surface_condition_names[] = {"node", "particle"};
 struct RawOptions {
   PetscReal cfl, particle_divergence_rate;
   PetscInt gradient, operators, viscous_laplacian, projection_corrections, wall_velocity, surface_condition;
-  PetscBool wall_impact, wall_impact_set, wall_bounding, wall_bounding_set;
+  PetscBool wall_impact, wall_impact_set;
+  WallOptions walls;
 };
 
 PetscErrorCode read_options(RawOptions* o) {
@@ -58,10 +60,7 @@ PetscErrorCode read_options(RawOptions* o) {
                         "(default off: once per step, it fed the flow energy as the step fell; -wall_bounding "
                         "stops such fluid instead)",
                         o->wall_impact, &o->wall_impact, &o->wall_impact_set, OptionLevel::expert));
-  PetscCall(option_bool(PetscOptionsObject, "-wall_bounding",
-                        "Put fluid particles found behind a wall's face back on it, their velocity into the "
-                        "wall removed: a stop that only takes energy away (default: on with a free surface)",
-                        o->wall_bounding, &o->wall_bounding, &o->wall_bounding_set));
+  PetscCall(read_wall_options(PetscOptionsObject, &o->walls));
   PetscCall(option_choice(PetscOptionsObject, "-free_surface_condition",
                           "Where p = 0 holds: node (at the surface, dx/2 beyond each surface particle, which "
                           "keeps its continuity equation) or particle (on the surface particles, Lind et al. 2012)",
@@ -73,18 +72,18 @@ PetscErrorCode read_options(RawOptions* o) {
 }  // namespace
 
 template <int D> void IsphSolver<D>::set_from_options() {
-  RawOptions o{cfl_,
-               particle_divergence_rate_,
-               static_cast<PetscInt>(gradient_),
-               static_cast<PetscInt>(operators_),
-               static_cast<PetscInt>(viscous_laplacian_),
-               projection_corrections_,
-               source_walls_at_rest_ ? 1 : 0,
-               static_cast<PetscInt>(surface_condition_),
-               PETSC_FALSE,
-               PETSC_FALSE,
-               wall_bounding_option_ > 0 ? PETSC_TRUE : PETSC_FALSE,
-               PETSC_FALSE};
+  RawOptions o{
+      cfl_,
+      particle_divergence_rate_,
+      static_cast<PetscInt>(gradient_),
+      static_cast<PetscInt>(operators_),
+      static_cast<PetscInt>(viscous_laplacian_),
+      projection_corrections_,
+      source_walls_at_rest_ ? 1 : 0,
+      static_cast<PetscInt>(surface_condition_),
+      PETSC_FALSE,
+      PETSC_FALSE,
+      {wall_bounding_option_ > 0 ? PETSC_TRUE : PETSC_FALSE, PETSC_FALSE, static_cast<PetscInt>(ppe_.wall_pressure)}};
   SPH_PETSC(read_options(&o));
   require(o.cfl > 0 && o.cfl <= 1.0, kAdvectiveCfl, "in (0, 1]", o.cfl);
   require(o.particle_divergence_rate >= 0 || o.particle_divergence_rate == -1, "-ppe_particle_divergence_rate",
@@ -95,8 +94,9 @@ template <int D> void IsphSolver<D>::set_from_options() {
   viscous_laplacian_ = static_cast<ViscousLaplacian>(o.viscous_laplacian);
   projection_corrections_ = o.projection_corrections, source_walls_at_rest_ = o.wall_velocity == 1;
   surface_condition_ = static_cast<SurfaceCondition>(o.surface_condition);
+  ppe_.wall_pressure = static_cast<WallPressure>(o.walls.pressure);
   wall_impact_option_ = o.wall_impact_set ? (o.wall_impact ? 1 : 0) : -1;
-  if (o.wall_bounding_set) wall_bounding_option_ = o.wall_bounding ? 1 : 0;
+  if (o.walls.bounding_set) wall_bounding_option_ = o.walls.bounding ? 1 : 0;
   shifting_model_.set_from_options();
   free_surface_model_.set_from_options();
   ppe_.expect_nonsymmetric(operators_ == OperatorSet::Consistent);
@@ -115,7 +115,8 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
   models["time_integration"] = "kick-drift-kick, projection as the closing kick";
   if (walls_)
     models["walls"] = {{"model", "AdamiWall"},
-                       {"ppe", phys.free_surface ? "extrapolation rows" : "extrapolation rows, diagonal regularised"}};
+                       {"ppe", phys.free_surface ? "extrapolation rows" : "extrapolation rows, diagonal regularised"},
+                       {"pressure", wall_pressure_names[static_cast<int>(ppe_.wall_pressure)]}};
   if (phys.free_surface) {
     models["free_surface"] = free_surface_model_.describe();
     models["free_surface"]["condition"] = surface_condition_names[static_cast<int>(surface_condition_)];

@@ -272,7 +272,7 @@ template <int D> void IsphSolver<D>::prepare_wall_impact(const std::vector<Vecto
   j.predicted = u_star;
   for (std::size_t i = 0; i < P.size(); ++i)
     if (P.kind[i] != kFluid) j.predicted[i] = P.v[i];
-  j.wall_normals = AdamiWall<D>::normals(P, list, K, AdamiWall<D>::stencil(P, list, K));
+  j.wall_normals = AdamiWall<D>::normals(P, disc_->neighbourhood, K, AdamiWall<D>::stencil(P, list, K));
   // An impact is a free surface meeting a wall. Fluid already against a wall moves along it, and the
   // term on its small normal velocity (zero at the wall, O(dx) at the first particles) damps smooth
   // flows along walls (docs/verification/free_surface.md, the standing wave).

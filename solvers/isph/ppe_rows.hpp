@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "src/boundary/adami_wall.hpp"
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/pair_terms.hpp"
 
@@ -51,7 +52,8 @@ struct PpeRows {
                               const Vector<D>& body_force, const std::vector<char>& dirichlet,
                               const std::vector<LaplacianCorrection<D>>* consistent = nullptr,
                               const SurfaceNodes<D>* nodes = nullptr, const WallImpact<D>* impact = nullptr,
-                              const std::vector<Vector<D>>* wall_acceleration = nullptr);
+                              const std::vector<Vector<D>>* wall_acceleration = nullptr,
+                              const typename AdamiWall<D>::Continuation* walls = nullptr);
   // Gives the rows' storage back (their capacity too).
   void release() { *this = PpeRows(); }
 
@@ -61,12 +63,13 @@ struct PpeRows {
   template <int D> void add_pairs(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                                   const Vector<D>& body_force, const std::vector<char>& dirichlet,
                                   const std::vector<LaplacianCorrection<D>>* consistent, const WallImpact<D>* impact,
-                                  const std::vector<Vector<D>>* wall_acceleration);
+                                  const std::vector<Vector<D>>* wall_acceleration,
+                                  const typename AdamiWall<D>::Continuation* walls);
   template <int D> void finish_rows(const Particles<D>& P, const Kernel<D>& K, const std::vector<char>& dirichlet,
                                     const std::vector<LaplacianCorrection<D>>* consistent,
                                     const SurfaceNodes<D>* nodes);
   std::vector<PetscInt> dlen_, olen_;  // entries filled per row
-  std::vector<double> head_;           // wall rows: sum over fluid neighbours of W_wf rho_f g . r_wf
+  std::vector<double> head_;           // wall rows: sum over fluid neighbours of W_wf rho_f head_wf
 };
 
 namespace detail {
@@ -118,13 +121,13 @@ template <int D> bool owned_column(const Particles<D>& P, int j) {
 
 }  // namespace detail
 
-template <int D> void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                                     const Vector<D>& body_force, const std::vector<char>& dirichlet,
-                                     const std::vector<LaplacianCorrection<D>>* consistent,
-                                     const SurfaceNodes<D>* nodes, const WallImpact<D>* impact,
-                                     const std::vector<Vector<D>>* wall_acceleration) {
+template <int D>
+void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const Vector<D>& body_force,
+                    const std::vector<char>& dirichlet, const std::vector<LaplacianCorrection<D>>* consistent,
+                    const SurfaceNodes<D>* nodes, const WallImpact<D>* impact,
+                    const std::vector<Vector<D>>* wall_acceleration, const typename AdamiWall<D>::Continuation* walls) {
   lay_out(P, nl, K, dirichlet);
-  add_pairs(P, nl, K, body_force, dirichlet, consistent, impact, wall_acceleration);
+  add_pairs(P, nl, K, body_force, dirichlet, consistent, impact, wall_acceleration, walls);
   finish_rows(P, K, dirichlet, consistent, nodes);
 }
 
@@ -153,7 +156,8 @@ template <int D> void PpeRows::lay_out(const Particles<D>& P, const NeighbourLis
 template <int D> void PpeRows::add_pairs(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                                          const Vector<D>& body_force, const std::vector<char>& dirichlet,
                                          const std::vector<LaplacianCorrection<D>>* consistent,
-                                         const WallImpact<D>* impact, const std::vector<Vector<D>>* wall_acceleration) {
+                                         const WallImpact<D>* impact, const std::vector<Vector<D>>* wall_acceleration,
+                                         const typename AdamiWall<D>::Continuation* walls) {
   const PetscInt first = P.first_gid;
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     if (P.gid[j] == P.gid[i]) return;
@@ -166,8 +170,13 @@ template <int D> void PpeRows::add_pairs(const Particles<D>& P, const NeighbourL
     if (detail::owned_column(P, j)) dj[di[i] + dlen_[i]] = P.gid[j] - first, da[di[i] + dlen_[i]++] = value;
     else oj[oi[i] + olen_[i]] = P.gid[j], oa[oi[i] + olen_[i]++] = value;
     if (extrapolates_pressure(P.kind[i])) {
-      // A moving body's wall rows take its acceleration: (g - a_w) . r_wf (Adami et al. 2012).
-      double head = wall_acceleration ? (body_force - (*wall_acceleration)[i]).dot(g.rij) : body_force.dot(g.rij);
+      // The fluid's pressure continued to the wall (AdamiWall::Continuation); a moving body's wall rows
+      // take its acceleration, g - a_w (Adami et al. 2012).
+      const Vector<D> g_eff = wall_acceleration ? Vector<D>(body_force - (*wall_acceleration)[i]) : body_force;
+      double head =
+          walls && !walls->normal.empty()
+              ? walls->head(static_cast<std::size_t>(i), static_cast<std::size_t>(j), g_eff, g.rij, P.rho[j]) / P.rho[j]
+              : g_eff.dot(g.rij);
       // A surface particle predicted to move towards the wall at u_n (beyond the closing kick's tau g,
       // which the hydrostatic head holds) needs the normal pressure gradient rho u_n / tau to stop.
       if (impact && (*impact->surface)[j] != 0.0) {
@@ -198,7 +207,7 @@ void PpeRows::finish_rows(const Particles<D>& P, const Kernel<D>& K, const std::
       PetscScalar* o = &oa[oi[i]];
       const double diag = d[0];
       if (extrapolates_pressure(P.kind[i])) {
-        // Adami et al. (2012), scaled like a fluid row: s (p_w - sum_f w_f p_f) = s sum_f w_f rho_f g.r_wf
+        // Adami et al. (2012), scaled like a fluid row: s (p_w - sum_f w_f p_f) = s sum_f w_f rho_f head_f
         double sumW = 0.0;
         for (PetscInt k = 1; k < dlen_[i]; ++k) sumW += d[k];
         for (PetscInt k = 0; k < olen_[i]; ++k) sumW += o[k];

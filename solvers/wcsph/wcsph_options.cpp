@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "solvers/wcsph/wcsph_solver.hpp"
+#include "src/boundary/wall_options.hpp"
 #include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
 #include "src/sph/step_limits.hpp"
@@ -25,7 +26,7 @@ struct RawOptions {
   PetscBool diffusion_set;
   PetscBool prepared_start;
   PetscBool diffusion_at_surface;
-  PetscBool wall_bounding, wall_bounding_set;
+  WallOptions walls;
 };
 
 PetscErrorCode read_options(RawOptions* o) {
@@ -98,40 +99,35 @@ PetscErrorCode read_options(RawOptions* o) {
                         "implies, so that it excites no sound of O(Mach) pressure (cases with an exact "
                         "solution: taylor_green)",
                         o->prepared_start, &o->prepared_start, nullptr));
-  PetscCall(option_bool(PetscOptionsObject, "-wall_bounding",
-                        "Put fluid particles found behind a wall's face back on it, their velocity into the "
-                        "wall removed: walls that hold without the ripple of the kernel sum over their "
-                        "particles (a flat one, as the quintic spline's at -h_over_dx 0.93, lets fluid through; "
-                        "default: on with a free surface)",
-                        o->wall_bounding, &o->wall_bounding, &o->wall_bounding_set));
+  PetscCall(read_wall_options(PetscOptionsObject, &o->walls));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
 }  // namespace
 
 template <int D> void WcsphSolver<D>::set_from_options() {
-  RawOptions o{c0_,
-               c0_factor_,
-               eos_.gamma,
-               cfl_,
-               delta_,
-               av_.alpha,
-               av_.beta,
-               av_.epsilon,
-               outlet_relaxation_,
-               static_cast<PetscInt>(density_),
-               static_cast<PetscInt>(diffusion_),
-               static_cast<PetscInt>(operators_),
-               static_cast<PetscInt>(viscous_laplacian_),
-               static_cast<PetscInt>(gradient_),
-               static_cast<PetscInt>(outlet_pressure_),
-               closed_volume_option_ > 0 ? PETSC_TRUE : PETSC_FALSE,
-               PETSC_FALSE,
-               PETSC_FALSE,
-               prepared_start_ ? PETSC_TRUE : PETSC_FALSE,
-               diffusion_at_surface_ ? PETSC_TRUE : PETSC_FALSE,
-               wall_bounding_option_ > 0 ? PETSC_TRUE : PETSC_FALSE,
-               PETSC_FALSE};
+  RawOptions o{
+      c0_,
+      c0_factor_,
+      eos_.gamma,
+      cfl_,
+      delta_,
+      av_.alpha,
+      av_.beta,
+      av_.epsilon,
+      outlet_relaxation_,
+      static_cast<PetscInt>(density_),
+      static_cast<PetscInt>(diffusion_),
+      static_cast<PetscInt>(operators_),
+      static_cast<PetscInt>(viscous_laplacian_),
+      static_cast<PetscInt>(gradient_),
+      static_cast<PetscInt>(outlet_pressure_),
+      closed_volume_option_ > 0 ? PETSC_TRUE : PETSC_FALSE,
+      PETSC_FALSE,
+      PETSC_FALSE,
+      prepared_start_ ? PETSC_TRUE : PETSC_FALSE,
+      diffusion_at_surface_ ? PETSC_TRUE : PETSC_FALSE,
+      {wall_bounding_option_ > 0 ? PETSC_TRUE : PETSC_FALSE, PETSC_FALSE, static_cast<PetscInt>(wall_pressure_)}};
   SPH_PETSC(read_options(&o));
   require(o.c0 >= 0, "-c0", "non-negative", o.c0);
   require(o.c0_factor > 0, "-c0_factor", "positive", o.c0_factor);
@@ -145,7 +141,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   if (o.closed_volume_set) closed_volume_option_ = o.closed_volume ? 1 : 0;
   prepared_start_ = o.prepared_start;
   diffusion_at_surface_ = o.diffusion_at_surface;
-  if (o.wall_bounding_set) wall_bounding_option_ = o.wall_bounding ? 1 : 0;
+  if (o.walls.bounding_set) wall_bounding_option_ = o.walls.bounding ? 1 : 0;
   c0_ = o.c0, c0_factor_ = o.c0_factor, eos_.gamma = o.gamma, cfl_ = o.cfl, delta_ = o.delta;
   av_.alpha = o.alpha, av_.beta = o.beta, av_.epsilon = o.epsilon;
   density_ = static_cast<DensityMethod>(o.density);
@@ -153,6 +149,7 @@ template <int D> void WcsphSolver<D>::set_from_options() {
   viscous_laplacian_ = static_cast<ViscousLaplacian>(o.viscous_laplacian);
   gradient_ = static_cast<WcsphGradient>(o.gradient);
   outlet_pressure_ = static_cast<OutletPressure>(o.outlet), outlet_relaxation_ = o.outlet_relaxation;
+  wall_pressure_ = static_cast<WallPressure>(o.walls.pressure);
   diffusion_ = static_cast<DensityDiffusion>(o.diffusion);
   diffusion_chosen_ = o.diffusion_set;
   if (delta_ == 0.0) diffusion_ = DensityDiffusion::None;
@@ -181,7 +178,8 @@ template <int D> nlohmann::json WcsphSolver<D>::describe() const {
          smoothing_error_description(operators_ == OperatorSet::Consistent &&
                                      viscous_laplacian_ == ViscousLaplacian::Fourth && !phys.free_surface)}};
   if (phys.has_body_force()) models["body_force"] = phys.describe()["gravity"];
-  if (walls_) models["walls"] = {{"model", "AdamiWall"}};
+  if (walls_)
+    models["walls"] = {{"model", "AdamiWall"}, {"pressure", wall_pressure_names[static_cast<int>(wall_pressure_)]}};
   if (disc_->open.has_outlet()) {
     models["outlets"] = {{"pressure", outlet_names[static_cast<int>(outlet_pressure_)]}};
     if (outlet_pressure_ == OutletPressure::Transmissive) models["outlets"]["relaxation_sigma"] = outlet_relaxation_;

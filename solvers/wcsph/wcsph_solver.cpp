@@ -161,8 +161,7 @@ template <int D> void WcsphSolver<D>::update_pressure() {
   // Adami et al. (2012): wall (and inlet) pressure extrapolated from the fluid, their density from the EOS.
   const Neighbourhood<D>& nh = disc_->neighbourhood;
   const std::vector<Vector<D>> wall_acceleration = disc_->bodies.accelerations(P, disc_->bodies.time());
-  AdamiWall<D>::extrapolate_pressure(AdamiWall<D>::stencil(P, nh.list(), disc_->kernel), P, disc_->physics.gravity,
-                                     &wall_acceleration);
+  AdamiWall<D>::extrapolate_pressure(P, nh, disc_->kernel, disc_->physics.gravity, &wall_acceleration, wall_pressure_);
   P.written(P.p);
   const bool outlets = disc_->open.transmit_outlet_pressure(P, nh.list(), disc_->kernel);
   for (std::size_t i = 0; i < P.n_owned; ++i)

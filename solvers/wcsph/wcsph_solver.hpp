@@ -125,6 +125,7 @@ template <int D> class WcsphSolver : public Solver<D> {
   bool prepared_start_ = false;        // -prepared_start: the case's slow-manifold velocity added at set-up
   bool diffusion_at_surface_ = false;  // -density_diffusion_at_surface
   int wall_bounding_option_ = -1;      // -wall_bounding: -1 unset (on with a free surface), 0 off, 1 on
+  WallPressure wall_pressure_ = WallPressure::Adami;  // -wall_pressure
   bool bound_to_walls_ = false;
   WallBounding<D> wall_bounding_;
   long bounded_ = 0;  // fluid particles put back on a wall's face, summed over the steps

@@ -20,6 +20,16 @@
 
 namespace sph {
 
+// -wall_pressure: how a wall particle's pressure continues the fluid's along the wall (AdamiWall).
+enum class WallPressure { Adami, Continued };
+inline const char* const wall_pressure_names[] = {"adami", "continued"};
+inline constexpr const char* wall_pressure_help =
+    "How the walls' pressure continues the fluid's: adami (the fluid's pressure plus rho (g - a_w) . r, "
+    "Adami et al. 2012: the fluid taken to accelerate with the wall along it too, so a lone particle on "
+    "a side wall is held up) or continued (rho (g - a_w) across the wall, the fluid's own pressure gradient "
+    "along it: a lone particle falls; the fluid's pressure error goes into the walls, and ISPH's 3D dam "
+    "break runs ahead; docs/verification/free_surface.md)";
+
 template <int D> struct AdamiWall {
   // Shepard weights of wall particle w: the fluid neighbours f and W_wf / sum_f W_wf.
   struct Stencil {
@@ -72,31 +82,104 @@ template <int D> struct AdamiWall {
     return n;
   }
 
-  // The face normals, and where they vanish (the middle of a thin wall) the direction from the wall
-  // particle to the Shepard centroid of its fluid neighbours. Zero for walls with no fluid neighbour.
-  // Owned particles.
-  static std::vector<Vector<D>> normals(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+  // The walls' unit normals into the fluid, for owned wall particles with fluid in reach (zero
+  // elsewhere): the face normals; where they vanish (the middle of a thin wall, or of a wall cut to the
+  // layers the kernel needs) the normal lines of the wall neighbours, sum_j W_wj n_j (n_j . t), each
+  // turned towards this particle's fluid t (the direction to the Shepard centroid of its fluid), and
+  // t itself where no neighbour has a face. Without the neighbours' lines a deep layer beside a lone
+  // particle took the direction to that particle as the wall's normal.
+  static std::vector<Vector<D>> normals(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
                                         const Stencil& s) {
-    const std::vector<Vector<D>> face = face_normals(P, nl, K, [&](int j) { return P.m[j] / P.rho[j]; });
+    std::vector<Vector<D>> face = face_normals(P, nh.list(), K, [&](int j) { return P.m[j] / P.rho[j]; });
+    nh.halo().update(face);
+    std::vector<Vector<D>> towards(P.n_owned, Vector<D>::Zero());
+    for (std::size_t w = 0; w < P.n_owned; ++w)
+      for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) towards[w] -= s.weight[k] * s.r_wf[k];
+    const std::vector<Vector<D>> borrowed = sum_over_pairs(
+        P, nh.list(), K, Vector<D>(Vector<D>::Zero()),
+        [&](Vector<D>& sum, int w, int j, const PairGeometry<D>& pg) {
+          if (P.kind[j] == kWall && face[w].squaredNorm() == 0.0) sum += pg.W * face[j] * face[j].dot(towards[w]);
+        },
+        Rows::Walls);
     std::vector<Vector<D>> n(P.n_owned, Vector<D>::Zero());
     for (std::size_t w = 0; w < P.n_owned; ++w) {
       if (P.kind[w] != kWall || s.offset[w] == s.offset[w + 1]) continue;
-      if (face[w].squaredNorm() > 0.0) {
-        n[w] = face[w];
-      } else {
-        Vector<D> towards = Vector<D>::Zero();
-        for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) towards -= s.weight[k] * s.r_wf[k];
-        if (towards.norm() > 0.0) n[w] = towards.normalized();
-      }
+      const Vector<D>& choice = face[w].squaredNorm() > 0.0 ? face[w]
+                                : borrowed[w].norm() > 0.0  ? borrowed[w]
+                                                            : towards[w];
+      if (choice.norm() > 0.0) n[w] = choice.normalized();
     }
     return n;
+  }
+
+  // How a wall particle continues the fluid's pressure to its own place: from each fluid neighbour f,
+  // p_f + grad p . r_wf. Across the wall the momentum balance gives grad p . n = rho (g - a_w) . n,
+  // since the fluid's normal acceleration is the wall's; along the wall the fluid accelerates on its
+  // own, so the change there is the fluid's own pressure gradient, not rho g . t as in Adami et al.
+  // (2012), who take the fluid to accelerate with the wall along it too. A lone particle on a side wall
+  // then feels no hydrostatic column that is not there; the price is the fluid's own pressure error,
+  // carried into the walls (-wall_pressure continued; docs/verification/free_surface.md, "Walls that
+  // continue the fluid's own pressure").
+  struct Continuation {
+    std::vector<Vector<D>> normal;    // owned walls' n into the fluid (zero: Adami's relation as published)
+    std::vector<Vector<D>> gradient;  // fluid particles' own pressure gradient, owned and ghost
+
+    // The head from fluid neighbour f to wall w, rho_f g_eff . r_wf along the normal and G_f along the
+    // wall; inlets, and walls with no normal, take rho_f g_eff . r_wf whole.
+    double head(std::size_t w, std::size_t f, const Vector<D>& g_eff, const Vector<D>& r_wf, double rho_f) const {
+      if (w >= normal.size() || normal[w].squaredNorm() == 0.0) return rho_f * g_eff.dot(r_wf);
+      const Vector<D>& n = normal[w];
+      const double across = n.dot(r_wf);
+      return rho_f * g_eff.dot(n) * across + gradient[f].dot(r_wf - across * n);
+    }
+  };
+
+  // The fluid's own pressure gradient (of `pressure`, owned and ghost values) at every fluid particle
+  // with a wall in reach, from its fluid neighbours alone: B^-1 sum_j V_j (p_j - p_i) grad W_ij with
+  // B = sum_j V_j grad W_ij (x_j - x_i)^T, exact for a linear field. B^-1 is taken as
+  // B^T (B B^T + eps^2)^-1, so what the neighbours cannot resolve (all of it for a lone particle, the
+  // normal of a row) is zero, continuously. Zero elsewhere; owned and ghost particles.
+  static std::vector<Vector<D>> fluid_pressure_gradient(const Particles<D>& P, const Neighbourhood<D>& nh,
+                                                        const Kernel<D>& K, const std::vector<double>& pressure) {
+    struct Sums {
+      Tensor<D> B = Tensor<D>::Zero();
+      Vector<D> b = Vector<D>::Zero();
+      bool wall = false;
+    };
+    const std::vector<Sums> sums = sum_over_pairs(
+        P, nh.list(), K, Sums(),
+        [&](Sums& s, int i, int j, const PairGeometry<D>& pg) {
+          if (P.kind[j] != kFluid) {
+            s.wall |= P.kind[j] == kWall;
+            return;
+          }
+          const double V = P.m[j] / P.rho[j];
+          s.B -= V * pg.gradW * pg.rij.transpose();
+          s.b += V * (pressure[j] - pressure[i]) * pg.gradW;
+        },
+        Rows::Fluid);
+    constexpr double eps2 = 1e-6;  // against B ~ I in the bulk, I / 2 at a surface
+    std::vector<Vector<D>> G(P.n_owned, Vector<D>::Zero());
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      if (sums[i].wall) {
+        const Tensor<D>& B = sums[i].B;
+        G[i] = B.transpose() * (B * B.transpose() + eps2 * Tensor<D>::Identity()).inverse() * sums[i].b;
+      }
+    nh.halo().update(G);
+    return G;
+  }
+
+  // The continuation of the walls of P, the fluid's gradient taken from `pressure`.
+  static Continuation continuation(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
+                                   const std::vector<double>& pressure) {
+    return {normals(P, nh, K, stencil(P, nh.list(), K)), fluid_pressure_gradient(P, nh, K, pressure)};
   }
 
   // Wall pressure from the fluid (for explicit schemes; ISPH puts the same relation into its matrix),
   // and an inlet buffer's (src/boundary/open_boundaries.hpp).
   // acceleration: per owned particle, the walls' own a_w (moving bodies); null: every wall at rest.
-  static void extrapolate_pressure(const Stencil& s, Particles<D>& P, const Vector<D>& body_force,
-                                   const std::vector<Vector<D>>* acceleration = nullptr) {
+  static void extrapolate_pressure(const Stencil& s, const Continuation& c, Particles<D>& P,
+                                   const Vector<D>& body_force, const std::vector<Vector<D>>* acceleration = nullptr) {
     for (std::size_t w = 0; w < P.n_owned; ++w) {
       if (!extrapolates_pressure(P.kind[w])) continue;
       const Vector<D> g =
@@ -104,10 +187,19 @@ template <int D> struct AdamiWall {
       double p = 0.0;
       for (std::size_t k = s.offset[w]; k < s.offset[w + 1]; ++k) {
         const int f = s.fluid[k];
-        p += s.weight[k] * (P.p[f] + P.rho[f] * g.dot(s.r_wf[k]));
+        p += s.weight[k] * (P.p[f] + c.head(w, static_cast<std::size_t>(f), g, s.r_wf[k], P.rho[f]));
       }
       P.p[w] = p;
     }
+  }
+
+  // The same from the neighbourhood alone (-wall_pressure continued: the fluid's gradient from its
+  // current pressure).
+  static void extrapolate_pressure(Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
+                                   const Vector<D>& body_force, const std::vector<Vector<D>>* acceleration = nullptr,
+                                   WallPressure model = WallPressure::Adami) {
+    const Continuation c = model == WallPressure::Continued ? continuation(P, nh, K, P.p) : Continuation();
+    extrapolate_pressure(stencil(P, nh.list(), K), c, P, body_force, acceleration);
   }
 
   // Velocity seen by the viscous term: the fluid's own, and the no-slip mirror on walls, for the

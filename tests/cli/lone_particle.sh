@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# A lone fluid particle beside a vertical no-slip wall falls: the walls' pressure continues the fluid's
+# own pressure along the wall (src/boundary/adami_wall.hpp), so no hydrostatic column that is not there
+# holds it up, and the pressure does no work on it (before: ISPH's particle hung, rising 6e-3 after its
+# first step; WCSPH's fell with a fifth of gravity's work taken by the pressure). Both schemes with the
+# same kernel share the viscous operator, so they reach the same terminal speed, where the wall's drag
+# takes what gravity gives (docs/verification/free_surface.md, "Spray, and particles that leave").
+#   usage: lone_particle.sh <sph executable> <source dir>
+set -u
+sph="$1"; src="$2"; tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+fail=0
+source "$(dirname "$0")/lib/expect.sh"
+cat > "$tmp/lone.yaml" <<'YAML'
+dimension: 2
+box: [-0.3, 1.3, -0.3, 1.3]
+physics: {gravity: [0, -1], nu: 0.01, rho0: 1, free_surface: true, t_end: 1.5}
+regions:
+  - {role: wall, shape: {difference: [{box: [-1, 2, -1, 2]}, {box: [0, 1, 0, 2]}]}}
+  - {role: fluid, shape: {box: [0, 0.05, 0.6, 0.65]}, pressure: 0}
+YAML
+common="-case scene -scene_file $tmp/lone.yaml -nx 20 -progress 0 -threads 1 -output_interval 0 -checkpoint_interval 0 -wall_pressure continued"
+expect_ok $common -solver isph -output_dir "$tmp/isph"
+expect_ok $common -solver wcsph -kernel wendland_c2 -output_dir "$tmp/wcsph"
+expect_ok $common -solver wcsph -output_dir "$tmp/wcsph-quintic"  # its free-surface default kernel
+
+/usr/bin/python3 - "$tmp" <<'PY' || fail=1
+import csv, sys
+tmp = sys.argv[1]
+ok = True
+def check(cond, what):
+    global ok
+    print(("ok: " if cond else "FAIL: ") + what); ok &= bool(cond)
+mass = 0.05 ** 2
+speed = {}
+for run in ("isph", "wcsph", "wcsph-quintic"):
+    rows = list(csv.DictReader(open(f"{tmp}/{run}/timeseries.csv")))
+    last = rows[-1]
+    v = -float(last["momentum_y"]) / mass
+    earlier = min(rows, key=lambda r: abs(float(r["t"]) - 1.0))
+    v_earlier = -float(earlier["momentum_y"]) / mass
+    pressure, viscous = float(last["work_pressure"]), float(last["work_viscous"])
+    speed[run] = v
+    print(f"{run}: speed {v:.5f} at t = {last['t']} ({v_earlier:.5f} at t = 1), pressure's work {pressure:.2e}, "
+          f"viscous {viscous:.2e}")
+    check(v > 0.1, f"{run}: the particle falls (speed {v:.4f})")
+    check(abs(pressure) < 1e-4 * abs(viscous), f"{run}: the pressure does no work on it ({pressure:.1e} against {viscous:.1e})")
+    check(abs(v - v_earlier) < 0.02 * v, f"{run}: it has reached its terminal speed ({v_earlier:.5f} -> {v:.5f})")
+# The terminal speed is g over the viscous drag's rate, the same operator and kernel in both schemes.
+check(abs(speed["isph"] - speed["wcsph"]) < 0.005 * speed["isph"],
+      f"ISPH and WCSPH with one kernel fall at one speed ({speed['isph']:.5f}, {speed['wcsph']:.5f})")
+sys.exit(0 if ok else 1)
+PY
+exit $fail
