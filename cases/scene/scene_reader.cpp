@@ -2,6 +2,8 @@
 
 #include "cases/scene/scene_reader.hpp"
 
+#include <yaml-cpp/depthguard.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -23,6 +25,12 @@ YAML::Node Reader::load(const std::string& text) const {
   YAML::Node root;
   try {
     root = YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp stops at a fixed depth and says only "bad file".
+    throw Error("scene file '" + path_ + "': line " + std::to_string(e.mark.line + 1) + ": nested " +
+                std::to_string(e.depth()) +
+                " levels deep, deeper than the YAML reader takes; give a union's or a difference's shapes as one "
+                "list instead of nesting them");
   } catch (const YAML::ParserException& e) {
     throw Error("scene file '" + path_ + "': line " + std::to_string(e.mark.line + 1) + ", column " +
                 std::to_string(e.mark.column + 1) + ": YAML syntax error (" + e.msg + "); fix the syntax there");

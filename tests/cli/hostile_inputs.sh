@@ -75,6 +75,11 @@ printf 'dimension: 2\nbox: [0, 1, 0, 1]\ndimension: 3\nregions:\n  - {role: flui
 expect_error "line 3: key 'dimension' is given a second time in one mapping \(first on line 1\); keep one" -case scene -scene_file "$tmp/twice.yaml" -nx 10 -output_dir "$tmp/o3"
 printf 'dimension: 2\nbox: [0, 1, 0, 1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5], velocity: [1, 0], velocity: [0, 1]}\n' >"$tmp/twice2.yaml"
 expect_error "line 4: key 'velocity' is given a second time" -case scene -scene_file "$tmp/twice2.yaml" -nx 10 -output_dir "$tmp/o4"
+# Shapes nested deeper than the YAML reader takes are named as such, not as a syntax error.
+python3 -c "print('dimension: 2\nbox: [0, 1, 0, 1]\nregions:\n  - {role: fluid, shape: ' + '{union: [' * 1000 +
+  '{box: [0.1, 0.9, 0.1, 0.5]}' + ']}' * 1000 + '}')" >"$tmp/nested.yaml"
+expect_error "line 5: nested [0-9]+ levels deep, deeper than the YAML reader takes; give a union's or a difference's shapes as one list" \
+  -case scene -scene_file "$tmp/nested.yaml" -nx 10 -output_dir "$tmp/o-nested"
 
 # The memory check comes before the particles exist: a YAML scene counts its lattice first, and a
 # mesh drawn in millimetres for a scene in metres is refused naming the unit (not refined to dx/4 until
