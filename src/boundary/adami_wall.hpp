@@ -171,8 +171,12 @@ template <int D> struct AdamiWall {
 
   // The continuation of the walls of P, the fluid's gradient taken from `pressure`.
   static Continuation continuation(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
+                                   const std::vector<double>& pressure, const Stencil& s) {
+    return {normals(P, nh, K, s), fluid_pressure_gradient(P, nh, K, pressure)};
+  }
+  static Continuation continuation(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
                                    const std::vector<double>& pressure) {
-    return {normals(P, nh, K, stencil(P, nh.list(), K)), fluid_pressure_gradient(P, nh, K, pressure)};
+    return continuation(P, nh, K, pressure, stencil(P, nh.list(), K));
   }
 
   // Wall pressure from the fluid (for explicit schemes; ISPH puts the same relation into its matrix),
@@ -198,8 +202,9 @@ template <int D> struct AdamiWall {
   static void extrapolate_pressure(Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
                                    const Vector<D>& body_force, const std::vector<Vector<D>>* acceleration = nullptr,
                                    WallPressure model = WallPressure::Adami) {
-    const Continuation c = model == WallPressure::Continued ? continuation(P, nh, K, P.p) : Continuation();
-    extrapolate_pressure(stencil(P, nh.list(), K), c, P, body_force, acceleration);
+    const Stencil s = stencil(P, nh.list(), K);
+    const Continuation c = model == WallPressure::Continued ? continuation(P, nh, K, P.p, s) : Continuation();
+    extrapolate_pressure(s, c, P, body_force, acceleration);
   }
 
   // Velocity seen by the viscous term: the fluid's own, and the no-slip mirror on walls, for the
