@@ -15,6 +15,7 @@ class Beltrami : public Case<3> {
   void set_from_options() override;
   void create(Particles<3>& P, Domain<3>& domain) const override;
   double spacing() const override;
+  double minimum_particles() const override { return double(nx_) * nx_ * nx_; }
   int resolution() const override { return nx_; }
   Physics<3> physics() const override;
   double default_t_end() const override { return 1.0; }

@@ -20,6 +20,7 @@ template <int D> class DamBreak : public Case<D> {
   void set_from_options() override;
   void create(Particles<D>& P, Domain<D>& domain) const override;
   double spacing() const override { return a_ / nx_; }
+  double minimum_particles() const override { return D == 3 ? 2.0 * nx_ * nx_ * nx_ : 2.0 * nx_ * nx_; }  // the column
   int resolution() const override { return nx_; }
   Physics<D> physics() const override;
   double default_t_end() const override;  // T = 3

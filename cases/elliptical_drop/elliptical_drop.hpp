@@ -19,6 +19,7 @@ class EllipticalDrop : public Case<2> {
   void set_from_options() override;
   void create(Particles<2>& P, Domain<2>& domain) const override;
   double spacing() const override { return R_ / nx_; }
+  double minimum_particles() const override { return 2.0 * nx_ * nx_; }  // the square inscribed in the drop
   int resolution() const override { return nx_; }
   Physics<2> physics() const override;
   double default_t_end() const override { return 0.8 / A0_; }  // Monaghan's 0.008 s at A0 = 100 / s

@@ -21,6 +21,7 @@ template <int D> class LidDrivenCavity : public Case<D> {
   void set_from_options() override;
   void create(Particles<D>& P, Domain<D>& domain) const override;
   double spacing() const override { return 1.0 / nx_; }
+  double minimum_particles() const override { return D == 3 ? double(nx_) * nx_ * nx_ : double(nx_) * nx_; }
   int resolution() const override { return nx_; }
   Physics<D> physics() const override;
   double default_t_end() const override { return 40.0; }

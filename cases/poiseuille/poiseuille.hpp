@@ -14,6 +14,7 @@ class Poiseuille : public Case<2> {
   void set_from_options() override;
   void create(Particles<2>& P, Domain<2>& domain) const override;
   double spacing() const override { return 1.0 / ny_; }
+  double minimum_particles() const override { return 12.0 * ny_; }
   int resolution() const override { return ny_; }
   Physics<2> physics() const override;
   double default_t_end() const override { return 1.0; }

@@ -68,6 +68,12 @@ template <int D> typename SodShockTube<D>::Lattice SodShockTube<D>::left_lattice
   return {static_cast<long>(nx_), D == 1 ? 1L : static_cast<long>(ny_), dx, dx, -1.0};
 }
 
+// The left state's particles (the right state's are fewer).
+template <int D> double SodShockTube<D>::minimum_particles() const {
+  const Lattice L = left_lattice();
+  return double(L.nx) * std::pow(double(L.ny), D - 1);
+}
+
 template <int D> typename SodShockTube<D>::Lattice SodShockTube<D>::right_lattice() const {
   const Lattice L = left_lattice();
   // Volume per particle rho_L/rho_R times the left one (equal masses); across the tube the nearest whole

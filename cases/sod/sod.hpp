@@ -18,6 +18,7 @@ template <int D> class SodShockTube : public Case<D> {
   void set_from_options() override;
   void create(Particles<D>& P, Domain<D>& domain) const override;
   double spacing() const override { return 1.0 / nx_; }  // the left (dense) state's spacing
+  double minimum_particles() const override;
   int resolution() const override { return static_cast<int>(nx_); }
   Physics<D> physics() const override;
   double default_t_end() const override { return 0.2; }

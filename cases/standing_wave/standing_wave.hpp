@@ -24,6 +24,7 @@ class StandingWave : public Case<2> {
   void set_from_options() override;
   void create(Particles<2>& P, Domain<2>& domain) const override;
   double spacing() const override { return 1.0 / nx_; }
+  double minimum_particles() const override { return width_ * depth_ * nx_ * nx_; }  // the water
   int resolution() const override { return nx_; }
   Physics<2> physics() const override;
   double default_t_end() const override { return 3.0 * linear_period(); }

@@ -22,6 +22,9 @@ template <int D> class StillWater : public Case<D> {
   void set_from_options() override;
   void create(Particles<D>& P, Domain<D>& domain) const override;
   double spacing() const override { return 1.0 / nx_; }
+  double minimum_particles() const override {  // the water
+    return D == 3 ? width_ * width_ * depth_ * nx_ * nx_ * nx_ : width_ * depth_ * nx_ * nx_;
+  }
   int resolution() const override { return nx_; }
   Physics<D> physics() const override;
   double default_t_end() const override { return 50.0; }

@@ -13,6 +13,7 @@ class TaylorGreen : public Case<2> {
   void set_from_options() override;
   void create(Particles<2>& P, Domain<2>& domain) const override;
   double spacing() const override { return 1.0 / nx_; }
+  double minimum_particles() const override { return double(nx_) * nx_; }
   int resolution() const override { return nx_; }
   Physics<2> physics() const override;
   double default_t_end() const override { return 1.0; }

@@ -18,6 +18,7 @@ class ToyStar : public Case<1> {
   void set_from_options() override;
   void create(Particles<1>& P, Domain<1>& domain) const override;
   double spacing() const override;  // m / rho at the centre
+  double minimum_particles() const override { return double(n_); }
   int resolution() const override { return static_cast<int>(n_); }
   Physics<1> physics() const override;
   double default_t_end() const override { return 2.0 * period(); }

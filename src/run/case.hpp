@@ -28,6 +28,9 @@ template <int D> class Case {
 
   // Owned particles of this rank (the whole scene on one rank) and the box.
   virtual void create(Particles<D>& P, Domain<D>& domain) const = 0;
+  // How many particles create() makes at least, counted without making them (0: not known before): the
+  // memory check refuses a scene too large for the machine before it allocates (src/run/memory_budget.hpp).
+  virtual double minimum_particles() const { return 0.0; }
   virtual double spacing() const = 0;  // initial particle spacing dx
   virtual int resolution() const = 0;  // particles per unit length label (nx)
   virtual Physics<D> physics() const = 0;

@@ -36,6 +36,16 @@ std::string per_particle(double bytes, const std::string& scheme) {
   return buf;
 }
 
+double ranks_on_node_share() {
+  MPI_Comm node;
+  MPI_Comm_split_type(PETSC_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int on_node = 1, all = 1;
+  MPI_Comm_size(node, &on_node);
+  MPI_Comm_free(&node);
+  MPI_Comm_size(PETSC_COMM_WORLD, &all);
+  return double(on_node) / double(all);
+}
+
 }  // namespace
 
 double node_memory_bytes() {
@@ -44,8 +54,17 @@ double node_memory_bytes() {
   return group > 0 ? std::min(physical, group) : physical;
 }
 
-MemoryBudgetScope::MemoryBudgetScope(double bytes_per_particle, const std::string& scheme)
+MemoryBudgetScope::MemoryBudgetScope(double bytes_per_particle, const std::string& scheme, double planned_particles)
     : bytes_per_particle_(bytes_per_particle), memory_(node_memory_bytes()), scheme_(scheme) {
+  // The scene is shared evenly among the ranks, so this node holds its ranks' share of it.
+  const double planned_here = planned_particles * ranks_on_node_share(), need = planned_here * bytes_per_particle_;
+  if (need > memory_) {
+    char count[32];
+    std::snprintf(count, sizeof count, "%.3g", planned_here);
+    throw Error(std::string("the scene has at least ") + count + " particles on a node; at about " +
+                per_particle(bytes_per_particle_, scheme_) + " they need " + gigabytes(need) + ", more than its " +
+                gigabytes(memory_) + "; lower -nx, or spread the run over more nodes");
+  }
   ParticleBudget& b = particle_budget();
   b.limit = static_cast<std::size_t>(memory_ / bytes_per_particle_);
   b.refusal = "the scene needs more than " + std::to_string(b.limit) + " particles; at about " +

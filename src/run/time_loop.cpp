@@ -32,7 +32,7 @@ template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
       identity_(run_identity(run.case_name, run.solver_name, D, run.run_case.parameters())),
       resumed_run_(resumed_run_header()),
       numerics_changed_(checked_restart()),
-      memory_(run.solver.bytes_per_particle(), run.solver_name),
+      memory_(run.solver.bytes_per_particle(), run.solver_name, run.run_case.minimum_particles()),
       s_(run.run_case, run.kernel, run.control.skin >= 0 ? run.control.skin : run.solver.neighbour_skin()),
       checkpoint_path_(run.output_dir + "/checkpoint.bin"),
       steady_(run.control.steady_tol),

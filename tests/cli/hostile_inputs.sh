@@ -103,6 +103,9 @@ printf 'dimension: 3\nbox: [-0.3, 1.3, -0.3, 1.3, -0.3, 1.3]\ngravity: [0, 0, -1
 # An allocation that fails past the memory check (here a limit below the machine's) is reported as
 # running out of memory, with the fix, not as an internal error.
 (ulimit -v 1000000; expect_error "ran out of memory \(an allocation failed\): .* lower -nx|the scene needs more than" -case scene -scene_file "$src/cases/scenes/falling_block.yaml" -nx 2000 -max_steps 1 -output_dir "$tmp/o7"; exit $fail) || fail=1
+# The same where the allocation fails on an OpenMP thread (the neighbour list of a 1D tube that the
+# memory check lets through, under a lower limit): carried out of the threads, not an abort.
+(ulimit -v 400000; OMP_NUM_THREADS=2 expect_error "ran out of memory \(an allocation failed\): .* lower -nx" -case sod -solver compressible -nx 100000 -t_end 1e-5 -output_dir "$tmp/o8"; exit $fail) || fail=1
 # -options_file without its file name: one line, not PETSc's traceback.
 expect_error "option -options_file was given without a file name; give the path of an options file" $small -options_file
 expect_error "option -options_file was given without a file name" -options_file -case taylor_green
