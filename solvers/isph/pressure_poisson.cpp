@@ -12,6 +12,23 @@
 
 namespace sph {
 
+namespace {
+
+// What to change when the solve fails, by PETSc's reason: a system that is no longer a number comes from
+// a flow that blew up before this step (a smaller time step, not the solver, is the fix); one that ran
+// out of iterations needs more of them or a stronger preconditioner; a breakdown, another method.
+std::string unconverged_advice(KSPConvergedReason reason, PetscInt max_it) {
+  if (reason == KSP_DIVERGED_NANORINF)
+    return ": the pressure system holds NaN or Inf, so the flow blew up before this solve (the last frame shows "
+           "where); a smaller -cfl or -dt from the start, or from a checkpoint well before, may run past it";
+  if (reason == KSP_DIVERGED_ITS)
+    return "; raise -ppe_ksp_max_it (now " + std::to_string(max_it) +
+           ") or choose a stronger -ppe_pc_type (hypre, the default, or gamg)";
+  return "; try another -ppe_ksp_type (gmres, bcgs) or -ppe_pc_type (hypre, gamg)";
+}
+
+}  // namespace
+
 template <int D> PressurePoisson<D>::~PressurePoisson() {
   destroy_system();
   if (ksp_) KSPDestroy(&ksp_);
@@ -278,7 +295,7 @@ template <int D> StepReport PressurePoisson<D>::solve(const std::vector<double>&
       msg << ": with no free surface the pressure system is singular, regularised by a tiny diagonal shift, and "
              "a one-level preconditioner stalls on the near-constant mode that leaves; use a multigrid one "
              "(-ppe_pc_type hypre, the default, or gamg)";
-    else msg << "; try -ppe_ksp_max_it, another -ppe_ksp_type/-ppe_pc_type, or a smaller -cfl";
+    else msg << unconverged_advice(reason, max_it);
     throw Error(msg.str());
   }
   const PetscScalar* xs;

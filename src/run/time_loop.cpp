@@ -69,16 +69,26 @@ template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
 }
 
 // A step so small that the run cannot end (-cfl 1e-30 gave an ETA of 1e27 s) is refused at the first
-// step, before anything is spent on it.
+// step, before anything is spent on it, naming what made it small: -dt, a Courant number the user
+// lowered, or else the flow's own speed (a scene's velocity in the wrong units).
 template <int D> void TimeLoop<D>::refuse_endless_run(double dt) const {
   constexpr double kMostSteps = 1e9;
   const double steps = (opt_.t_end - t_) / dt;
   if (steps <= kMostSteps) return;
+  PetscBool courant_given = PETSC_FALSE;
+  SPH_PETSC(PetscOptionsHasName(nullptr, nullptr, solver_.courant_option().c_str(), &courant_given));
+  double fastest = 0.0;
+  for (std::size_t i = 0; i < s_.P.n_owned; ++i) fastest = std::max(fastest, double(s_.P.v[i].stableNorm()));
+  MPI_Allreduce(MPI_IN_PLACE, &fastest, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
   std::ostringstream msg;
   msg << "the time step " << dt << " leaves " << steps << " steps to -t_end " << opt_.t_end << " (more than "
-      << kMostSteps << "): "
-      << (opt_.dt > 0 ? std::string("-dt is far too small; raise it or leave it out")
-                      : solver_.courant_option() + " is far too small; raise it");
+      << kMostSteps << "): ";
+  if (opt_.dt > 0) msg << "-dt is far too small; raise it or leave it out";
+  else if (courant_given) msg << solver_.courant_option() << " is far too small; raise it";
+  else
+    msg << "the flow's speed sets it (the fastest particle moves at " << fastest << " against a spacing of "
+        << case_.spacing() << "), far too fast for the scene's size and -t_end: check the initial velocities "
+        << "and their units (or -c0)";
   throw Error(msg.str());
 }
 

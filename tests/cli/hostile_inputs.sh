@@ -37,6 +37,13 @@ expect_json "$m/summary.json" "abs(s['t_final'] - 0.3) < 1e-12 and 'stopped_earl
 expect_error "the time step .* leaves .* steps to -t_end 0.3 \(more than 1e\+09\): -cfl is far too small; raise it" \
   $small -t_end 0.3 -cfl 1e-30 -output_dir "$tmp/tiny_cfl"
 expect_error "-dt is far too small; raise it or leave it out" $small -t_end 0.3 -dt 1e-20 -output_dir "$tmp/tiny_dt"
+# With the default Courant number, a step made tiny by a scene's velocity (metres given as microns a
+# second) names the speed, not the Courant number.
+printf 'dimension: 2\nbox: [-0.3, 1.3, -0.3, 1.3]\ngravity: [0, -1]\nregions:\n  - {role: wall, shape: difference, of: [{box: [-0.3, 1.3, -0.3, 1.3]}, {box: [0, 1, 0, 1]}]}\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5], velocity: [1.0e8, 0]}\n' >"$tmp/fast.yaml"
+for solver in isph wcsph; do
+  expect_error "the flow's speed sets it \(the fastest particle moves at 1e\+08 against a spacing of 0.05\), far too fast .* check the initial velocities and their units" \
+    -case scene -scene_file "$tmp/fast.yaml" -solver $solver -nx 20 -progress 0 -output_dir "$tmp/fast_$solver"
+done
 
 # An output folder that cannot be made is named with the reason (a read-only file system read as "No
 # such file" when the lock file's open said it instead); here its parent is a file.

@@ -75,4 +75,8 @@ for c in "${one_level[@]}"; do
   expect_error "did not converge .*: with no free surface the pressure system is singular.*use a multigrid one" \
     $cavity $c -ppe_ksp_max_it 200 -output_dir "$tmp/one-level" -overwrite -progress 0
 done
+# Out of iterations: the advice is more iterations or a stronger preconditioner, not a smaller step
+# (the Laplacian does not depend on dt).
+expect_error "DIVERGED_ITS after 1 iterations.*; raise -ppe_ksp_max_it \(now 1\) or choose a stronger -ppe_pc_type" \
+  -case dam_break -nx 10 -ppe_ksp_max_it 1 -max_steps 3 -output_dir "$tmp/max-it" -progress 0
 exit $fail
