@@ -181,6 +181,18 @@ std::string keep_older(const std::string& path, int kept) {
   return "";
 }
 
+// PETSc's binary writer reports a failed write by its byte counts alone ("Error writing to file total
+// size ..."); the file system tells whether it was full. Called before the partial file is removed, so
+// a full disk has (next to) nothing left.
+std::string full_disk(const std::string& tmp) {
+  constexpr std::uintmax_t kFull = 1 << 20;  // bytes: less than a checkpoint of a few thousand particles
+  std::error_code ec;
+  const std::filesystem::path dir = std::filesystem::path(tmp).parent_path();
+  const std::filesystem::space_info space = std::filesystem::space(dir.empty() ? "." : dir, ec);
+  if (ec || space.available >= kFull) return "";
+  return std::string(std::strerror(ENOSPC)) + " (" + std::to_string(space.available / 1024) + " kB left)";
+}
+
 // Appends header + trailer to the data in `tmp`, syncs it and renames it over `path` (after moving
 // the older ones along). Rank 0 only; returns an error message, empty on success.
 std::string seal(const std::string& tmp, const std::string& path, nlohmann::json header, int write_number, int kept) {
@@ -296,6 +308,7 @@ void write_checkpoint(const std::string& path, Particles<D>& P, const Checkpoint
     SPH_PETSC(PetscViewerDestroy(&viewer));
   } catch (const Error& e) {
     error = e.what();
+    if (const std::string full = root ? full_disk(tmp) : ""; !full.empty()) error = full;
   }
   if (root && error.empty()) error = seal(tmp, path, header, writes, kept);
   broadcast_from_root(error);
