@@ -406,7 +406,7 @@ TEST(SceneShapes, RefusalsNameTheFileTheKeyAndTheFix) {
 }
 
 // The box lo-hi as an STL surface of triangles: all six faces, or the first `faces` of them.
-bool write_cube_stl(const std::string& path, const Point3& lo, const Point3& hi, int faces = 6) {
+bool write_cube_stl(const std::string& path, const Point3& lo, const Point3& hi, int faces = 6, bool binary = false) {
   vtkNew<vtkPoints> points;
   for (int k = 0; k < 8; ++k)
     points->InsertNextPoint(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
@@ -423,6 +423,7 @@ bool write_cube_stl(const std::string& path, const Point3& lo, const Point3& hi,
   vtkNew<vtkSTLWriter> writer;
   writer->SetInputData(surface);
   writer->SetFileName(path.c_str());
+  if (binary) writer->SetFileTypeToBinary();
   return writer->Write() == 1;
 }
 
@@ -470,6 +471,29 @@ TEST(SceneShapes, MeshCubeSamplesAsTheEquivalentBox) {
   ASSERT_TRUE(write_cube_stl(folder() + "/open.stl", Point3(0.2, 0.1, 0.3), Point3(0.8, 0.7, 0.9), 5));
   EXPECT_NE(refusal("open", head + pool + "  - {role: wall, shape: {mesh: open.stl}}\n").find("not a closed surface"),
             std::string::npos);
+}
+
+// STL comes as text or binary (its header may start "solid" as well); both read alike. A file that is
+// neither (an archive named .stl, here 3 GB of zeros, sparse on disk) is refused from its size and
+// first bytes, not read whole.
+TEST(SceneShapes, MeshStlIsTextOrBinaryAndNothingElse) {
+  const Point3 lo(0.2, 0.1, 0.3), hi(0.8, 0.7, 0.9);
+  ASSERT_TRUE(write_cube_stl(folder() + "/text.stl", lo, hi));
+  ASSERT_TRUE(write_cube_stl(folder() + "/binary.stl", lo, hi, 6, true));
+  const std::string head = "dimension: 3\nregions:\n";
+  const auto text = sample("stl_text", head + "  - {role: fluid, shape: {mesh: text.stl}}\n", 0.1);
+  const auto binary = sample("stl_binary", head + "  - {role: fluid, shape: {mesh: binary.stl}}\n", 0.1);
+  EXPECT_EQ(text.file.x.size(), 216u);
+  EXPECT_EQ(binary.file.x.size(), text.file.x.size());
+  {
+    std::ofstream junk(folder() + "/junk.stl", std::ios::binary);
+    junk.seekp((std::streamoff(3) << 30) - 1);
+    junk.put('\0');
+  }
+  EXPECT_NE(refusal("stl_junk", head + "  - {role: fluid, shape: {mesh: junk.stl}}\n")
+                .find("is not an STL file: neither text starting 'solid ... facet' nor binary"),
+            std::string::npos);
+  std::filesystem::remove(folder() + "/junk.stl");
 }
 
 }  // namespace

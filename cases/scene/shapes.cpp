@@ -277,13 +277,33 @@ void check_obj_faces(const std::string& path) {
                 ", before the " + std::to_string(vertices) + " the file holds; fix the face");
 }
 
+// An STL is binary (an 80-byte header, a 4-byte triangle count, 50 bytes a triangle) or text starting
+// "solid" with "facet" soon after. Checked here from the file's size and first bytes, so that a file
+// that is neither (a 3 GB archive named .stl) is refused at once instead of read whole by VTK.
+void check_stl(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char head[1024] = {};
+  in.read(head, sizeof head);
+  const std::size_t got = static_cast<std::size_t>(in.gcount());
+  const std::uintmax_t size = std::filesystem::file_size(path);
+  if (size >= 84) {
+    const auto* b = reinterpret_cast<const unsigned char*>(head + 80);
+    const std::uintmax_t triangles = b[0] | (b[1] << 8) | (b[2] << 16) | (std::uintmax_t(b[3]) << 24);
+    if (size == 84 + 50 * triangles) return;  // binary (its header may start with "solid" too)
+  }
+  const std::string text(head, got);
+  if (text.rfind("solid", 0) == 0 && (text.find("facet") != std::string::npos || size <= got)) return;
+  throw Error("'" + path + "' is not an STL file: neither text starting 'solid ... facet' nor binary (84 bytes + 50 a " +
+              "triangle; this file has " + std::to_string(size) + " bytes); export the surface as STL, OBJ or VTP");
+}
+
 vtkSmartPointer<vtkPolyData> read_surface(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".stl" && ext != ".obj" && ext != ".vtp")
     throw Error("'" + path + "' is not .stl, .obj or .vtp; convert the surface to one of those");
   if (!std::filesystem::is_regular_file(path)) throw Error("cannot read '" + path + "'; check the path");
-  return ext == ".stl"   ? read_with<vtkSTLReader>(path)
+  return ext == ".stl"   ? (check_stl(path), read_with<vtkSTLReader>(path))
          : ext == ".obj" ? (check_obj_faces(path), read_with<vtkOBJReader>(path))
                          : read_with<vtkXMLPolyDataReader>(path);
 }
