@@ -293,7 +293,8 @@ void check_stl(const std::string& path) {
   }
   const std::string text(head, got);
   if (text.rfind("solid", 0) == 0 && (text.find("facet") != std::string::npos || size <= got)) return;
-  throw Error("'" + path + "' is not an STL file: neither text starting 'solid ... facet' nor binary (84 bytes + 50 a " +
+  throw Error("'" + path +
+              "' is not an STL file: neither text starting 'solid ... facet' nor binary (84 bytes + 50 a " +
               "triangle; this file has " + std::to_string(size) + " bytes); export the surface as STL, OBJ or VTP");
 }
 
