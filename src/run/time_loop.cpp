@@ -191,6 +191,7 @@ template <int D> void TimeLoop<D>::advance() {
   if (s_.disc.open.any()) exchange_open_boundaries();
   if (opt_.box_exit != 0 && fluid_outside(s_.P, s_.domain)) remove_escaped_fluid();
   check_health(s_.P, s_.domain, ke_bound_, solver_.courant_option(), opt_.box_exit == 2);
+  check_bodies();
   check_neighbours_(s_.P, s_.nh.list(), s_.nh.support_radius());
   if (opt_.partition_interval > 0 && step_ % opt_.partition_interval == 0) repartition();
 
@@ -273,6 +274,26 @@ template <int D> void TimeLoop<D>::warn_dt(double stable) {
   warned_dt_ = true;
 }
 
+// A body carried out of the box stops the run; one driven into a fixed wall is said once, in a warning
+// kept in summary.json (src/run/body_checks.hpp).
+template <int D> void TimeLoop<D>::check_bodies() {
+  if (!s_.disc.bodies.any()) return;
+  const std::vector<std::string> names = case_.body_names();
+  check_bodies_in_box(s_.P, s_.domain, s_.disc.bodies, names, t_);
+  const std::vector<int> inside = bodies_in_fixed_walls(s_.P, s_.nh.list(), s_.disc.bodies, case_.spacing());
+  warned_in_walls_.resize(inside.size(), 0);
+  for (std::size_t b = 0; b < inside.size(); ++b) {
+    if (!inside[b] || warned_in_walls_[b]) continue;
+    std::ostringstream w;
+    w << "step " << step_ << " (t = " << t_ << "): body " << body_label(names, static_cast<int>(b))
+      << " has entered a fixed wall (particles closer than half a spacing): its prescribed motion drives it "
+         "through the wall; change the motion or the walls";
+    PetscFPrintf(PETSC_COMM_WORLD, stderr, "sph: warning: %s\n", w.str().c_str());
+    summary_["warnings"].push_back(w.str());
+    warned_in_walls_[b] = 1;
+  }
+}
+
 // Each member is compiled once, in the file that defines it, for 1, 2 and 3 dimensions.
 #define SPH_INSTANTIATE_TIME_LOOP(D)                                                   \
   template TimeLoop<D>::TimeLoop(const RunParts<D>& run);                              \
@@ -284,7 +305,8 @@ template <int D> void TimeLoop<D>::warn_dt(double stable) {
   template void TimeLoop<D>::advance();                                                \
   template void TimeLoop<D>::exchange_open_boundaries();                               \
   template void TimeLoop<D>::remove_escaped_fluid();                                   \
-  template void TimeLoop<D>::warn_dt(double stable);
+  template void TimeLoop<D>::warn_dt(double stable);                                   \
+  template void TimeLoop<D>::check_bodies();
 SPH_INSTANTIATE_TIME_LOOP(1)
 SPH_INSTANTIATE_TIME_LOOP(2)
 SPH_INSTANTIATE_TIME_LOOP(3)

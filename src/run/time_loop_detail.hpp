@@ -22,6 +22,7 @@
 #include "src/io/output_dir.hpp"
 #include "src/io/particle_writer.hpp"
 #include "src/neighbours/partition.hpp"
+#include "src/run/body_checks.hpp"
 #include "src/run/box_exit.hpp"
 #include "src/run/diagnostics.hpp"
 #include "src/run/free_body_outputs.hpp"
@@ -108,6 +109,7 @@ template <int D> class TimeLoop {
     return opt_.box_exit != 0 && open;
   }
   void warn_dt(double stable);
+  void check_bodies();
   std::vector<ScalarField> frame_fields(bool derived = true);
   void write_frame(bool derived = true);
   void repartition();
@@ -162,6 +164,7 @@ template <int D> class TimeLoop {
   long last_checkpoint_step_ = -1, failing_step_ = 0;
   int interrupted_ = 0;  // the signal that stopped the run
   bool warned_dt_ = false;
+  std::vector<int> warned_in_walls_;                    // by body: said that its motion drives it into a fixed wall
   double contact_step_ = 0.0;                           // > 0: a free body is near a contact, the step held to this
   double faces_t_ = -1.0;                               // when wall_groups_ last computed the bodies' face pressures
   bool surface_column_ = false, walls_column_ = false;  // timeseries.csv's free_surface_share, fluid_in_walls

@@ -138,6 +138,16 @@ sed 's/vertex \([^ ]*\) \([^ ]*\) [^ ]*$/vertex \1 \2 0.3/' "$tmp/cube_mm.stl" |
 printf 'dimension: 3\nbox: [0, 1, 0, 1, 0, 1]\ngravity: [0, 0, -1]\nregions:\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 1, 0, 0.6]}\n  - {role: body, name: plate, shape: mesh, file: flat.stl}\n' >"$tmp/flat.yaml"
 expect_error "flat.stl' encloses no volume" -case scene -scene_file "$tmp/flat.yaml" -nx 10 -output_dir "$tmp/g5"
 
+# A body whose prescribed motion rams it through a fixed wall and out of the box: warned of when it
+# enters the wall (kept in summary.json), stopped when it leaves the box, in both schemes.
+printf 'dimension: 2\nbox: [-0.3, 1.3, -0.3, 1.3]\ngravity: [0, -1]\nt_end: 1.5\nregions:\n  - {role: wall, shape: difference, of: [{box: [-0.3, 1.3, -0.3, 1.3]}, {box: [0, 1, 0, 1]}]}\n  - {role: fluid, shape: box, bounds: [0, 1, 0, 0.5]}\n  - {role: body, name: ram, shape: box, bounds: [0.6, 0.8, 0.6, 0.8], motion: {type: constant, velocity: [1, 0]}}\n' >"$tmp/ram.yaml"
+for solver in isph wcsph; do
+  expect_error "body 'ram' left the box \[-0.3, 1.3, -0.3, 1.3\] at t = 0.5[0-9]*: its prescribed motion carries it out; enlarge the scene's box" \
+    -case scene -scene_file "$tmp/ram.yaml" -solver $solver -nx 20 -progress 0 -output_dir "$tmp/ram_$solver"
+  grep -q "^sph: warning: step [0-9]* (t = 0.2[0-9]*): body 'ram' has entered a fixed wall" "$tmp/stderr" || { echo "FAIL: $solver: no warning as the ram entered the wall"; fail=1; }
+  expect_json "$tmp/ram_$solver/summary.json" "s['status'] == 'failed' and any('entered a fixed wall' in w for w in s['warnings'])" "$solver: the ram's warning in summary.json"
+done
+
 # A folder where a file belongs (the scene, a motion table) is named as a folder, not reported as a
 # failed read ("basic_filebuf::underflow").
 mkdir -p "$tmp/folder.yaml" "$tmp/table"
