@@ -40,7 +40,8 @@ template <int D> void IsphSolver<D>::setup(Discretisation<D>& disc) {
                         disc.open.any());
   // The last step's mean pressure pm moves with its particle (migration, checkpoints).
   mean_pressure_ = P.fields.declare_scalar("mean_step_pressure", kCarried, P.size());
-  free_surface_model_.setup(P, disc.physics.free_surface);
+  free_surface_model_.setup(P, disc.physics.free_surface,
+                            BandScan::All);  // its surface rows need every surface particle
   // The impact term only if asked for: in a closed domain it adds the noise of the walls' normals at
   // corners ("Design measurements"), and with a free surface, a pressure applied once per step, it fed
   // the flow energy as the step fell. There the bounding, which only takes energy away, stops the fluid

@@ -27,7 +27,7 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
     disc.open.use_transmissive_outlets(P, disc.physics.rho0 * eos_.c0);
   acc_ = P.fields.declare_vector("acceleration", kCarried, P.size());
   drho_ = P.fields.declare_scalar("density_rate", kCarried, P.size());
-  free_surface_.setup(P, disc.physics.free_surface);
+  free_surface_.setup(P, disc.physics.free_surface, BandScan::Walls);  // shifting only: a tank's corners
   // Under gravity Molteni's term diffuses the hydrostatic stratification: mass flows down, and still
   // water sank into its floor (t = 19 at 40 particles a unit). Fourtakas et al. (2019) diffuse the
   // density's difference from the hydrostatic one instead.

@@ -25,6 +25,11 @@
 
 namespace sph {
 
+// Which particles in the hysteresis band of div r (not flagged at the last step) the umbrella scan decides
+// (-free_surface_scan): none, those with a wall in their support, or all of them.
+enum class BandScan { Default, None, Walls, All };
+inline const char* const band_scan_names[] = {"default", "none", "walls", "all"};
+
 template <int D> double default_free_surface_threshold() { return D == 1 ? 0.75 : D == 2 ? 1.5 : 2.4; }
 // Exit threshold: 40 % of the way from the entry threshold to the interior value D (1.7 in 2D).
 template <int D> double default_free_surface_exit_threshold(double threshold) {
@@ -41,19 +46,43 @@ std::vector<double> position_divergence(const Particles<D>& P, const NeighbourLi
 
 // 1 for fluid particles on the free surface, 0 otherwise (one entry per owned particle). With
 // `previous` (the last step's flags, nonzero = on the surface), a flagged particle stays flagged while
-// div r < exit_threshold.
-template <int D> std::vector<char> free_surface_particles(const Particles<D>& P, const NeighbourList<D>& nl,
-                                                          const Kernel<D>& K, double threshold,
-                                                          double exit_threshold = 0.0,
-                                                          const std::vector<double>* previous = nullptr) {
+// div r < exit_threshold. An unflagged particle with threshold <= div r < exit_threshold (`scan`: all
+// such, or those with a wall in their support) is on the surface when nothing lies beyond it: Marrone et
+// al. (2010)'s umbrella scan along -grad C (walls included). Why: where walls fill most of a support, div r
+// reads a surface particle as nearly full;
+// the particle at the top of a 3D tank's vertical edge has div r 2.53 (threshold 2.4), the 2D corner's
+// 1.496 (threshold 1.5), and as an interior row with an empty octant its pressure rose and it sank
+// (docs/verification/free_surface.md, "Surface particles in the corners").
+template <int D>
+std::vector<char> free_surface_particles(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                         double threshold, double exit_threshold = 0.0,
+                                         const std::vector<double>* previous = nullptr, BandScan scan = BandScan::All) {
   const std::vector<double> div = position_divergence(P, nl, K);
-  std::vector<char> has_fluid(P.n_owned, 0);
-  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>&) { has_fluid[i] |= P.kind[j] == kFluid; });
-  std::vector<char> surface(P.n_owned, 0);
+  std::vector<char> has_fluid(P.n_owned, 0), has_wall(P.n_owned, 0);
+  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>&) {
+    has_fluid[i] |= P.kind[j] == kFluid;
+    has_wall[i] |= P.kind[j] != kFluid;
+  });
+  std::vector<char> surface(P.n_owned, 0), doubtful(P.n_owned, 0);
   for (std::size_t i = 0; i < P.n_owned; ++i) {
-    const bool stays = previous && (*previous)[i] != 0.0 && div[i] < exit_threshold;
+    const bool flagged = previous && (*previous)[i] != 0.0;
+    const bool stays = flagged && div[i] < exit_threshold;
     surface[i] = P.kind[i] == kFluid && (div[i] < threshold || stays || !has_fluid[i]);
+    const bool scanned = scan == BandScan::All || (scan == BandScan::Walls && has_wall[i]);
+    doubtful[i] = scanned && P.kind[i] == kFluid && !surface[i] && div[i] < exit_threshold;
   }
+  std::vector<Vector<D>> normal(P.n_owned, Vector<D>::Zero());
+  for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
+    if (doubtful[i]) normal[i] -= (P.m[j] / P.rho[j]) * g.gradW;
+  });
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    if (!doubtful[i]) continue;
+    if (normal[i].squaredNorm() > 0.0) normal[i].normalize();
+    else doubtful[i] = 0;  // a symmetric support has no outside to scan: inside
+  }
+  const std::vector<char> covered = umbrellas_covered(P, nl, K, doubtful, normal);
+  for (std::size_t i = 0; i < P.n_owned; ++i)
+    if (doubtful[i] && !covered[i]) surface[i] = 1;
   return surface;
 }
 
@@ -108,8 +137,9 @@ template <int D> struct ShiftBoundary {
 template <int D> class FreeSurface {
  public:
   void set_from_options();
-  // Resolves the defaults and declares the flags' field; call once the scene is known.
-  void setup(Particles<D>& P, bool free_surface);
+  // Resolves the defaults (`scan`: the scheme's -free_surface_scan) and declares the flags' field; call
+  // once the scene is known.
+  void setup(Particles<D>& P, bool free_surface, BandScan scan);
 
   // The surface particles at the current positions; `remember` makes them the state that the next
   // call's hysteresis starts from (once a step).
@@ -123,18 +153,23 @@ template <int D> class FreeSurface {
       return {{"detection", "Marrone et al. 2010"},
               {"surface_eigenvalue", marrone::surface_eigenvalue},
               {"interior_eigenvalue", marrone::interior_eigenvalue}};
-    return {{"detection", "div r"}, {"threshold_div_r", threshold_}, {"exit_threshold_div_r", exit_threshold_}};
+    return {{"detection", "div r"},
+            {"threshold_div_r", threshold_},
+            {"exit_threshold_div_r", exit_threshold_},
+            {"band_scan", band_scan_names[static_cast<int>(scan_)]}};
   }
 
  private:
   SurfaceDetection detection_ = SurfaceDetection::DivR;
   PetscReal threshold_ = 0.0;       // 0: the dimension's default
   PetscReal exit_threshold_ = 0.0;  // 0: default_free_surface_exit_threshold
-  FieldId<double> state_;           // the last step's flags (1: on the surface)
+  BandScan scan_ = BandScan::Default;
+  FieldId<double> state_;  // the last step's flags (1: on the surface)
 };
 
 namespace detail {
-inline PetscErrorCode read_free_surface_options(PetscInt* detection, PetscReal* threshold, PetscReal* exit_threshold) {
+inline PetscErrorCode read_free_surface_options(PetscInt* detection, PetscReal* threshold, PetscReal* exit_threshold,
+                                                PetscInt* scan) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Free surface (scenes with one; every scheme)", "FreeSurface");
   PetscCall(option_choice(
@@ -151,22 +186,30 @@ inline PetscErrorCode read_free_surface_options(PetscInt* detection, PetscReal* 
                         "A surface particle stays on the surface until div r exceeds this (0: the threshold plus "
                         "0.4 of its distance to the dimension, 1.7 in 2D)",
                         *exit_threshold, exit_threshold, nullptr, OptionLevel::expert));
+  PetscCall(option_choice(PetscOptionsObject, "-free_surface_scan",
+                          "Particles with div r between the two thresholds, not on the surface at the last step, "
+                          "that join it when nothing lies beyond them (Marrone's umbrella scan): none, walls (those "
+                          "with a wall in their support: a tank's corners), all (default: all for ISPH, walls for "
+                          "WCSPH; docs/verification/free_surface.md, \"Surface particles in the corners\")",
+                          band_scan_names, 4, band_scan_names[*scan], scan, nullptr, OptionLevel::expert));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
 }  // namespace detail
 
 template <int D> void FreeSurface<D>::set_from_options() {
-  PetscInt detection = static_cast<PetscInt>(detection_);
-  SPH_PETSC(detail::read_free_surface_options(&detection, &threshold_, &exit_threshold_));
+  PetscInt detection = static_cast<PetscInt>(detection_), scan = static_cast<PetscInt>(scan_);
+  SPH_PETSC(detail::read_free_surface_options(&detection, &threshold_, &exit_threshold_, &scan));
   detection_ = static_cast<SurfaceDetection>(detection);
+  scan_ = static_cast<BandScan>(scan);
   require(threshold_ >= 0 && threshold_ < D, "-free_surface_threshold", "in [0, dimension)", threshold_);
   require(exit_threshold_ >= 0 && exit_threshold_ < D, "-free_surface_exit_threshold", "in [0, dimension)",
           exit_threshold_);
 }
 
-template <int D> void FreeSurface<D>::setup(Particles<D>& P, bool free_surface) {
+template <int D> void FreeSurface<D>::setup(Particles<D>& P, bool free_surface, BandScan scan) {
   state_ = P.fields.declare_scalar("free_surface", kCarried | (free_surface ? kWritten : 0u), P.size());
+  if (scan_ == BandScan::Default) scan_ = scan;
   if (threshold_ <= 0) threshold_ = default_free_surface_threshold<D>();
   if (exit_threshold_ <= 0) exit_threshold_ = default_free_surface_exit_threshold<D>(threshold_);
   require(exit_threshold_ >= threshold_, "-free_surface_exit_threshold", "at least -free_surface_threshold",
@@ -178,7 +221,7 @@ template <int D> std::vector<char> FreeSurface<D>::detect(Particles<D>& P, const
   std::vector<double>& state = P.fields[state_];
   std::vector<char> surface = detection_ == SurfaceDetection::Marrone
                                   ? marrone_surface_particles(P, nl, K, &state)
-                                  : free_surface_particles(P, nl, K, threshold_, exit_threshold_, &state);
+                                  : free_surface_particles(P, nl, K, threshold_, exit_threshold_, &state, scan_);
   if (remember) std::copy(surface.begin(), surface.end(), state.begin());  // owned rows
   return surface;
 }

@@ -25,6 +25,24 @@ inline constexpr double surface_eigenvalue = 0.2;    // at or below: on the surf
 inline constexpr double interior_eigenvalue = 0.75;  // above: inside the fluid
 }  // namespace marrone
 
+// Marrone's scan: for each owned particle i with doubtful[i], whether a neighbour (fluid or wall) lies in
+// the umbrella beyond it, along its unit outward normal[i]. 1: covered (inside the fluid).
+template <int D> std::vector<char> umbrellas_covered(const Particles<D>& P, const NeighbourList<D>& nl,
+                                                     const Kernel<D>& K, const std::vector<char>& doubtful,
+                                                     const std::vector<Vector<D>>& normal) {
+  const double h = K.h(), sqrt2h = std::sqrt(2.0) * h;
+  std::vector<char> covered(P.n_owned, 0);
+  for_each_pair(P, nl, K, [&](int i, int, const PairGeometry<D>& g) {
+    if (!doubtful[i] || covered[i]) return;
+    const Vector<D>& nrm = normal[i];
+    const Vector<D> to_T = -g.rij - h * nrm;  // x_j - T, with T = x_i + h n
+    const double along = nrm.dot(to_T);
+    const bool in_umbrella = g.r >= sqrt2h ? to_T.norm() < h : std::abs(along) + (to_T - along * nrm).norm() < h;
+    if (in_umbrella) covered[i] = 1;
+  });
+  return covered;
+}
+
 // 1 for fluid particles on the free surface, 0 otherwise (one entry per owned particle). With `previous`
 // (the last step's flags, nonzero = on the surface), a flagged particle stays flagged while its
 // eigenvalue is not above the interior's.
@@ -67,16 +85,7 @@ template <int D> std::vector<char> marrone_surface_particles(const Particles<D>&
     normal[i] = nu.normalized();
     doubtful[i] = 1;
   }
-  const double h = K.h(), sqrt2h = std::sqrt(2.0) * h;
-  std::vector<char> covered(n, 0);
-  for_each_pair(P, nl, K, [&](int i, int, const PairGeometry<D>& g) {
-    if (!doubtful[i] || covered[i]) return;
-    const Vector<D>& nrm = normal[i];
-    const Vector<D> to_T = -g.rij - h * nrm;  // x_j - T, with T = x_i + h n
-    const double along = nrm.dot(to_T);
-    const bool in_umbrella = g.r >= sqrt2h ? to_T.norm() < h : std::abs(along) + (to_T - along * nrm).norm() < h;
-    if (in_umbrella) covered[i] = 1;
-  });
+  const std::vector<char> covered = umbrellas_covered(P, nl, K, doubtful, normal);
   for (std::size_t i = 0; i < n; ++i)
     if (doubtful[i] && !covered[i]) surface[i] = 1;
   return surface;
