@@ -27,8 +27,8 @@ inline constexpr const char* wall_pressure_help =
     "How the walls' pressure continues the fluid's: adami (the fluid's pressure plus rho (g - a_w) . r, "
     "Adami et al. 2012: the fluid taken to accelerate with the wall along it too, so a lone particle on "
     "a side wall is held up) or continued (rho (g - a_w) across the wall, the fluid's own pressure gradient "
-    "along it: a lone particle falls; the fluid's pressure error goes into the walls, and ISPH's 3D dam "
-    "break runs ahead; docs/verification/free_surface.md)";
+    "along it: a lone particle falls; not yet the default: docs/verification/free_surface.md, \"Walls that "
+    "continue the fluid's own pressure\")";
 
 template <int D> struct AdamiWall {
   // Shepard weights of wall particle w: the fluid neighbours f and W_wf / sum_f W_wf.
