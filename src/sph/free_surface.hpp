@@ -14,6 +14,7 @@
 // came per step, not per unit time.
 #include <petscsys.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -71,6 +72,8 @@ std::vector<char> free_surface_particles(const Particles<D>& P, const NeighbourL
     const bool scanned = scan == BandScan::All || (scan == BandScan::Walls && has_wall[i]);
     doubtful[i] = scanned && P.kind[i] == kFluid && !surface[i] && div[i] < exit_threshold;
   }
+  // Most steps have no band particle to scan: the two pair loops below are skipped then.
+  if (std::none_of(doubtful.begin(), doubtful.end(), [](char d) { return d != 0; })) return surface;
   std::vector<Vector<D>> normal(P.n_owned, Vector<D>::Zero());
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     if (doubtful[i]) normal[i] -= (P.m[j] / P.rho[j]) * g.gradW;
