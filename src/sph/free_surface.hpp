@@ -72,8 +72,11 @@ std::vector<char> free_surface_particles(const Particles<D>& P, const NeighbourL
     const bool scanned = scan == BandScan::All || (scan == BandScan::Walls && has_wall[i]);
     doubtful[i] = scanned && P.kind[i] == kFluid && !surface[i] && div[i] < exit_threshold;
   }
-  // Most steps have no band particle to scan: the two pair loops below are skipped then.
-  if (std::none_of(doubtful.begin(), doubtful.end(), [](char d) { return d != 0; })) return surface;
+  // Most steps have no band particle to scan: the two pair loops below are skipped then, by every rank
+  // together (a pair loop refreshes and checks ghosts, which is collective).
+  int any = std::any_of(doubtful.begin(), doubtful.end(), [](char d) { return d != 0; });
+  MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  if (!any) return surface;
   std::vector<Vector<D>> normal(P.n_owned, Vector<D>::Zero());
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     if (doubtful[i]) normal[i] -= (P.m[j] / P.rho[j]) * g.gradW;
