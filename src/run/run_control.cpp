@@ -13,6 +13,7 @@ namespace {
 constexpr PetscInt kMaxCheckpointsKept = 1000;
 const char* const box_exit_names[] = {"stop", "remove", "auto"};
 const char* const body_pressure_force_names[] = {"surface", "pairs"};
+const char* const output_times_names[] = {"step", "exact"};
 
 // What becomes of fluid that leaves the box, and the start's perturbation (round-off studies).
 PetscErrorCode read_box_exit_and_start_options(PetscOptionItems* PetscOptionsObject, RunControl* o) {
@@ -34,6 +35,29 @@ PetscErrorCode read_box_exit_and_start_options(PetscOptionItems* PetscOptionsObj
   PetscFunctionReturn(0);
 }
 
+// Where the frames go, what they hold and when they are written.
+PetscErrorCode read_output_options(PetscOptionItems* PetscOptionsObject, RunControl* o) {
+  PetscFunctionBeginUser;
+  PetscCall(option_real(PetscOptionsObject, "-output_interval",
+                        "Time between VTK frames (-1: t_end/20, 0: first and last only)", o->output_interval,
+                        &o->output_interval, nullptr));
+  PetscCall(option_choice(PetscOptionsObject, "-output_times",
+                          "When frames are written: step (at the first step that reaches each multiple of "
+                          "-output_interval, the steps as the stability limits make them) or exact (the steps "
+                          "before each frame evened out to land on its time, as they land on -t_end: the run then "
+                          "takes other steps than one with other frame times)",
+                          output_times_names, 2, output_times_names[o->exact_output_times], &o->exact_output_times,
+                          nullptr));
+  PetscCall(option_string(PetscOptionsObject, "-output_dir",
+                          "Output directory (default out/<case>-<solver>-<nx>; with -restart, the checkpoint's folder)",
+                          o->output_dir, o->output_dir, sizeof(o->output_dir), nullptr));
+  PetscCall(option_string(PetscOptionsObject, "-output_fields",
+                          "Extra point arrays in the VTK frames: vorticity (the solver's own fields, e.g. ISPH's "
+                          "free_surface, are always written)",
+                          o->output_fields, o->output_fields, sizeof(o->output_fields), nullptr));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode read_options(RunControl* o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Run control and output", "sph");
@@ -45,16 +69,7 @@ PetscErrorCode read_options(RunControl* o) {
                         o->dt_force, &o->dt_force, nullptr));
   PetscCall(option_int(PetscOptionsObject, "-max_steps", "Stop after this many steps (-1: no limit)", o->max_steps,
                        &o->max_steps, nullptr));
-  PetscCall(option_real(PetscOptionsObject, "-output_interval",
-                        "Time between VTK frames (-1: t_end/20, 0: first and last only)", o->output_interval,
-                        &o->output_interval, nullptr));
-  PetscCall(option_string(PetscOptionsObject, "-output_dir",
-                          "Output directory (default out/<case>-<solver>-<nx>; with -restart, the checkpoint's folder)",
-                          o->output_dir, o->output_dir, sizeof(o->output_dir), nullptr));
-  PetscCall(option_string(PetscOptionsObject, "-output_fields",
-                          "Extra point arrays in the VTK frames: vorticity (the solver's own fields, e.g. ISPH's "
-                          "free_surface, are always written)",
-                          o->output_fields, o->output_fields, sizeof(o->output_fields), nullptr));
+  PetscCall(read_output_options(PetscOptionsObject, o));
   PetscCall(option_bool(PetscOptionsObject, "-wall_forces",
                         "Write the force and moment on every body and on the walls to timeseries.csv each step "
                         "(force_<body>_x, ..., moment_<body>; pressure and viscous parts)",

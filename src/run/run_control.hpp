@@ -14,6 +14,7 @@ struct RunControl {
   PetscReal dt = 0.0;                  // 0: from the solver's stability limits
   PetscInt max_steps = -1;             // -1: no limit
   PetscReal output_interval = -1;      // -1: t_end / 20
+  PetscInt exact_output_times = 0;     // 1: steps evened out to land on each frame's time
   PetscReal skin = -1;                 // Verlet skin as a fraction of the support radius; -1: the solver's
   PetscReal steady_tol = -1;           // -1: the case's default
   PetscReal checkpoint_interval = -1;  // -1: with every VTK frame, 0: never

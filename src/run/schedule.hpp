@@ -28,6 +28,7 @@ class Cadence {
         next_(interval > 0 ? interval * (std::floor(t / interval * (1.0 + kTimeTolerance)) + 1)
                            : std::numeric_limits<double>::infinity()) {}
   bool due(double t) const { return time_reached(t, next_); }
+  double next() const { return next_; }  // infinity: never
   // Moves past t (a step longer than the interval skips the events it jumped over).
   void advance(double t) {
     while (next_ <= t * (1.0 + kTimeTolerance)) next_ += interval_;

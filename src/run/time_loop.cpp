@@ -175,7 +175,9 @@ template <int D> void TimeLoop<D>::advance() {
   if (s_.disc.bodies.any_free()) stable = std::min(stable, s_.disc.bodies.free_step(s_.kernel.h(), 0.25));
   double dt = opt_.dt > 0 ? opt_.dt : stable;
   if (opt_.dt > stable) warn_dt(stable);
-  dt = step_to_end(t_, opt_.t_end, dt);
+  // -output_times exact: the steps to the next frame evened out as those to t_end are.
+  const double target = opt_.exact_output_times ? std::min(opt_.t_end, frames_->next()) : opt_.t_end;
+  dt = step_to_end(t_, target, dt);
   if (step_ == resumed_.step) refuse_endless_run(dt);
   LogEventScope log_step(LogEvent::Step);
   failing_step_ = step_ + 1;
