@@ -51,6 +51,25 @@ TEST(OpenBoundaries, ParabolicInflowPeaksOnTheSectionsMiddleAndRampsFromRest) {
   EXPECT_DOUBLE_EQ(ramped.velocity_at(V2(-0.05, 0.5), 3.0)[0], 1.5);
 }
 
+// A speed table scales the inflow: linear between its rows, held outside them, times the ramp.
+TEST(OpenBoundaries, ASpeedTableScalesTheInflowLinearlyBetweenItsRows) {
+  Channel c;
+  OpenBoundary<2> in = c.open.boundaries()[0];
+  in.inflow.table_t = {0.5, 1.0, 2.0};
+  in.inflow.table_factor = {1.0, 3.0, 0.0};
+  const V2 middle(-0.05, 0.5);
+  EXPECT_DOUBLE_EQ(in.velocity_at(middle, 0.0)[0], 1.5);         // before the first row: its factor
+  EXPECT_DOUBLE_EQ(in.velocity_at(middle, 0.75)[0], 1.5 * 2.0);  // halfway from 1 to 3
+  EXPECT_DOUBLE_EQ(in.velocity_at(middle, 1.5)[0], 1.5 * 1.5);   // halfway from 3 to 0
+  EXPECT_DOUBLE_EQ(in.velocity_at(middle, 5.0)[0], 0.0);         // after the last row: its factor
+  EXPECT_DOUBLE_EQ(in.inflow.top_factor(), 3.0);
+  in.inflow.ramp = 1.0;
+  EXPECT_NEAR(in.velocity_at(middle, 0.75)[0], 1.5 * 2.0 * 0.5 * (1.0 - std::cos(0.75 * M_PI)), 1e-15);
+  OpenBoundary<2> uniform = in;
+  uniform.inflow.profile = InletVelocity<2>::Profile::Uniform, uniform.inflow.velocity = V2(2.0, 0.5);
+  EXPECT_NEAR((uniform.velocity_at(middle, 1.5) - 1.5 * V2(2.0, 0.5)).norm(), 0.0, 1e-15);
+}
+
 TEST(OpenBoundaries, AnInletParticleThatEntersIsFluidAndANewOneTakesItsPlaceADepthBehind) {
   Channel c;
   const std::size_t entering = c.add(V2(0.01, 0.45), kInlet);  // just crossed the plane

@@ -282,6 +282,44 @@ TEST(SceneShapes, InlineShapesAndTopLevelPhysicsMatchTheNestedForm) {
   EXPECT_GT(std::count(a.body.begin(), a.body.end(), 0), 0);
 }
 
+// Each {CSV text, message} pair: the text written to `file` beside the scene, sampling the scene fails
+// with an error holding the message.
+void expect_table_refusals(const std::string& name, const std::string& scene, const std::string& file,
+                           const std::vector<std::pair<std::string, std::string>>& tables) {
+  for (const auto& [csv, expected] : tables) {
+    std::ofstream(folder() + "/" + file) << csv;
+    std::string message;
+    try {
+      sample(name, scene, 0.1);
+    } catch (const sph::Error& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+  }
+}
+
+// An inlet's speed table: checked as a motion table is (one reader), and its factors may not be negative.
+TEST(SceneShapes, InletSpeedTablesAreCheckedRowByRow) {
+  const std::string scene =
+      "dimension: 2\nbox: [0, 2, -0.3, 1.3]\nregions:\n  - {role: wall, shape: {box: [-1, 3, -1, 0]}}\n"
+      "  - {role: wall, shape: {box: [-1, 3, 1, 2]}}\n  - {role: fluid, shape: {box: [0, 2, 0, 1]}}\n"
+      "  - {role: inlet, side: x-, velocity: {parabolic: 1}, speed_table: s.csv}\n"
+      "  - {role: outlet, side: x+}\n";
+  const std::vector<std::pair<std::string, std::string>> tables = {
+      {"t,speed\n0,1\n1,2\n", "has the header 't,speed'; give t,factor in the first line"},
+      {"t,factor\n0,1\n0,2\n", "row 3: t = 0 does not increase"},
+      {"t,factor\n0,1\n1\n", "row 3 has 1 values; give 2"},
+      {"t,factor\n0,1\n", "holds fewer than two rows"},
+      {"t,factor\n0,1\n1,-0.5\n", "row 3: factor -0.5 is negative"},
+  };
+  expect_table_refusals("inlet", scene, "s.csv", tables);
+  std::ofstream(folder() + "/s.csv") << "t, factor\n0, 1\n0.5, 2\n";
+  const sph::YamlScene ok = sample("inlet", scene, 0.1);
+  ASSERT_EQ(ok.open.size(), 2u);
+  EXPECT_EQ(ok.open[0].speed_t, (std::vector<double>{0.0, 0.5}));
+  EXPECT_EQ(ok.open[0].speed_factor, (std::vector<double>{1.0, 2.0}));
+}
+
 // A motion table's file: its header, its rows and its times are checked, naming the row.
 TEST(SceneShapes, MotionTablesAreCheckedRowByRow) {
   const std::string scene =
@@ -294,16 +332,7 @@ TEST(SceneShapes, MotionTablesAreCheckedRowByRow) {
       {"t,x,y\n0,0,0\n", "holds fewer than two rows"},
       {"t,x,y,angle\n0,0,0,0\n1,0,0,10\n", "turns the body (an angle column) but has no centre"},
   };
-  for (const auto& [csv, expected] : tables) {
-    std::ofstream(folder() + "/m.csv") << csv;
-    std::string message;
-    try {
-      sample("table", scene, 0.1);
-    } catch (const sph::Error& e) {
-      message = e.what();
-    }
-    EXPECT_NE(message.find(expected), std::string::npos) << message;
-  }
+  expect_table_refusals("table", scene, "m.csv", tables);
   std::ofstream(folder() + "/m.csv") << "t, x, y\n0, 0, 0\n0.5, 0.1, 0\n1, 0.3, -0.1\n";
   const sph::YamlScene ok = sample("table", scene, 0.1);
   ASSERT_EQ(ok.motions.size(), 1u);

@@ -197,6 +197,7 @@ template <int D> void SceneCase<D>::read_file() {
       b.inflow.velocity[a] = spec.velocity[a];
     if (spec.peak > 0) b.inflow.profile = InletVelocity<D>::Profile::Parabolic, b.inflow.peak = spec.peak;
     b.inflow.ramp = spec.ramp;
+    b.inflow.table_t = spec.speed_t, b.inflow.table_factor = spec.speed_factor;
     open_.push_back(b);
   }
 }
@@ -389,10 +390,11 @@ template <int D> void SceneCase<D>::resolve_reference_speed() {
           std::max(reach[static_cast<std::size_t>(body_[i])], (r3 - r3.dot(m.axis) * m.axis).norm());
     }
   for (std::size_t b = 0; b < motions_.size(); ++b) U = std::max(U, motions_[b].top_speed(reach[b]));
-  // Inlets: their full speed.
+  // Inlets: their full speed, at their speed table's largest factor.
   for (const OpenBoundary<D>& b : open_)
-    U = std::max(U,
-                 b.inflow.profile == InletVelocity<D>::Profile::Parabolic ? b.inflow.peak : b.inflow.velocity.norm());
+    U = std::max(
+        U, b.inflow.top_factor() *
+               (b.inflow.profile == InletVelocity<D>::Profile::Parabolic ? b.inflow.peak : b.inflow.velocity.norm()));
   physics_.U = opt_.U_set ? opt_.U : scalar("U", PETSC_FALSE, 0.0, U);
   if (!(physics_.U > 0))
     throw Error(opt_.U_set || file_.field.count("U")

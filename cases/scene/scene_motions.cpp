@@ -136,63 +136,23 @@ void Reader::table_motion(const YAML::Node& m, const std::string& key, MotionSpe
   for (const char* name : {"velocity", "amplitude", "period", "phase", "rotation"})
     if (m[name].IsDefined()) fail(m[name], key + "." + name, "does not apply to type table; remove it");
   if (!m["file"].IsDefined() || !m["file"].IsScalar()) fail(m, key, "of type table needs file: motion.csv");
-  std::filesystem::path file(m["file"].Scalar());
-  if (file.is_relative()) file = dir_ / file;
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec))
-    fail(m["file"], key + ".file",
-         "'" + file.string() +
-             "' is a folder, not a file; give the motion table, a CSV with the header t,x,y "
-             "(paths are relative to the scene file)");
-  std::ifstream in(file, std::ios::binary);
-  if (!in)
-    fail(m["file"], key + ".file", "cannot be opened ('" + file.string() + "'; paths are relative to the scene file)");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  checksum = fnv1a(checksum, text.data(), text.size());
-  std::istringstream lines(text);
-  std::string line, where = key + ".file '" + file.string() + "'";
-  auto cells = [](const std::string& l) {
-    std::vector<std::string> out;
-    std::stringstream row(l);
-    for (std::string cell; std::getline(row, cell, ',');) {
-      const auto a = cell.find_first_not_of(" \t\r"), b = cell.find_last_not_of(" \t\r");
-      out.push_back(a == std::string::npos ? "" : cell.substr(a, b - a + 1));
-    }
-    return out;
-  };
-  std::getline(lines, line);
-  const std::vector<std::string> header = cells(line);
   std::vector<std::string> want = {"t", "x", "y"};
   if (dim == 3) want.push_back("z");
-  const bool with_angle = header.size() == want.size() + 1 && header.back() == "angle";
-  if (with_angle) want.push_back("angle");
-  if (header != want)
-    fail(m["file"], where,
-         std::string("has the header '") + line + "'; give t,x,y" + (dim == 3 ? ",z" : "") +
-             " (and ,angle in degrees) in the first line");
-  for (int row = 2; std::getline(lines, line); ++row) {
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    const std::vector<std::string> v = cells(line);
-    if (v.size() != want.size())
-      fail(m["file"], where,
-           "row " + std::to_string(row) + " has " + std::to_string(v.size()) + " values; give " +
-               std::to_string(want.size()));
-    std::vector<double> x;
-    for (const std::string& cell : v) {
-      char* end = nullptr;
-      const double value = std::strtod(cell.c_str(), &end);
-      if (cell.empty() || *end != '\0' || !std::isfinite(value))
-        fail(m["file"], where, "row " + std::to_string(row) + ": '" + cell + "' is not a finite number");
-      x.push_back(value);
-    }
-    if (!spec.table_t.empty() && !(x[0] > spec.table_t.back()))
-      fail(m["file"], where, "row " + std::to_string(row) + ": t = " + number_text(x[0]) + " does not increase");
+  bool with_angle = false;
+  const CsvTable table =
+      csv_table(m["file"], key + ".file", "the motion table, a CSV with the header t,x,y", [&](const CsvTable& t) {
+        with_angle = t.header.size() == want.size() + 1 && t.header.back() == "angle";
+        if (with_angle) want.push_back("angle");
+        if (t.header != want)
+          fail(m["file"], t.where,
+               "has the header '" + t.header_line + "'; give t,x,y" + (dim == 3 ? ",z" : "") +
+                   " (and ,angle in degrees) in the first line");
+      });
+  for (const std::vector<double>& x : table.rows) {
     spec.table_t.push_back(x[0]);
     for (int a = 0; a < dim; ++a) spec.table_x[a].push_back(x[1 + a]);
     if (with_angle) spec.table_angle_degrees.push_back(x.back());
   }
-  if (spec.table_t.size() < 2)
-    fail(m["file"], where, "holds fewer than two rows; give the motion at two times at least");
   spec.type = "table";
   if (!with_angle) return;
   spec.spin = "table";

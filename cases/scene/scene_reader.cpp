@@ -271,13 +271,14 @@ bool Reader::is_open_boundary(const YAML::Node& n) {
   return role.IsDefined() && role.IsScalar() && (role.Scalar() == "inlet" || role.Scalar() == "outlet");
 }
 
-// {role: inlet, side: x-, velocity: [u, v] or {parabolic: U_max}, ramp: T} or {role: outlet, side: x+,
-// pressure: p}: the side and the condition; the buffer's place and section come with the lattice.
+// {role: inlet, side: x-, velocity: [u, v] or {parabolic: U_max}, ramp: T, speed_table: FILE} or
+// {role: outlet, side: x+, pressure: p}: the side and the condition; the buffer's place and section
+// come with the lattice.
 // Where it lies: on a side of the box (the box given, the axis not periodic, the side free), with a
 // buffer `depth` deep.
 OpenBoundarySpec Reader::open_boundary(const YAML::Node& n, const std::string& key, bool has_box, const Point3& box_lo,
                                        const Point3& box_hi, const std::vector<double>& periodic,
-                                       const std::vector<OpenBoundarySpec>& others, double depth) const {
+                                       const std::vector<OpenBoundarySpec>& others, double depth) {
   OpenBoundarySpec b = open_boundary_condition(n, key);
   const std::string side = std::string(1, "xyz"[b.axis]) + (b.side < 0 ? "-" : "+");
   if (!has_box) fail(n, key, "lies on a side of the box, and the scene has none; add box: [...]");
@@ -291,10 +292,10 @@ OpenBoundarySpec Reader::open_boundary(const YAML::Node& n, const std::string& k
   return b;
 }
 
-OpenBoundarySpec Reader::open_boundary_condition(const YAML::Node& n, const std::string& key) const {
+OpenBoundarySpec Reader::open_boundary_condition(const YAML::Node& n, const std::string& key) {
   OpenBoundarySpec b;
   b.inlet = n["role"].Scalar() == "inlet";
-  if (b.inlet) only_keys(n, key, {"role", "side", "velocity", "ramp"});
+  if (b.inlet) only_keys(n, key, {"role", "side", "velocity", "ramp", "speed_table"});
   else only_keys(n, key, {"role", "side", "pressure"});
   const YAML::Node side = n["side"];
   const std::string sides = dim == 2 ? "x-, x+, y- or y+" : "x-, x+, y-, y+, z- or z+";
@@ -331,6 +332,7 @@ OpenBoundarySpec Reader::open_boundary_condition(const YAML::Node& n, const std:
     b.ramp = number(n["ramp"], key + ".ramp");
     if (!(b.ramp >= 0)) fail(n["ramp"], key + ".ramp", "is negative; give the time to full speed, 0 or more");
   }
+  if (n["speed_table"].IsDefined()) inlet_speed_table(n["speed_table"], key + ".speed_table", b);
   return b;
 }
 

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <set>
@@ -63,6 +64,13 @@ struct Region {
 
 // Parses one scene file; every refusal names the file, the line and the key. A key that is absent gives a
 // node on which only IsDefined() may be asked (yaml-cpp throws on the others).
+// A table read from a CSV file (Reader::csv_table).
+struct CsvTable {
+  std::string where, header_line;  // where: the key and the file, for errors
+  std::vector<std::string> header;
+  std::vector<std::vector<double>> rows;
+};
+
 class Reader {
  public:
   explicit Reader(const std::string& path) : path_(path), dir_(std::filesystem::path(path).parent_path()) {}
@@ -91,18 +99,28 @@ class Reader {
   YAML::Node inline_shape(const YAML::Node& n, const std::string& key) const;
   // Whether region n is an inlet or an outlet (role: inlet / outlet).
   static bool is_open_boundary(const YAML::Node& n);
-  // {role: inlet, side: x-, velocity: [u, v] or {parabolic: U_max}, ramp: T} or {role: outlet, side: x+,
-  // pressure: p}: the side and the condition; the buffer's place and section come with the lattice.
+  // {role: inlet, side: x-, velocity: [u, v] or {parabolic: U_max}, ramp: T, speed_table: FILE} or
+  // {role: outlet, side: x+, pressure: p}: the side and the condition; the buffer's place and section
+  // come with the lattice.
   // Where it lies: on a side of the box (the box given, the axis not periodic, the side free), with a
   // buffer `depth` deep.
   OpenBoundarySpec open_boundary(const YAML::Node& n, const std::string& key, bool has_box, const Point3& box_lo,
                                  const Point3& box_hi, const std::vector<double>& periodic,
-                                 const std::vector<OpenBoundarySpec>& others, double depth) const;
-  OpenBoundarySpec open_boundary_condition(const YAML::Node& n, const std::string& key) const;
+                                 const std::vector<OpenBoundarySpec>& others, double depth);
+  OpenBoundarySpec open_boundary_condition(const YAML::Node& n, const std::string& key);
   // One region of regions:, its keys checked; a body's name added to `bodies`; g: the scene's gravity,
   // for a hydrostatic start.
   void read_role(const YAML::Node& n, const std::string& key, Region& r, std::vector<std::string>& bodies) const;
   Region region(const YAML::Node& n, const std::string& key, std::vector<std::string>& bodies, const Point3& g);
+
+  // A CSV table in the file that file_key names (relative to the scene file; `what` names it in the
+  // error for a folder): its header, then rows of finite numbers as many as the header's cells, the
+  // first (t) increasing, two rows at least, each error naming the row (scene_tables.cpp). check_header
+  // sees the header before any row is read, and fails on a wrong one. The bytes join the checksum.
+  CsvTable csv_table(const YAML::Node& file_key, const std::string& key, const std::string& what,
+                     const std::function<void(const CsvTable&)>& check_header);
+  // An inlet's speed_table: FILE, a CSV with the header t,factor, factors >= 0.
+  void inlet_speed_table(const YAML::Node& file_key, const std::string& key, OpenBoundarySpec& b);
 
   // Motions (scene_motions.cpp).
   // {type: fixed}, {type: constant, velocity: [..]} or {type: sinusoidal, amplitude: [..], period: T,

@@ -30,11 +30,13 @@
 // no fluid region and no solid: a tilted surface starts in balance). Walls and bodies: slip: free
 // (no shear on the fluid; default no_slip, src/boundary/moving_bodies.hpp).
 //
-// Open boundaries: {role: inlet, side: x-, velocity: [u, v] or {parabolic: U_max}, ramp: T} and
+// Open boundaries: {role: inlet, side: x-, velocity: [u, v] or {parabolic: U_max}, ramp: T,
+// speed_table: FILE} and
 // {role: outlet, side: x+, pressure: p} (default 0) on sides of the box (x-, x+, y-, y+, z-, z+). Each
 // has a buffer beyond the side as deep as the walls (the kernel's support), over the section where a
 // fluid region meets the side: the box grows by it. A parabolic inflow spans the section between the
-// solids (a channel's or a duct's walls); a ramp starts it from rest, (1 - cos(pi t / T)) / 2.
+// solids (a channel's or a duct's walls); a ramp starts it from rest, (1 - cos(pi t / T)) / 2, and
+// speed_table: FILE (t,factor) scales it in time.
 //
 // Sampling: lattice points (i + 1/2) dx within the box (and within the regions' bounds), so a box from
 // 0 to 1 holds 1/dx points per side. A point inside a wall or body is a wall particle when it lies
@@ -83,6 +85,7 @@ struct OpenBoundarySpec {
   std::array<double, 3> velocity{};                  // inlet: uniform velocity
   double peak = 0.0;                                 // inlet: parabolic profile's centre speed (0: uniform)
   double ramp = 0.0;                                 // inlet: time to full speed from rest
+  std::vector<double> speed_t, speed_factor;         // inlet: its speed table (t, factor), if any
   double pressure = 0.0;                             // outlet
 };
 

@@ -32,17 +32,35 @@ namespace sph {
 
 // The velocity an inlet prescribes: uniform, or the parabolic profile of a channel (2D) or a
 // rectangular duct (3D, the product of the two parabolas) across the inlet's section, each times a
-// ramp from rest, (1 - cos(pi t / T)) / 2 up to t = T (none for T = 0).
+// ramp from rest, (1 - cos(pi t / T)) / 2 up to t = T (none for T = 0), and times a speed table's factor
+// at t (linear between its rows, held before the first and after the last; none without a table).
 template <int D> struct InletVelocity {
   enum class Profile { Uniform, Parabolic };
   Profile profile = Profile::Uniform;
-  Vector<D> velocity = Vector<D>::Zero();  // Uniform
-  double peak = 0.0;                       // Parabolic: the speed on the section's centre, along the inward normal
-  double ramp = 0.0;                       // T
+  Vector<D> velocity = Vector<D>::Zero();     // Uniform
+  double peak = 0.0;                          // Parabolic: the speed on the section's centre, along the inward normal
+  double ramp = 0.0;                          // T
+  std::vector<double> table_t, table_factor;  // the speed table: t increasing, factors >= 0
 
+  double factor(double t) const { return ramp_factor(t) * table_value(t); }
+  // The largest factor over the run (the inlet's top speed per unit of its velocity).
+  double top_factor() const {
+    return table_factor.empty() ? 1.0 : *std::max_element(table_factor.begin(), table_factor.end());
+  }
+
+ private:
   double ramp_factor(double t) const {
     if (ramp <= 0.0 || t >= ramp) return 1.0;
     return 0.5 * (1.0 - std::cos(M_PI * std::max(t, 0.0) / ramp));
+  }
+  double table_value(double t) const {
+    if (table_t.empty()) return 1.0;
+    if (t <= table_t.front()) return table_factor.front();
+    if (t >= table_t.back()) return table_factor.back();
+    const std::size_t k =
+        static_cast<std::size_t>(std::upper_bound(table_t.begin(), table_t.end(), t) - table_t.begin());
+    const double w = (t - table_t[k - 1]) / (table_t[k] - table_t[k - 1]);
+    return (1.0 - w) * table_factor[k - 1] + w * table_factor[k];
   }
 };
 
@@ -72,7 +90,7 @@ template <int D> struct OpenBoundary {
     return n;
   }
   Vector<D> velocity_at(const Vector<D>& x, double t) const {
-    const double ramp = inflow.ramp_factor(t);
+    const double ramp = inflow.factor(t);
     if (inflow.profile == InletVelocity<D>::Profile::Uniform) return ramp * inflow.velocity;
     double shape = 1.0;
     for (int a = 0; a < D; ++a) {

@@ -79,6 +79,32 @@ for s in ("isph", "wcsph"):
 sys.exit(0 if ok else 1)
 PY
 
+# A speed table doubles the inflow at t = 0.5 to 0.6 (no ramp): the rate at which mass comes in (a
+# least-squares slope of inflow_mass over each stretch; particles cross a row at a time, so the count
+# itself is a staircase, up to a particle per row off) is rho times the parabola's flux, 2/3 U_max H,
+# times the factor, to 2.5 %.
+sed 's/ramp: 0.5}/speed_table: speed.csv}/' "$scene" > "$tmp/table.yaml"
+printf 't,factor\n0,1\n0.5,1\n0.6,2\n' > "$tmp/speed.csv"
+for s in isph wcsph; do
+  expect_ok -case scene -scene_file "$tmp/table.yaml" -nx 20 -progress 0 -threads 1 -t_end 1 -output_interval 0 \
+    -solver $s -output_dir "$tmp/table-$s"
+done
+/usr/bin/python3 - "$tmp" <<'PY' || fail=1
+import csv, sys
+ok = True
+for s in ("isph", "wcsph"):
+    rows = list(csv.DictReader(open(f"{sys.argv[1]}/table-{s}/timeseries.csv")))
+    for a, b, factor in ((0.1, 0.5, 1), (0.6, 1.0, 2)):
+        pts = [(float(r["t"]), float(r["inflow_mass"])) for r in rows if a <= float(r["t"]) <= b]
+        mt, mm = (sum(p[k] for p in pts) / len(pts) for k in (0, 1))
+        rate = sum((t - mt) * (m - mm) for t, m in pts) / sum((t - mt) ** 2 for t, m in pts)
+        want = factor * 2 / 3
+        good = abs(rate / want - 1) < 0.025
+        print(("ok: " if good else "FAIL: ") + f"{s}: inflow rate over [{a}, {b}] {rate:.4f}, factor {factor} gives {want:.4f}")
+        ok &= good
+sys.exit(0 if ok else 1)
+PY
+
 # What is not built, or makes no open boundary, is refused in one line.
 bad() { sed "$1" "$scene" > "$tmp/bad.yaml"; }
 bad 's/velocity: {parabolic: 1}/velocity: [-1, 0]/'
