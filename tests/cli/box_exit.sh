@@ -47,13 +47,10 @@ OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_ov
 expect_ok $quick -solver wcsph -box_exit remove -t_end 1.2 -output_dir "$tmp/half"
 expect_ok $quick -solver wcsph -box_exit remove -restart "$tmp/half/checkpoint.bin" -output_dir "$tmp/resumed"
 
-/usr/bin/python3 - "$tmp" <<'PY' || fail=1
+PYTHONPATH="$(dirname "$0")/lib" /usr/bin/python3 -B - "$tmp" <<'PY' || fail=1
 import csv, json, sys
 tmp = sys.argv[1]
-ok = True
-def check(cond, what):
-    global ok
-    print(("ok: " if cond else "FAIL: ") + what); ok &= bool(cond)
+from checks import check, finish
 start = 0.8 * 0.4 * 1.0  # the block's mass: rho0 times its area (16 x 8 particles of 0.05^2 at nx 20)
 for run in ("isph", "wcsph", "isph-auto", "wcsph-auto", "wcsph2", "resumed"):
     s = json.load(open(f"{tmp}/{run}/summary.json"))
@@ -81,6 +78,6 @@ check(resumed["particles"] == one["particles"] and abs(resumed["mass"] - one["ma
       f"resumed: removed {resumed['particles']}, as one uninterrupted run ({one['particles']})")
 two = json.load(open(f"{tmp}/wcsph2/summary.json"))["conservation"]["removed_fluid"]
 check(abs(two["particles"] - one["particles"]) <= 2, f"2 ranks removed {two['particles']}, one rank {one['particles']}")
-sys.exit(0 if ok else 1)
+finish()
 PY
 exit $fail

@@ -48,13 +48,10 @@ done
 "$mpiexec" -n 2 "$sph" $quick -solver isph -t_end 0.4 -output_interval 1 -output_dir "$tmp/ranks2" >"$tmp/ranks2.log" 2>&1 ||
   { echo "FAIL: 2 ranks"; tail -3 "$tmp/ranks2.log"; fail=1; }
 
-/usr/bin/python3 - "$tmp" "$src" <<'PY' || fail=1
+PYTHONPATH="$(dirname "$0")/lib" /usr/bin/python3 -B - "$tmp" "$src" <<'PY' || fail=1
 import csv, json, subprocess, sys
 tmp, src = sys.argv[1:3]
-ok = True
-def check(cond, what):
-    global ok
-    print(("ok: " if cond else "FAIL: ") + what); ok &= bool(cond)
+from checks import check, finish
 # Bounds at nx 20 from docs/verification/free_bodies.md (there: ISPH +0.64 %, WCSPH +1.7 %).
 for s, bound in (("isph", 0.015), ("wcsph", 0.03)):
     out = subprocess.run([f"{src}/scripts/floating-check", f"{tmp}/rest_{s}", "--window", "1"], capture_output=True, text=True)
@@ -104,7 +101,7 @@ check(dy < 5e-4, f"2 ranks: the box's height within 5e-4 of 1 rank's (off by {dy
 s = json.load(open(f"{tmp}/rest_isph/summary.json"))
 check(abs(s["free_bodies"]["box"]["mass"] - 40.0) < 1e-9, "summary.json: the box's mass, 500 kg/m^3 x 0.08 m^2")
 check(s["wall_groups"]["box"]["moment_about"] == "centre of mass", "summary.json: a free body's moment is about its centre of mass")
-sys.exit(0 if ok else 1)
+finish()
 PY
 
 # Free bodies that cannot be are refused in one line naming the key.

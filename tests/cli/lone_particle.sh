@@ -23,13 +23,10 @@ expect_ok $common -solver isph -output_dir "$tmp/isph"
 expect_ok $common -solver wcsph -kernel wendland_c2 -output_dir "$tmp/wcsph"
 expect_ok $common -solver wcsph -output_dir "$tmp/wcsph-quintic"  # its free-surface default kernel
 
-/usr/bin/python3 - "$tmp" <<'PY' || fail=1
+PYTHONPATH="$(dirname "$0")/lib" /usr/bin/python3 -B - "$tmp" <<'PY' || fail=1
 import csv, sys
 tmp = sys.argv[1]
-ok = True
-def check(cond, what):
-    global ok
-    print(("ok: " if cond else "FAIL: ") + what); ok &= bool(cond)
+from checks import check, finish
 mass = 0.05 ** 2
 speed = {}
 for run in ("isph", "wcsph", "wcsph-quintic"):
@@ -48,6 +45,6 @@ for run in ("isph", "wcsph", "wcsph-quintic"):
 # The terminal speed is g over the viscous drag's rate, the same operator and kernel in both schemes.
 check(abs(speed["isph"] - speed["wcsph"]) < 0.005 * speed["isph"],
       f"ISPH and WCSPH with one kernel fall at one speed ({speed['isph']:.5f}, {speed['wcsph']:.5f})")
-sys.exit(0 if ok else 1)
+finish()
 PY
 exit $fail

@@ -30,13 +30,10 @@ for s in isph wcsph; do
     { echo "FAIL: $s on 2 ranks"; tail -3 "$tmp/${s}2.log"; fail=1; }
 done
 
-/usr/bin/python3 - "$tmp" "$src" <<'PY' || fail=1
+PYTHONPATH="$(dirname "$0")/lib" /usr/bin/python3 -B - "$tmp" "$src" <<'PY' || fail=1
 import csv, json, subprocess, sys
 tmp, src = sys.argv[1:3]
-ok = True
-def check(cond, what):
-    global ok
-    print(("ok: " if cond else "FAIL: ") + what); ok &= bool(cond)
+from checks import check, finish
 def figures(run):
     out = subprocess.run([f"{src}/scripts/poiseuille-check", f"{tmp}/{run}", "--window", "2"], capture_output=True,
                          text=True)
@@ -76,7 +73,7 @@ for s in ("isph", "wcsph"):
               f"gradient {f2['pressure_gradient']:.10f} against 1 rank's {f1['pressure_gradient']:.10f}")
         check(abs(f2["mass_balance"]) < 1e-12,
               f"{s} on 2 ranks: the fluid's mass balance holds (off by {f2['mass_balance']:.1e})")
-sys.exit(0 if ok else 1)
+finish()
 PY
 
 # A speed table doubles the inflow at t = 0.5 to 0.6 (no ramp): the rate at which mass comes in (a
@@ -89,9 +86,9 @@ for s in isph wcsph; do
   expect_ok -case scene -scene_file "$tmp/table.yaml" -nx 20 -progress 0 -threads 1 -t_end 1 -output_interval 0 \
     -solver $s -output_dir "$tmp/table-$s"
 done
-/usr/bin/python3 - "$tmp" <<'PY' || fail=1
+PYTHONPATH="$(dirname "$0")/lib" /usr/bin/python3 -B - "$tmp" <<'PY' || fail=1
 import csv, sys
-ok = True
+from checks import check, finish
 for s in ("isph", "wcsph"):
     rows = list(csv.DictReader(open(f"{sys.argv[1]}/table-{s}/timeseries.csv")))
     for a, b, factor in ((0.1, 0.5, 1), (0.6, 1.0, 2)):
@@ -99,10 +96,9 @@ for s in ("isph", "wcsph"):
         mt, mm = (sum(p[k] for p in pts) / len(pts) for k in (0, 1))
         rate = sum((t - mt) * (m - mm) for t, m in pts) / sum((t - mt) ** 2 for t, m in pts)
         want = factor * 2 / 3
-        good = abs(rate / want - 1) < 0.025
-        print(("ok: " if good else "FAIL: ") + f"{s}: inflow rate over [{a}, {b}] {rate:.4f}, factor {factor} gives {want:.4f}")
-        ok &= good
-sys.exit(0 if ok else 1)
+        check(abs(rate / want - 1) < 0.025,
+              f"{s}: inflow rate over [{a}, {b}] {rate:.4f}, factor {factor} gives {want:.4f}")
+finish()
 PY
 
 # What is not built, or makes no open boundary, is refused in one line.

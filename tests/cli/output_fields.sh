@@ -21,7 +21,7 @@ for s in isph wcsph; do
 done
 expect_error "-output_fields takes vorticity \(got 'curl'\)" -case taylor_green -nx 8 -output_fields curl -output_dir "$tmp/refused"
 
-/usr/bin/python3 - "$tmp" <<'PY' || fail=1
+PYTHONPATH="$(dirname "$0")/lib" /usr/bin/python3 -B - "$tmp" <<'PY' || fail=1
 import math, sys
 import numpy as np
 import vtk
@@ -31,10 +31,7 @@ def frame(run, n):
     r = vtk.vtkXMLPolyDataReader(); r.SetFileName(f"{tmp}/{run}/particles_{n:05d}.vtp"); r.Update()
     o = r.GetOutput(); pd = o.GetPointData()
     return vtk_to_numpy(o.GetPoints().GetData()), {pd.GetArrayName(k): vtk_to_numpy(pd.GetArray(k)) for k in range(pd.GetNumberOfArrays())}
-ok = True
-def check(cond, what):
-    global ok
-    print(("ok: " if cond else "FAIL: ") + what); ok &= bool(cond)
+from checks import check, finish
 # ISPH: the free-surface flag, 1 on the column's top and open side only.
 x, a = frame("isph", 1)
 fluid = a["kind"] == 0
@@ -70,6 +67,6 @@ for s in ("isph", "wcsph", "isph-tg", "wcsph-tg"):
     xb, b = frame(f"{s}-vorticity", last)
     check(np.array_equal(xa, xb) and all(np.array_equal(a[k], b[k]) for k in ("velocity", "pressure")),
           f"{s}: frame {last} the same bitwise with and without -output_fields vorticity")
-sys.exit(0 if ok else 1)
+finish()
 PY
 exit $fail

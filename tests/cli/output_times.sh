@@ -17,13 +17,10 @@ for s in isph wcsph; do
   cmp -s "$tmp/$s/timeseries.csv" "$tmp/$s-half/timeseries.csv" && echo "ok: $s: resumed at a frame, the same rows" ||
     { echo "FAIL: $s: the resumed run's rows differ"; fail=1; }
 done
-/usr/bin/python3 - "$tmp" <<'PY' || fail=1
+PYTHONPATH="$(dirname "$0")/lib" /usr/bin/python3 -B - "$tmp" <<'PY' || fail=1
 import csv, re, sys
 tmp = sys.argv[1]
-ok = True
-def check(cond, what):
-    global ok
-    print(("ok: " if cond else "FAIL: ") + what); ok &= bool(cond)
+from checks import check, finish
 def frame_times(run):
     return [float(t) for t in re.findall(r'timestep="([^"]+)"', open(f"{tmp}/{run}/particles.pvd").read())]
 want = [0, 0.07, 0.14, 0.21, 0.28, 0.3]
@@ -35,7 +32,7 @@ for s in ("isph", "wcsph"):
     check(min(dts[:-1]) > 0.5 * max(dts), f"{s}: steps from {min(dts):.3g} to {max(dts):.3g}, none a sliver")
     step = frame_times(f"{s}-step")
     check(any(abs(a - b) > 1e-6 for a, b in zip(step, want)), f"{s}: by default the frames land on steps")
-sys.exit(0 if ok else 1)
+finish()
 PY
 expect_error "-output_times.*step.*exact" -case dam_break -nx 10 -t_end 0.1 -progress 0 -output_times nearest \
   -output_dir "$tmp/bad"
