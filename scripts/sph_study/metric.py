@@ -1,6 +1,7 @@
 """The study's metric: an error norm of summary.json (a plain name, e.g. l1_velocity) or a reduction of
-a timeseries.csv column over a time window, e.g. {column: force_baffle_x, reduce: integral, from: 0, to: 1}.
-Parsing and checking the study file's 'metric', reading a run's time series and reducing a column."""
+a timeseries.csv column over a time window, e.g. {column: force_baffle_x, reduce: integral, from: 0, to: 1},
+optionally of the column's centred moving average (smooth: W). Parsing and checking the study file's
+'metric', reading a run's time series and reducing a column."""
 
 import csv
 import math
@@ -9,7 +10,7 @@ import os
 from .common import read_json
 
 REDUCTIONS = ("mean", "rms", "max", "min", "integral", "period", "amplitude")
-COLUMN_KEYS = {"column", "reduce", "from", "to", "order"}
+COLUMN_KEYS = {"column", "reduce", "from", "to", "order", "smooth"}
 
 
 def parse_metric(value, path):
@@ -47,7 +48,11 @@ def parse_metric(value, path):
         order = number("order", None)
         if not order > 0:
             raise ValueError("%s: metric: 'order' (the order assumed with two resolutions) must be > 0" % path)
-    return {"kind": "column", "column": column, "reduce": reduce, "from": t_from, "to": t_to, "order": order}
+    smooth = number("smooth", 0.0)
+    if not smooth >= 0:
+        raise ValueError("%s: metric: 'smooth' (the moving average's width in time) must be >= 0" % path)
+    return {"kind": "column", "column": column, "reduce": reduce, "from": t_from, "to": t_to, "order": order,
+            "smooth": smooth}
 
 
 def metric_label(m):
@@ -56,7 +61,8 @@ def metric_label(m):
         return m["name"]
     window = "" if m["from"] == 0 and m["to"] == math.inf else ", %g..%s" % (
         m["from"], "end" if m["to"] == math.inf else "%g" % m["to"])
-    return "%s(%s%s)" % (m["reduce"], m["column"], window)
+    smooth = ", smoothed %g" % m["smooth"] if m.get("smooth") else ""
+    return "%s(%s%s%s)" % (m["reduce"], m["column"], window, smooth)
 
 
 def metric_words(m):
@@ -69,7 +75,9 @@ def metric_words(m):
             "amplitude": "the amplitude of a sinusoid fitted at the dominant period"}[m["reduce"]]
     window = "the whole run" if m["from"] == 0 and m["to"] == math.inf else (
         "%g ≤ t" % m["from"] if m["to"] == math.inf else "%g ≤ t ≤ %g" % (m["from"], m["to"]))
-    return "%s of `%s` over %s" % (what, m["column"], window)
+    column = ("the centred moving average over %g time units of `%s`" % (m["smooth"], m["column"])
+              if m.get("smooth") else "`%s`" % m["column"])
+    return "%s of %s over %s" % (what, column, window)
 
 
 def read_timeseries(run_dir):
@@ -119,11 +127,13 @@ def check_metric(m, run_dir):
 def window(t, f, t_from, t_to):
     """The samples (t, f) with t_from <= t <= t_to, the window's ends added by linear interpolation where
     the series covers them and by holding the nearest sample's value where it misses them by at most one
-    step (the series starts after the first step, at t = dt, not at 0). Raises ValueError otherwise."""
+    step (1.5 times its longest; the series starts after the first step, at t = dt, not at 0). Raises
+    ValueError otherwise."""
     pts = [(a, b) for a, b in zip(t, f) if math.isfinite(a)]
     if len(pts) < 2:
         raise ValueError("fewer than 2 steps in timeseries.csv")
-    step = max(b[0] - a[0] for a, b in zip(pts, pts[1:]))
+    # The first row is at t = dt, and at rest the first step is often longer than any later one.
+    step = 1.5 * max(b[0] - a[0] for a, b in zip(pts, pts[1:]))
     lo = max(t_from, pts[0][0] - step)
     hi = pts[-1][0] if t_to == math.inf else t_to
     if t_from < pts[0][0] - step * (1 + 1e-9) or hi > pts[-1][0] + step * (1 + 1e-9):
@@ -196,6 +206,29 @@ def fitted_amplitude(pts, period):
     return float(math.hypot(coef[1], coef[2]))
 
 
+def moving_average(t, f, width):
+    """The centred moving average of the series f(t) over `width`, at each sample: the mean of its
+    piecewise-linear interpolant over [t - width/2, t + width/2], cut to the series' span at its ends.
+    WCSPH's forces carry the tank's acoustic ringing (docs/verification/free_surface.md, "WCSPH's force
+    noise is the tank's sound"); this takes it out of a metric and leaves timeseries.csv as written."""
+    import numpy as np
+    t = np.asarray(t, dtype=float)
+    f = np.asarray(f, dtype=float)
+    if len(t) < 2 or width <= 0:
+        return list(f)
+    slope = np.diff(f) / np.where(np.diff(t) > 0, np.diff(t), 1.0)
+    cumulative = np.concatenate([[0.0], np.cumsum(np.diff(t) * (f[:-1] + f[1:]) / 2)])
+
+    def integral_to(x):  # exact for the interpolant: quadratic within a step
+        i = np.clip(np.searchsorted(t, x, side="right") - 1, 0, len(t) - 2)
+        d = x - t[i]
+        return cumulative[i] + d * f[i] + d * d * slope[i] / 2
+
+    a = np.maximum(t - width / 2, t[0])
+    b = np.minimum(t + width / 2, t[-1])
+    return list((integral_to(b) - integral_to(a)) / (b - a))
+
+
 def metric_value(m, row):
     """(value, None) of the metric for a collected row, or (None, why not)."""
     if m["kind"] == "summary":
@@ -210,7 +243,10 @@ def metric_value(m, row):
     if m["column"] not in cols:
         return None, "no column %s" % m["column"]
     try:
-        return reduce_series(cols["t"], cols[m["column"]], m["reduce"], m["from"], m["to"]), None
+        f = cols[m["column"]]
+        if m.get("smooth"):
+            f = moving_average(cols["t"], f, m["smooth"])
+        return reduce_series(cols["t"], f, m["reduce"], m["from"], m["to"]), None
     except ValueError as e:
         return None, str(e)
 

@@ -7,7 +7,7 @@ import os
 import unittest
 
 from sph_study.collect import collect
-from sph_study.metric import check_metric, metric_label, parse_metric, reduce_series
+from sph_study.metric import check_metric, metric_label, moving_average, parse_metric, reduce_series
 from sph_study.orders import richardson, three_grid_order
 from sph_study.plan import load_study, plan_runs
 from sph_study.report import make_outputs
@@ -39,7 +39,9 @@ class Parse(unittest.TestCase):
                 ({"column": "x", "reduce": "median"}, "s.yaml: metric: reduce 'median' is not one of mean, rms, max, "
                                                       "min, integral, period, amplitude"),
                 ({"column": "x", "window": 1}, "s.yaml: metric: unknown key(s) window (known: column, from, order, "
-                                               "reduce, to)"),
+                                               "reduce, smooth, to)"),
+                ({"column": "x", "smooth": -1}, "s.yaml: metric: 'smooth' (the moving average's width in time) "
+                                                "must be >= 0"),
                 ({"reduce": "mean"}, "s.yaml: metric: 'column' must name a timeseries.csv column, e.g. force_baffle_x"),
                 ({"column": "x", "from": 1, "to": 1}, "s.yaml: metric: 'to' (1) must be after 'from' (1)"),
                 ({"column": "x", "to": "soon"}, "s.yaml: metric: 'to' must be a number, got 'soon'"),
@@ -69,6 +71,11 @@ class Reductions(unittest.TestCase):
         self.assertAlmostEqual(reduce_series(t, f, "integral", 0, 1), 2.0, places=13)
         self.assertAlmostEqual(reduce_series(t, f, "integral"), 2.0, places=13)
 
+    def test_a_first_step_longer_than_the_rest_is_held(self):
+        # a flow starting from rest: the first step (to the first row) is the longest
+        t = [9.1e-5] + [9.1e-5 + 8.9e-5 * k for k in range(1, 100)]
+        self.assertAlmostEqual(reduce_series(t, [4.0] * len(t), "integral", 0, t[-1]), 4.0 * t[-1], places=12)
+
     def test_sine_over_whole_periods(self):
         # equal steps over whole periods: the trapezoid integrates sin and sin² exactly
         t, f = series(lambda x: 5 + 3 * math.sin(2 * math.pi * x / 0.25), 0.0, 1.0, 400)
@@ -88,6 +95,39 @@ class Reductions(unittest.TestCase):
         t, f = series(lambda x: x, 0.01, 0.3, 29)
         with self.assertRaisesRegex(ValueError, r"the run covers t = 0.01 to 0.3 only, not 0 to 1"):
             reduce_series(t, f, "integral", 0, 1)
+
+
+class MovingAverage(unittest.TestCase):
+    def test_a_sine_is_damped_by_its_sinc(self):
+        # the mean of sin(w t) over [t - W/2, t + W/2] is sin(w t) sin(w W/2) / (w W/2); uneven steps
+        w, width = 2 * math.pi / 0.07, 0.05
+        t = [0.0]
+        while t[-1] < 1:
+            t.append(t[-1] + (2e-4 if len(t) % 2 else 3e-4))
+        g = moving_average(t, [2 + math.sin(w * x) for x in t], width)
+        factor = math.sin(w * width / 2) / (w * width / 2)
+        for k in range(0, len(t), 97):
+            if width / 2 <= t[k] <= t[-1] - width / 2:
+                self.assertAlmostEqual(g[k], 2 + factor * math.sin(w * t[k]), delta=2e-4)
+
+    def test_a_linear_function_is_kept_and_a_period_averages_out(self):
+        t, f = series(lambda x: 3 * x - 1 + math.cos(2 * math.pi * x / 0.05), 0.0, 1.0, 5000)
+        g = moving_average(t, f, 0.05)
+        inside = [k for k, x in enumerate(t) if 0.025 <= x <= 0.975]
+        self.assertLess(max(abs(g[k] - (3 * t[k] - 1)) for k in inside), 1e-5)
+        # at the ends the window is cut to the series: a linear function's mean over [0, W/2] is at W/4
+        g = moving_average(*series(lambda x: 3 * x, 0.0, 1.0, 100), 0.2)
+        self.assertAlmostEqual(g[0], 3 * 0.05, places=12)
+        self.assertAlmostEqual(g[-1], 3 * 0.95, places=12)
+
+    def test_a_smoothed_metric_reads_the_average_not_the_spikes(self):
+        m = parse_metric({"column": "force_baffle_x", "reduce": "max", "to": 1, "smooth": 0.1}, "s.yaml")
+        self.assertEqual(metric_label(m), "max(force_baffle_x, 0..1, smoothed 0.1)")
+        t, f = series(lambda x: 1.0, 0.0, 1.0, 1000)
+        f[500] = 101.0  # one step's spike: its mean over 0.1 is 100 * 1e-3 / 0.1 = 1
+        g = moving_average(t, f, 0.1)
+        self.assertAlmostEqual(reduce_series(t, g, "max", 0, 1), 2.0, places=9)
+        self.assertAlmostEqual(reduce_series(t, f, "max", 0, 1), 101.0, places=12)
 
 
 class Richardson(unittest.TestCase):
