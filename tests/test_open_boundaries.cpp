@@ -70,6 +70,26 @@ TEST(OpenBoundaries, ASpeedTableScalesTheInflowLinearlyBetweenItsRows) {
   EXPECT_NEAR((uniform.velocity_at(middle, 1.5) - 1.5 * V2(2.0, 0.5)).norm(), 0.0, 1e-15);
 }
 
+// Expressions of the place give each component; ramp and table scale them as they do the others.
+TEST(OpenBoundaries, ExpressionsGiveTheVelocityAtTheParticlesPlace) {
+  Channel c;
+  OpenBoundary<2> in = c.open.boundaries()[0];
+  in.inflow.profile = InletVelocity<2>::Profile::Expressions;
+  in.inflow.expressions = {Expression("6 * y * (1 - y) + x", "xy"), Expression("sin(pi * y) / 4", "xy")};
+  in.inflow.expressions_top = 1.5;
+  const V2 x(-0.05, 0.3);
+  EXPECT_NEAR(in.velocity_at(x, 1.0)[0], 6 * 0.3 * 0.7 - 0.05, 1e-15);
+  EXPECT_NEAR(in.velocity_at(x, 1.0)[1], std::sin(M_PI * 0.3) / 4, 1e-15);
+  in.inflow.ramp = 2.0, in.inflow.table_t = {0.0, 4.0}, in.inflow.table_factor = {1.0, 3.0};
+  EXPECT_NEAR(in.velocity_at(x, 1.0)[1], 0.5 * 1.5 * std::sin(M_PI * 0.3) / 4, 1e-15);
+  EXPECT_DOUBLE_EQ(in.inflow.top_speed(), 1.5 * 3.0);
+  // A copy shares the parsed expression and evaluates it at its own arguments.
+  const OpenBoundary<2> copy = in;
+  EXPECT_NEAR(copy.velocity_at(V2(-0.1, 0.5), 3.0)[0], (1.5 - 0.1) * 2.5, 1e-15);  // ramped up; table 2.5
+  EXPECT_THROW(Expression("y * (1 - t)", "xy"), Error);
+  EXPECT_THROW(Expression("y * (1 - ", "xy"), Error);
+}
+
 TEST(OpenBoundaries, AnInletParticleThatEntersIsFluidAndANewOneTakesItsPlaceADepthBehind) {
   Channel c;
   const std::size_t entering = c.add(V2(0.01, 0.45), kInlet);  // just crossed the plane

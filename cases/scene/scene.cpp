@@ -196,6 +196,9 @@ template <int D> void SceneCase<D>::read_file() {
       b.section_lo[a] = spec.section_lo[a], b.section_hi[a] = spec.section_hi[a],
       b.inflow.velocity[a] = spec.velocity[a];
     if (spec.peak > 0) b.inflow.profile = InletVelocity<D>::Profile::Parabolic, b.inflow.peak = spec.peak;
+    if (!spec.expressions.empty())
+      b.inflow.profile = InletVelocity<D>::Profile::Expressions, b.inflow.expressions = spec.expressions,
+      b.inflow.expressions_top = spec.top_speed;
     b.inflow.ramp = spec.ramp;
     b.inflow.table_t = spec.speed_t, b.inflow.table_factor = spec.speed_factor;
     open_.push_back(b);
@@ -391,10 +394,7 @@ template <int D> void SceneCase<D>::resolve_reference_speed() {
     }
   for (std::size_t b = 0; b < motions_.size(); ++b) U = std::max(U, motions_[b].top_speed(reach[b]));
   // Inlets: their full speed, at their speed table's largest factor.
-  for (const OpenBoundary<D>& b : open_)
-    U = std::max(
-        U, b.inflow.top_factor() *
-               (b.inflow.profile == InletVelocity<D>::Profile::Parabolic ? b.inflow.peak : b.inflow.velocity.norm()));
+  for (const OpenBoundary<D>& b : open_) U = std::max(U, b.inflow.top_speed());
   physics_.U = opt_.U_set ? opt_.U : scalar("U", PETSC_FALSE, 0.0, U);
   if (!(physics_.U > 0))
     throw Error(opt_.U_set || file_.field.count("U")

@@ -212,6 +212,7 @@ class Lattice {
   void add_point(const Point3& x);
   void add_buffer_particle(const Point3& x, int o);
   void place_sections();
+  void check_inlet_expressions(std::size_t o);
   void check_filled();
 
   const Reader& r_;
@@ -391,6 +392,41 @@ void Lattice::place_sections() {
       r_.fail(regions_.open_nodes[o].first, regions_.open_nodes[o].second,
               "is an inlet or outlet where no fluid region meets the box's side; move it or the fluid");
     place_section(out_.open[o], sections_[o], regions_.solids, dx_);
+    check_inlet_expressions(o);
+  }
+}
+
+// An inlet's velocity expressions at the points where its buffer meets the fluid: finite, into the box
+// (or along its side) at every one of them; and their largest speed, which sets the reference speed U,
+// over a grid of an eighth of a spacing across the section (a parabola's peak to 1e-3 of the spacing).
+void Lattice::check_inlet_expressions(std::size_t o) {
+  OpenBoundarySpec& b = out_.open[o];
+  if (b.expressions.empty()) return;
+  const std::string key = regions_.open_nodes[o].second + ".velocity.expression";
+  for (const Point3& y : sections_[o]) {
+    Point3 u = Point3::Zero();
+    for (std::size_t a = 0; a < b.expressions.size(); ++a) u[a] = b.expressions[a](y[0], y[1], y[2], 0.0);
+    const std::string where = "at (" + number_text(y[0]) + ", " + number_text(y[1]) +
+                              (D == 3 ? ", " + number_text(y[2]) : std::string()) + ")";
+    if (!u.allFinite())
+      r_.fail(regions_.open_nodes[o].first, key, "is not a finite number " + where + "; check the expressions");
+    if (-b.side * u[b.axis] < 0)
+      r_.fail(regions_.open_nodes[o].first, key,
+              "points out of the box " + where + " (" + std::string(1, "xyz"[b.axis]) + " component " +
+                  number_text(u[b.axis]) + "); an inlet's velocity must point into the box");
+    b.top_speed = std::max(b.top_speed, u.norm());
+  }
+  std::array<int, 3> n{1, 1, 1};
+  for (int a = 0; a < D; ++a)
+    if (a != b.axis) n[a] = 1 + static_cast<int>(std::ceil((b.section_hi[a] - b.section_lo[a]) / (dx_ / 8)));
+  for (int i = 0; i < n[0] * n[1] * n[2]; ++i) {
+    Point3 y = Point3::Zero(), u = Point3::Zero();
+    const std::array<int, 3> k{i % n[0], (i / n[0]) % n[1], i / (n[0] * n[1])};
+    for (int a = 0; a < D; ++a)
+      y[a] = a == b.axis ? b.plane - b.side * 0.5 * dx_
+                         : b.section_lo[a] + (b.section_hi[a] - b.section_lo[a]) * k[a] / std::max(n[a] - 1, 1);
+    for (std::size_t a = 0; a < b.expressions.size(); ++a) u[a] = b.expressions[a](y[0], y[1], y[2], 0.0);
+    if (u.allFinite()) b.top_speed = std::max(b.top_speed, u.norm());
   }
 }
 

@@ -292,6 +292,24 @@ OpenBoundarySpec Reader::open_boundary(const YAML::Node& n, const std::string& k
   return b;
 }
 
+// velocity: {expression: [u, v]} (3D [u, v, w]): each component an expression of x, y (and z), the
+// inlet particle's place; muParser's syntax (src/core/expression.hpp).
+void Reader::inlet_expressions(const YAML::Node& n, const std::string& key, OpenBoundarySpec& b) const {
+  const std::string names = dim == 2 ? "xy" : "xyz";
+  if (!n.IsSequence() || n.size() != static_cast<std::size_t>(dim))
+    fail(n, key,
+         std::string("must list ") + (dim == 2 ? "two expressions, [u, v]," : "three expressions, [u, v, w],") +
+             " one a velocity component, of " + (dim == 2 ? "x and y" : "x, y and z"));
+  for (std::size_t a = 0; a < n.size(); ++a) {
+    if (!n[a].IsScalar()) fail(n[a], key + "[" + std::to_string(a) + "]", "is not an expression; write it as text");
+    try {
+      b.expressions.emplace_back(n[a].Scalar(), names);
+    } catch (const Error& e) {
+      fail(n[a], key + "[" + std::to_string(a) + "]", e.what());
+    }
+  }
+}
+
 OpenBoundarySpec Reader::open_boundary_condition(const YAML::Node& n, const std::string& key) {
   OpenBoundarySpec b;
   b.inlet = n["role"].Scalar() == "inlet";
@@ -311,9 +329,14 @@ OpenBoundarySpec Reader::open_boundary_condition(const YAML::Node& n, const std:
   }
   const YAML::Node v = n["velocity"];
   if (!v.IsDefined())
-    fail(n, key, "is an inlet without a velocity; add velocity: [u, v] or velocity: {parabolic: U_max}");
-  if (v.IsMap()) {
-    only_keys(v, key + ".velocity", {"parabolic"});
+    fail(n, key,
+         "is an inlet without a velocity; add velocity: [u, v], velocity: {parabolic: U_max} or velocity: "
+         "{expression: [u, v]}");
+  if (v.IsMap() && v["expression"].IsDefined()) {
+    only_keys(v, key + ".velocity", {"expression"});
+    inlet_expressions(v["expression"], key + ".velocity.expression", b);
+  } else if (v.IsMap()) {
+    only_keys(v, key + ".velocity", {"parabolic", "expression"});
     if (!v["parabolic"].IsDefined())
       fail(v, key + ".velocity", "has no parabolic: U_max; give the profile's peak speed");
     b.peak = number(v["parabolic"], key + ".velocity.parabolic");

@@ -121,6 +121,7 @@ class Reader {
                      const std::function<void(const CsvTable&)>& check_header);
   // An inlet's speed_table: FILE, a CSV with the header t,factor, factors >= 0.
   void inlet_speed_table(const YAML::Node& file_key, const std::string& key, OpenBoundarySpec& b);
+  void inlet_expressions(const YAML::Node& n, const std::string& key, OpenBoundarySpec& b) const;
 
   // Motions (scene_motions.cpp).
   // {type: fixed}, {type: constant, velocity: [..]} or {type: sinusoidal, amplitude: [..], period: T,

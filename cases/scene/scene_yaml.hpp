@@ -49,6 +49,7 @@
 #include <vector>
 
 #include "cases/scene/scene_file.hpp"
+#include "src/core/expression.hpp"
 #include "src/io/surface_writer.hpp"
 
 namespace sph {
@@ -84,6 +85,8 @@ struct OpenBoundarySpec {
   std::array<double, 3> section_lo{}, section_hi{};  // the section's extent along the other axes
   std::array<double, 3> velocity{};                  // inlet: uniform velocity
   double peak = 0.0;                                 // inlet: parabolic profile's centre speed (0: uniform)
+  std::vector<Expression> expressions;               // inlet: the velocity's components as expressions of x, y(, z)
+  double top_speed = 0.0;                            // inlet: the expressions' largest speed across the section
   double ramp = 0.0;                                 // inlet: time to full speed from rest
   std::vector<double> speed_t, speed_factor;         // inlet: its speed table (t, factor), if any
   double pressure = 0.0;                             // outlet

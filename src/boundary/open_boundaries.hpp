@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "src/core/expression.hpp"
 #include "src/neighbours/neighbour_list.hpp"
 #include "src/particles/global_indices.hpp"
 #include "src/particles/particles.hpp"
@@ -30,15 +31,18 @@
 
 namespace sph {
 
-// The velocity an inlet prescribes: uniform, or the parabolic profile of a channel (2D) or a
-// rectangular duct (3D, the product of the two parabolas) across the inlet's section, each times a
-// ramp from rest, (1 - cos(pi t / T)) / 2 up to t = T (none for T = 0), and times a speed table's factor
-// at t (linear between its rows, held before the first and after the last; none without a table).
+// The velocity an inlet prescribes: uniform, the parabolic profile of a channel (2D) or a
+// rectangular duct (3D, the product of the two parabolas) across the inlet's section, or the user's
+// expressions of x, y, z and t, one a component; each times a ramp from rest, (1 - cos(pi t / T)) / 2
+// up to t = T (none for T = 0), and times a speed table's factor at t (linear between its rows, held
+// before the first and after the last; none without a table).
 template <int D> struct InletVelocity {
-  enum class Profile { Uniform, Parabolic };
+  enum class Profile { Uniform, Parabolic, Expressions };
   Profile profile = Profile::Uniform;
   Vector<D> velocity = Vector<D>::Zero();     // Uniform
   double peak = 0.0;                          // Parabolic: the speed on the section's centre, along the inward normal
+  std::vector<Expression> expressions;        // Expressions: one a component
+  double expressions_top = 0.0;               // Expressions: their largest speed across the section
   double ramp = 0.0;                          // T
   std::vector<double> table_t, table_factor;  // the speed table: t increasing, factors >= 0
 
@@ -46,6 +50,13 @@ template <int D> struct InletVelocity {
   // The largest factor over the run (the inlet's top speed per unit of its velocity).
   double top_factor() const {
     return table_factor.empty() ? 1.0 : *std::max_element(table_factor.begin(), table_factor.end());
+  }
+  // The inlet's largest speed over the run.
+  double top_speed() const {
+    const double full = profile == Profile::Parabolic     ? peak
+                        : profile == Profile::Expressions ? expressions_top
+                                                          : velocity.norm();
+    return top_factor() * full;
   }
 
  private:
@@ -92,6 +103,13 @@ template <int D> struct OpenBoundary {
   Vector<D> velocity_at(const Vector<D>& x, double t) const {
     const double ramp = inflow.factor(t);
     if (inflow.profile == InletVelocity<D>::Profile::Uniform) return ramp * inflow.velocity;
+    if (inflow.profile == InletVelocity<D>::Profile::Expressions) {
+      double c[3] = {0.0, 0.0, 0.0};
+      for (int a = 0; a < D; ++a) c[a] = x[a];
+      Vector<D> v;
+      for (int a = 0; a < D; ++a) v[a] = inflow.expressions[static_cast<std::size_t>(a)](c[0], c[1], c[2], t);
+      return ramp * v;
+    }
     double shape = 1.0;
     for (int a = 0; a < D; ++a) {
       if (a == axis) continue;

@@ -101,6 +101,34 @@ for s in ("isph", "wcsph"):
 finish()
 PY
 
+# Velocity profiles as expressions: the parabola written out gives the parabolic inlet's run to round-off
+# (the same reference speed U, taken from the expressions' largest speed across the section); a flatter
+# profile, u = 1.5 (1 - (2y - 1)^4), brings in its own flux, rho 1.5 (1 - 1/5) = 1.2, to 2.5 %.
+sed 's/velocity: {parabolic: 1}/velocity: {expression: ["4 * y * (1 - y)", "0"]}/' "$scene" > "$tmp/parabola.yaml"
+sed 's/velocity: {parabolic: 1}/velocity: {expression: ["1.5 * (1 - (2*y - 1)^4)", "0"]}/' "$scene" > "$tmp/flat.yaml"
+for f in parabola flat; do
+  expect_ok -case scene -scene_file "$tmp/$f.yaml" -nx 20 -progress 0 -threads 1 -t_end 1 -output_interval 0 \
+    -solver isph -output_dir "$tmp/expr-$f"
+done
+expect_ok $quick -solver isph -t_end 1 -output_interval 0 -output_dir "$tmp/expr-parabolic"
+PYTHONPATH="$(dirname "$0")/lib" /usr/bin/python3 -B - "$tmp" <<'PY' || fail=1
+import csv, json, sys
+from checks import check, finish
+tmp = sys.argv[1]
+rows = {r: list(csv.DictReader(open(f"{tmp}/expr-{r}/timeseries.csv"))) for r in ("parabola", "parabolic", "flat")}
+a, b = rows["parabola"][-1], rows["parabolic"][-1]
+check(json.load(open(f"{tmp}/expr-parabola/summary.json"))["parameters"]["U"] == 1.0,
+      "the parabola's expression sets U = 1, its peak, as the parabolic inlet does")
+for col in ("kinetic_energy", "momentum_x", "inflow_mass", "outflow_mass", "fluid_mass"):
+    check(abs(float(a[col]) - float(b[col])) <= 1e-12 * max(1.0, abs(float(b[col]))),
+          f"the parabola as an expression: {col} {a[col]} against the parabolic inlet's {b[col]}")
+pts = [(float(r["t"]), float(r["inflow_mass"])) for r in rows["flat"] if 0.6 <= float(r["t"]) <= 1.0]
+mt, mm = (sum(p[k] for p in pts) / len(pts) for k in (0, 1))
+rate = sum((t - mt) * (m - mm) for t, m in pts) / sum((t - mt) ** 2 for t, m in pts)
+check(abs(rate / 1.2 - 1) < 0.025, f"the flat profile's inflow rate over [0.6, 1] {rate:.4f} against its flux 1.2")
+finish()
+PY
+
 # What is not built, or makes no open boundary, is refused in one line.
 bad() { sed "$1" "$scene" > "$tmp/bad.yaml"; }
 bad 's/velocity: {parabolic: 1}/velocity: [-1, 0]/'
@@ -111,6 +139,14 @@ bad 's/side: x+, pressure: 0/side: x-/'
 expect_error "side x- a second time" -case scene -scene_file "$tmp/bad.yaml" -nx 10 -output_dir "$tmp/b3"
 bad 's/side: x+, pressure: 0/side: y+/'
 expect_error "where no fluid region meets the box's side" -case scene -scene_file "$tmp/bad.yaml" -nx 10 -output_dir "$tmp/b4"
+bad 's/velocity: {parabolic: 1}/velocity: {expression: ["y - 0.5", "0"]}/'
+expect_error "velocity.expression: points out of the box at \(-?0.025, 0.025\) \(x component -0.475\)" -case scene -scene_file "$tmp/bad.yaml" -nx 20 -output_dir "$tmp/b7"
+bad 's/velocity: {parabolic: 1}/velocity: {expression: ["4 * y * (1 - q)", "0"]}/'
+expect_error "velocity.expression\[0\]: '4 \* y \* \(1 - q\)' is not an expression of x, y: .*q" -case scene -scene_file "$tmp/bad.yaml" -nx 10 -output_dir "$tmp/b8"
+bad 's/velocity: {parabolic: 1}/velocity: {expression: ["1"]}/'
+expect_error "velocity.expression: must list two expressions, \[u, v\], one a velocity component, of x and y" -case scene -scene_file "$tmp/bad.yaml" -nx 10 -output_dir "$tmp/b9"
+bad 's|velocity: {parabolic: 1}|velocity: {expression: ["sqrt(y - 0.5)", "0"]}|'
+expect_error "velocity.expression: is not a finite number at \(0.025, 0.025\)" -case scene -scene_file "$tmp/bad.yaml" -nx 20 -output_dir "$tmp/b6"
 expect_error "inlets and outlets with a free surface are not built yet" -case scene -scene_file "$scene" -nx 10 \
   -free_surface 1 -output_dir "$tmp/b5"
 exit $fail
