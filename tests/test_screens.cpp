@@ -1,10 +1,11 @@
 // Thin plates in the neighbour lists (src/neighbours/screens.hpp) against the rule computed by hand:
-// visibility is symmetric, a face's layers are seen from its own side only, particles alongside the
-// plate on opposite sides never see each other, and beyond the plate's ends both sides meet; through
-// Neighbourhood, in a periodic box that the plate crosses, the lists are brute force less exactly
-// those pairs.
+// visibility is symmetric, a face's layers are seen from its own side only, particles alongside the plate on opposite
+// sides never see each other, and beyond the plate's ends both sides meet; a plate moved keeps its rule where it is
+// now; through Neighbourhood, in a periodic box that the plate crosses, the lists are brute force less exactly those
+// pairs.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <random>
 #include <set>
@@ -48,6 +49,19 @@ TEST(Screens, OppositeSidesMeetOnlyBeyondTheEnds) {
   EXPECT_TRUE(s.see(V(0.4, 0.5), 0, V(0.45, 0.6), 1));      // the same side
 }
 
+// A body's motion moves its plate (MovingBodies::move_to): the rule follows the plate where it is.
+TEST(Screens, AMovedPlateScreensWhereItIs) {
+  Screens<2> s = vertical_plate();
+  EXPECT_FALSE(s.see(V(0.45, 0.5), 0, V(0.55, 0.5), 1));
+  s.move(0, V(0.7, 0.2), V(0.7, 1.0));  // moved 0.2 to the right
+  EXPECT_TRUE(s.see(V(0.45, 0.5), 0, V(0.55, 0.5), 1));
+  EXPECT_FALSE(s.see(V(0.65, 0.5), 0, V(0.75, 0.5), 1));
+  EXPECT_TRUE(s.see(V(0.65, 0.5), 0, V(0.725, 0.5), 4));  // face +1's layer, now behind the moved face
+  EXPECT_TRUE(s.start()[0].a.isApprox(V(0.5, 0.2)));      // where the scene laid it
+  s.move(0, V(0.7, 0.2), V(0.7 + 0.8 * std::sin(0.1), 0.2 + 0.8 * std::cos(0.1)));  // and turned
+  EXPECT_NEAR(s.normal(0).dot(V(std::sin(0.1), std::cos(0.1))), 0.0, 1e-15);
+}
+
 TEST(Screens, VisibilityIsSymmetric) {
   const Screens<2> s = vertical_plate();
   std::mt19937 rng(3);
@@ -71,8 +85,8 @@ TEST(Screens, NeighbourListsDropThePairsThePlateParts) {
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) P.add(V((i + 0.5) * dx, (j + 0.5) * dx), V::Zero(), dx * dx, 1.0);
   assign_global_indices(P);
-  dom.screens = std::make_shared<const Screens<2>>(std::vector<Screens<2>::Plate>{{V(-0.3, 0.5), V(1.3, 0.5)}},
-                                                   std::vector<std::int8_t>{});
+  dom.screens = std::make_shared<Screens<2>>(std::vector<Screens<2>::Plate>{{V(-0.3, 0.5), V(1.3, 0.5)}},
+                                             std::vector<std::int8_t>{});
   const double radius = 2.9 * dx;  // no lattice distance at the radius itself
   Neighbourhood<2> nh(dom, radius, 0.0);
   nh.update(P, true);

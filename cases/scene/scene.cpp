@@ -152,9 +152,11 @@ template <int D> void SceneCase<D>::read_file() {
   surfaces_ = std::move(scene.surfaces);
   if (!scene.plates.empty()) {
     plate_face_ = std::move(scene.plate_face);
-    for (const auto& q : scene.plates) {
+    for (std::size_t k = 0; k < scene.plates.size(); ++k) {
+      const auto& q = scene.plates[k];
       typename Screens<D>::Plate plate;
       for (int a = 0; a < D; ++a) plate.a[a] = a < 2 ? q[a] : 0.0, plate.b[a] = a < 2 ? q[2 + a] : 0.0;
+      plate.body = scene.plate_body[k];
       plates_.push_back(plate);
     }
   }
@@ -463,7 +465,7 @@ template <int D> void SceneCase<D>::create(Particles<D>& P, Domain<D>& domain) c
   // The inlets' velocity at t = 0 (the time loop prescribes it at every step).
   OpenBoundaries<D>(open_).prescribe(all, 0.0);
   P = rank_share(all);
-  if (!plates_.empty()) domain.screens = std::make_shared<const Screens<D>>(plates_, plate_face_);
+  if (!plates_.empty()) domain.screens = std::make_shared<Screens<D>>(plates_, plate_face_);
 }
 
 template <int D> int SceneCase<D>::resolution() const { return std::max(1, static_cast<int>(std::lround(1.0 / dx_))); }

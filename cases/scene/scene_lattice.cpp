@@ -449,10 +449,18 @@ void Lattice::check_filled() {
 
 }  // namespace
 
-// Per body, 1 where the fluid moves it; such a body in a scene without fluid is refused.
+// Per body, 1 where the fluid moves it; such a body in a scene without fluid, or with a plate, is
+// refused (a plate moves only with a prescribed motion: MovingBodies moves its screen).
 std::vector<char> free_bodies(const Reader& r, const std::vector<Region>& solids, const std::vector<Region>& fluids,
-                              const std::vector<MotionSpec>& motions, const std::vector<std::string>& names) {
+                              const std::vector<Region>& plates, const std::vector<MotionSpec>& motions,
+                              const std::vector<std::string>& names) {
   std::vector<char> free(motions.size(), 0);
+  for (const Region& p : plates)
+    if (p.role == Role::Body && motions[p.body].type == "free")
+      r.fail(p.at, p.key,
+             "is a plate of free body '" + names[p.body] +
+                 "'; a plate moves only with a prescribed motion (a free body needs the kernel's support in "
+                 "thickness)");
   for (const Region& w : solids)
     if (w.role == Role::Body && motions[w.body].type == "free") {
       free[w.body] = 1;

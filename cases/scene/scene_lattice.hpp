@@ -32,9 +32,10 @@ struct SceneRegions {
   std::vector<char> free;                                         // per body, 1 where the fluid moves it
 };
 
-// Per body, 1 where the fluid moves it; such a body in a scene without fluid is refused.
+// Per body, 1 where the fluid moves it; such a body in a scene without fluid, or with a plate, is refused.
 std::vector<char> free_bodies(const Reader& r, const std::vector<Region>& solids, const std::vector<Region>& fluids,
-                              const std::vector<MotionSpec>& motions, const std::vector<std::string>& names);
+                              const std::vector<Region>& plates, const std::vector<MotionSpec>& motions,
+                              const std::vector<std::string>& names);
 
 // Adds the particles of the lattice's points, the plates' layers and the open boundaries' buffers to
 // out (out.open's sections placed), after the memory check, and refuses a region that got no particle

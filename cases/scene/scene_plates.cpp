@@ -99,6 +99,7 @@ void add_plate_layers(const std::vector<Region>& plates, const std::vector<Regio
         }
     const Point3 a = p.a - (before * step) * e, b = p.b + (after * step) * e;
     out.plates.push_back({a[0], a[1], b[0], b[1]});
+    out.plate_body.push_back(plates[k].body);
   }
 }
 

@@ -408,9 +408,6 @@ Region Reader::region(const YAML::Node& n, const std::string& key, std::vector<s
   if (plate) {
     read_plate(inline_form ? n : s["plate"], key + ".shape", r);
     if (r.role == Role::Fluid) fail(n, key, "is a plate of fluid; a plate is a wall or a body (role: wall)");
-    if (n["motion"].IsDefined())
-      fail(n["motion"], key + ".motion",
-           "moves a plate; plates are fixed (a body of at least the kernel's support in thickness can move)");
   } else {
     r.shape = shape(inline_form ? inline_shape(n, key) : s, key + ".shape");
   }
@@ -429,7 +426,9 @@ Region Reader::region(const YAML::Node& n, const std::string& key, std::vector<s
   }
   if (const YAML::Node m = n["motion"]; m.IsDefined()) {
     if (r.role != Role::Body)
-      fail(m, key + ".motion", "is given for a region that is no body; only role: body moves (fixed walls do not)");
+      fail(m, key + ".motion",
+           "is given for a region that is no body; only role: body moves (fixed walls do not: make a moving tank "
+           "a body, role: body with name: tank, and its plates role: {body: tank})");
     r.motion = motion(m, key + ".motion");
   }
   body_mass(n, key, r.motion);

@@ -102,7 +102,7 @@ SceneRegions read_regions(Reader& r, const YAML::Node& root, const SceneFrame& f
   if (f.has_box) check_mesh_units(r, f.box_lo, f.box_hi);
   if (!out.open.empty() && g.fluids.empty())
     r.fail(list, "regions", "has inlets or outlets but no fluid region; add one");
-  g.free = free_bodies(r, g.solids, g.fluids, out.motions, out.bodies);
+  g.free = free_bodies(r, g.solids, g.fluids, g.plates, out.motions, out.bodies);
   return g;
 }
 

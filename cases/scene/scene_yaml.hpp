@@ -103,6 +103,7 @@ struct YamlScene {
   // (src/neighbours/screens.hpp); each plate's mid-line x0, y0, x1, y1.
   std::vector<std::int8_t> plate_face;
   std::vector<std::array<double, 4>> plates;
+  std::vector<int> plate_body;         // per plate: the body it belongs to, -1 for a wall's
   std::vector<OpenBoundarySpec> open;  // inlets and outlets; their particles are kinds kSceneInlet, kSceneOutlet
 };
 

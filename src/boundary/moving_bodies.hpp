@@ -12,11 +12,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
 #include "src/boundary/free_body.hpp"
 #include "src/boundary/motion_table.hpp"
+#include "src/neighbours/screens.hpp"
 #include "src/particles/particles.hpp"
 
 namespace sph {
@@ -226,6 +228,13 @@ template <int D> class MovingBodies {
       }
     }
     t_ = t;
+    move_plates();
+  }
+  // Thin plates that belong to bodies move with them: each placed from where the scene laid it, so a
+  // restart at t puts it where the uninterrupted run has it. Plates cannot be free (the scene refuses).
+  void carry_plates(std::shared_ptr<Screens<D>> screens) {
+    screens_ = std::move(screens);
+    move_plates();
   }
   // Free bodies: the accelerations from each body's fluid force and moment (about its centre of
   // mass) and gravity; the half kick of their velocities; their particles' velocities after it.
@@ -284,6 +293,17 @@ template <int D> class MovingBodies {
   }
 
  private:
+  void move_plates() {
+    if (!screens_) return;
+    for (std::size_t k = 0; k < screens_->start().size(); ++k) {
+      const typename Screens<D>::Plate& p = screens_->start()[k];
+      if (p.body < 0 || static_cast<std::size_t>(p.body) >= motions_.size()) continue;
+      const PrescribedMotion<D>& m = motions_[static_cast<std::size_t>(p.body)];
+      if (m.moves()) screens_->move(k, m.moved(p.a, 0.0, t_), m.moved(p.b, 0.0, t_));
+    }
+  }
+
+  std::shared_ptr<Screens<D>> screens_;  // the scene's plates, some of them bodies'
   std::vector<PrescribedMotion<D>> motions_;
   std::vector<int> label_;
   std::vector<char> free_slip_;

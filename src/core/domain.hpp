@@ -13,8 +13,9 @@ template <int D> struct Domain {
   Vector<D> lo = Vector<D>::Zero();
   Vector<D> hi = Vector<D>::Ones();
   std::array<bool, D> periodic{};
-  // Thin plates that hide the particles on one side from those on the other (null: none).
-  std::shared_ptr<const Screens<D>> screens;
+  // Thin plates that hide the particles on one side from those on the other (null: none); a moving
+  // body moves its plates (MovingBodies::move_to), and every copy of the domain sees them there.
+  std::shared_ptr<Screens<D>> screens;
 
   Vector<D> length() const { return hi - lo; }
 

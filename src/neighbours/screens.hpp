@@ -15,29 +15,31 @@ namespace sph {
 
 template <int D> class Screens {
  public:
-  // A plate's mid-surface from a to b (2D only: other dimensions have no plates).
+  // A plate's mid-surface from a to b (2D only: other dimensions have no plates), and the body it
+  // belongs to (-1: a wall's), whose motion carries it (MovingBodies::move_to).
   struct Plate {
     Vector<D> a, b;
+    int body = -1;
   };
 
   Screens() = default;
   // face_of_id: by particle id, 0 for a particle of no plate's layers, +(k + 1) for the layers of
   // plate k's face on the side its normal points to, -(k + 1) for the other face's.
   Screens(std::vector<Plate> plates, std::vector<std::int8_t> face_of_id)
-      : plates_(std::move(plates)), face_of_id_(std::move(face_of_id)) {
-    for (const Plate& p : plates_) {
-      const Vector<D> along = p.b - p.a;
-      Frame f;
-      f.length = along.norm();
-      f.along = along / f.length;
-      f.normal = Vector<D>::Zero();
-      if constexpr (D == 2) f.normal = Vector<D>(-f.along[1], f.along[0]);
-      frames_.push_back(f);
-    }
+      : plates_(std::move(plates)), start_(plates_), face_of_id_(std::move(face_of_id)) {
+    frames_.resize(plates_.size());
+    for (std::size_t k = 0; k < plates_.size(); ++k) frame(k);
   }
 
   bool any() const { return !plates_.empty(); }
   const std::vector<Plate>& plates() const { return plates_; }
+  // The plates where the scene laid them, at t = 0.
+  const std::vector<Plate>& start() const { return start_; }
+  // Places plate k's mid-surface from a to b (its body moved it; its length stays).
+  void move(std::size_t k, const Vector<D>& a, const Vector<D>& b) {
+    plates_[k].a = a, plates_[k].b = b;
+    frame(k);
+  }
   // The plate's unit normal: its +1 face looks this way.
   Vector<D> normal(std::size_t k) const { return frames_[k].normal; }
 
@@ -85,11 +87,19 @@ template <int D> class Screens {
     Vector<D> along, normal;
     double length = 0.0;
   };
+  void frame(std::size_t k) {
+    const Vector<D> along = plates_[k].b - plates_[k].a;
+    Frame& f = frames_[k];
+    f.length = along.norm();
+    f.along = along / f.length;
+    f.normal = Vector<D>::Zero();
+    if constexpr (D == 2) f.normal = Vector<D>(-f.along[1], f.along[0]);
+  }
   int face(GlobalIndex id) const {
     return id >= 0 && static_cast<std::size_t>(id) < face_of_id_.size() ? face_of_id_[static_cast<std::size_t>(id)] : 0;
   }
 
-  std::vector<Plate> plates_;
+  std::vector<Plate> plates_, start_;
   std::vector<Frame> frames_;
   std::vector<std::int8_t> face_of_id_;
 };

@@ -60,6 +60,9 @@ template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
     s_.disc.bodies.restore(resumed_run_["free_bodies"].value("state", nlohmann::json::array()));
     contact_step_ = resumed_run_["free_bodies"].value("contact_step", 0.0);
   }
+  s_.disc.bodies.carry_plates(s_.domain.screens);
+  // A restart's lists were screened with the plates where the scene laid them: again, where they are.
+  if (opt_.restarting() && s_.domain.screens) s_.nh.refresh(s_.P);
   s_.disc.bodies.move_to(s_.P, resumed_.t);
   s_.disc.open.prescribe(s_.P, resumed_.t);
   check_initial_state(s_.P, resumed_.t);
