@@ -33,7 +33,7 @@ namespace sph {
 
 // The velocity an inlet prescribes: uniform, the parabolic profile of a channel (2D) or a
 // rectangular duct (3D, the product of the two parabolas) across the inlet's section, or the user's
-// expressions of x, y, z and t, one a component; each times a ramp from rest, (1 - cos(pi t / T)) / 2
+// expressions of the place (x, y and, in 3D, z), one a component; each times a ramp from rest, (1 - cos(pi t / T)) / 2
 // up to t = T (none for T = 0), and times a speed table's factor at t (linear between its rows, held
 // before the first and after the last; none without a table).
 template <int D> struct InletVelocity {

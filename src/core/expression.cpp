@@ -33,11 +33,6 @@ Expression::Expression(const std::string& text, const std::string& variables) : 
   }
 }
 
-const std::string& Expression::text() const {
-  static const std::string none;
-  return impl_ ? impl_->text : none;
-}
-
 double Expression::operator()(double x, double y, double z, double t) const {
   Impl& f = *impl_;
   f.x = x, f.y = y, f.z = z, f.t = t;

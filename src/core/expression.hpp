@@ -15,8 +15,6 @@ class Expression {
   // message when `text` is not an expression of those.
   Expression(const std::string& text, const std::string& variables);
 
-  bool empty() const { return !impl_; }
-  const std::string& text() const;
   double operator()(double x, double y, double z, double t) const;
 
  private:
