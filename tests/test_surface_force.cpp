@@ -2,7 +2,8 @@
 // exact zero for a uniform pressure (a closed surface's area normals sum to zero), exactly the weight
 // of the enclosed water for a hydrostatic (linear) pressure, in 2D and 3D; a thin plate's two faces
 // each fitted from their own side, and no pressure on faces above a free surface; and the surfaces YAML
-// scenes give their bodies (cases/scene/body_surface.cpp) are closed with their normals pointing out.
+// scenes give their bodies (cases/scene/body_surface.cpp) are closed with their normals pointing out;
+// the wall particles' viscous forces spread onto the faces (src/sph/surface_shear.hpp).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -15,6 +16,7 @@
 #include "src/kernels/kernel.hpp"
 #include "src/particles/particles.hpp"
 #include "src/sph/surface_force.hpp"
+#include "src/sph/surface_shear.hpp"
 
 namespace {
 
@@ -179,6 +181,68 @@ TEST(SurfaceForce, DryFacesAboveAFreeSurfaceCarryNoPressure) {
   const auto S =
       sph::surface_pressure_force(P, K, f.centre, f.area_normal, P.p, sph::Vector<2>(0.5, 0.0), &screens, true);
   EXPECT_NEAR(S.force[0] / (rho_g * (0.36 - 0.09) / 2), 1.0, 1e-12);
+}
+
+// The wall particles' viscous forces spread onto a body's faces (src/sph/surface_shear.hpp): the faces'
+// forces sum to the particles' exactly, each force stays on the faces that look at its fluid (a thin
+// plate's two faces), and the rotation's part exerts no force and the torque -2 mu V w.
+TEST(SurfaceShear, SpreadForcesSumToTheParticlesForces) {
+  const double dx = 1.0 / 40;
+  const sph::Kernel<2> K(sph::KernelType::WendlandC2, 1.5 * dx);
+  const Faces2 f = polygon(100, 0.2);
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<sph::WallParticleShear<2>> forces;
+  sph::Vector<2> total = sph::Vector<2>::Zero();
+  for (int k = 0; k < 300; ++k) {
+    const double angle = kPi * (u(gen) + 1.0), r = 0.2 + 0.5 * dx * u(gen);
+    const sph::Vector<2> radial(std::cos(angle), std::sin(angle));
+    forces.push_back({0, sph::Vector<2>(u(gen), u(gen)), sph::Vector<2>(0.5, 0.5) + r * radial, radial});
+    total += forces.back().force;
+  }
+  forces.push_back({0, sph::Vector<2>(2.0, -1.0), sph::Vector<2>(3.0, 3.0), sph::Vector<2>(1.0, 1.0)});  // far off
+  total += forces.back().force;
+  const auto shear = sph::spread_shear(forces, K, f.centre, f.area_normal);
+  sph::Vector<2> sum = sph::Vector<2>::Zero();
+  for (std::size_t q = 0; q < shear.size(); ++q) sum += shear[q] * f.area_normal[q].norm();
+  EXPECT_LT((sum - total).norm(), 1e-12 * total.norm());
+}
+
+TEST(SurfaceShear, APlatesFacesTakeTheirOwnSidesForces) {
+  const double dx = 1.0 / 40;
+  const sph::Kernel<2> K(sph::KernelType::WendlandC2, 1.5 * dx);
+  const PlateFaces f = plate_faces(0.5, 0.0, 1.0, 160);
+  std::vector<sph::WallParticleShear<2>> forces;
+  for (int k = 0; k < 40; ++k) {
+    const double y = (k + 0.5) * dx;
+    // Face +1's layer lies right of the plate and is pulled by the left fluid along +y; face -1's
+    // lies left and is pulled along -y twice as hard.
+    forces.push_back({0, sph::Vector<2>(0.0, 1.0), sph::Vector<2>(0.5 + 0.5 * dx, y), sph::Vector<2>(-1.0, 0.0)});
+    forces.push_back({0, sph::Vector<2>(0.0, -2.0), sph::Vector<2>(0.5 - 0.5 * dx, y), sph::Vector<2>(1.0, 0.0)});
+  }
+  const auto shear = sph::spread_shear(forces, K, f.centre, f.area_normal);
+  double left = 0.0, right = 0.0;
+  for (std::size_t q = 0; q < shear.size(); ++q)
+    (f.area_normal[q][0] < 0.0 ? left : right) += shear[q][1] * f.area_normal[q].norm();
+  EXPECT_NEAR(left, 40.0, 1e-11);
+  EXPECT_NEAR(right, -80.0, 1e-11);
+}
+
+TEST(SurfaceShear, TheRotationsPartHasNoForceAndItsTorque) {
+  const double mu = 0.3, w = 1.7;
+  const Faces2 f = polygon(200, 0.2);
+  std::vector<sph::Vector<2>> shear(f.centre.size(), sph::Vector<2>::Zero());
+  sph::add_rotation_shear(shear, f.area_normal, Eigen::Vector3d(0.0, 0.0, w), mu);
+  sph::Vector<2> force = sph::Vector<2>::Zero();
+  double torque = 0.0;
+  for (std::size_t q = 0; q < shear.size(); ++q) {
+    const double a = f.area_normal[q].norm();
+    const sph::Vector<2> r = f.centre[q] - sph::Vector<2>(0.5, 0.5);
+    force += a * shear[q], torque += a * (r[0] * shear[q][1] - r[1] * shear[q][0]);
+  }
+  EXPECT_LT(force.norm(), 1e-14);
+  // -2 mu V w with V the polygon's area: each face's arm is the apothem, its length sums to the perimeter.
+  EXPECT_NEAR(torque, -2.0 * mu * f.area * w, 1e-12);
 }
 
 // The surface a YAML scene gives a circular body: closed, each face's normal pointing away from the

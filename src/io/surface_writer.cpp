@@ -15,7 +15,8 @@ namespace sph {
 SurfaceWriter::SurfaceWriter(const std::string& output_dir, const std::string& body)
     : dir_(output_dir.empty() ? std::string(".") : output_dir), base_("body_" + body), series_(dir_, base_) {}
 
-void SurfaceWriter::write(const SurfaceMesh& surface, double time, const std::vector<double>* pressure) {
+void SurfaceWriter::write(const SurfaceMesh& surface, double time, const std::vector<double>* pressure,
+                          const std::vector<std::array<double, 3>>* shear) {
   const std::string file = frame_stem(base_, series_.size()) + ".vtp";
   PetscMPIInt rank = 0;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -33,18 +34,27 @@ void SurfaceWriter::write(const SurfaceMesh& surface, double time, const std::ve
     if (surface.lines) poly->SetLines(cells);
     else poly->SetPolys(cells);
     if (pressure && pressure->size() == surface.cells.size()) {
-      vtkNew<vtkDoubleArray> p, traction;
+      const bool sheared = shear && shear->size() == surface.cells.size();
+      vtkNew<vtkDoubleArray> p, viscous, traction;
       p->SetName("pressure");
+      viscous->SetName("shear");
+      viscous->SetNumberOfComponents(3);
       traction->SetName("traction");
       traction->SetNumberOfComponents(3);
       for (std::size_t c = 0; c < surface.cells.size(); ++c) {
         const Eigen::Vector3d an = face_area_normal(surface, surface.cells[c]);
         const double area = an.norm();
-        const Eigen::Vector3d t = area > 0.0 ? Eigen::Vector3d(-(*pressure)[c] / area * an) : Eigen::Vector3d::Zero();
+        Eigen::Vector3d t = area > 0.0 ? Eigen::Vector3d(-(*pressure)[c] / area * an) : Eigen::Vector3d::Zero();
         p->InsertNextValue((*pressure)[c]);
+        if (sheared) {
+          const Eigen::Vector3d tau((*shear)[c].data());
+          viscous->InsertNextTuple(tau.data());
+          t += tau;
+        }
         traction->InsertNextTuple(t.data());
       }
       poly->GetCellData()->AddArray(p);
+      if (sheared) poly->GetCellData()->AddArray(viscous);
       poly->GetCellData()->AddArray(traction);
     }
     vtkNew<vtkDoubleArray> t;

@@ -43,8 +43,10 @@ inline Eigen::Vector3d face_area_normal(const SurfaceMesh& mesh, const std::vect
 class SurfaceWriter {
  public:
   SurfaceWriter(const std::string& output_dir, const std::string& body);
-  // With `pressure` (one value a cell), the cells carry it and the traction -p n it exerts on the body.
-  void write(const SurfaceMesh& surface, double time, const std::vector<double>* pressure = nullptr);
+  // With `pressure` (one value a cell), the cells carry it and the traction -p n it exerts on the body;
+  // with `shear` too (the viscous traction, a vector a cell), that as `shear` and the traction is the sum.
+  void write(const SurfaceMesh& surface, double time, const std::vector<double>* pressure = nullptr,
+             const std::vector<std::array<double, 3>>* shear = nullptr);
   void resume(double t) { series_.resume(t); }
   int frames_written() const { return series_.size(); }
   std::string basename() const { return base_; }

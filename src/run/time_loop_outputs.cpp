@@ -99,9 +99,17 @@ template <int D> void TimeLoop<D>::write_frame(bool derived) {
         p = free ? free->placed(p) : motions[b].moved(p, 0.0, t_);
         for (int a = 0; a < D; ++a) x[a] = p[a];
       }
-    // The faces' pressures where the step's forces took them (not in the first frame, before any step).
-    const bool loads = wall_groups_ && faces_t_ == t_;
-    surface_writers_[b].write(surface, t_, loads ? &wall_groups_->face_pressure(b) : nullptr);
+    // The faces' loads where the step's forces took them (not in the first frame, before any step).
+    if (!wall_groups_ || faces_t_ != t_) {
+      surface_writers_[b].write(surface, t_);
+      continue;
+    }
+    const std::vector<Vector<D>> shear =
+        wall_groups_->face_shear(b, s_.P, s_.nh, s_.kernel, s_.disc.physics, s_.disc.bodies);
+    std::vector<std::array<double, 3>> shear3(shear.size(), {0.0, 0.0, 0.0});
+    for (std::size_t q = 0; q < shear.size(); ++q)
+      for (int a = 0; a < D; ++a) shear3[q][a] = shear[q][a];
+    surface_writers_[b].write(surface, t_, &wall_groups_->face_pressure(b), &shear3);
   }
 }
 

@@ -9,6 +9,7 @@
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/run/case.hpp"
 #include "src/sph/surface_force.hpp"
+#include "src/sph/surface_shear.hpp"
 #include "src/sph/wall_forces.hpp"
 
 namespace sph {
@@ -61,6 +62,25 @@ template <int D> class WallGroups {
   // body's pressure force comes from the pair sums.
   const std::vector<double>& face_pressure(std::size_t b) const { return face_pressure_[b]; }
 
+  // Body b's faces' viscous traction for the current state (in its surface's cell order; empty where
+  // its pressure force comes from the pair sums): the viscous pair forces of its particles spread onto
+  // its faces, with the rotation's part (src/sph/surface_shear.hpp). For the surface files, so taken
+  // when a frame is written, not every step. Refreshes the ghosts as forces() does.
+  std::vector<Vector<D>> face_shear(std::size_t b, Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K,
+                                    const Physics<D>& physics, const MovingBodies<D>& bodies) const {
+    if (b >= faces_.size() || faces_[b].centre.empty()) return {};
+    nh.update(P);
+    std::vector<int> group(P.n_owned, -1);
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      if (P.kind[i] == kWall && body_of(P.id[i]) == static_cast<int>(b)) group[i] = 0;
+    std::vector<WallParticleShear<D>> forces;
+    wall_group_forces(P, nh.list(), K, P.p, P.rho, group, physics.nu, {about_now(bodies)[b]}, &bodies, &forces);
+    const Faces now = moved(b, bodies);
+    std::vector<Vector<D>> shear = spread_shear(forces, K, now.centre, now.area_normal);
+    if (b < motions_.size()) add_rotation_shear(shear, now.area_normal, rotation(b, bodies), physics.rho0 * physics.nu);
+    return shear;
+  }
+
   // force_<g>_x (total), force_<g>_pressure_x, force_<g>_viscous_x (and _y, _z), moment_<g> (2D;
   // moment_<g>_x, _y, _z in 3D), for every group.
   std::vector<std::string> columns() const {
@@ -99,12 +119,8 @@ template <int D> class WallGroups {
     // The pair sums carry the traction of the viscous term's Laplacian form, mu du/dn; the stress's
     // other part, mu (grad u)^T n, integrates over a body turning at w to a torque -2 mu V w (in 2D
     // and 3D), and to no force (docs/verification/body_forces.md, the Couette torque).
-    for (std::size_t b = 0; b < motions_.size() && b < F.size(); ++b) {
-      const FreeBody<D>* free = bodies.free_body(b);
-      const Eigen::Vector3d w =
-          free ? free->omega : Eigen::Vector3d(motions_[b].angular_velocity(bodies.time()) * motions_[b].axis);
-      F[b].moment -= 2.0 * physics.rho0 * physics.nu * volume_[b] * w;
-    }
+    for (std::size_t b = 0; b < motions_.size() && b < F.size(); ++b)
+      F[b].moment -= 2.0 * physics.rho0 * physics.nu * volume_[b] * rotation(b, bodies);
     return F;
   }
 
@@ -150,6 +166,12 @@ template <int D> class WallGroups {
     names_.push_back(name);
     particles_.push_back(static_cast<long>(count));
     about_.push_back(count > 0 ? Vector<D>(sum / count) : Vector<D>::Zero());
+  }
+
+  // Body b's angular velocity now (b < motions_.size()).
+  Eigen::Vector3d rotation(std::size_t b, const MovingBodies<D>& bodies) const {
+    const FreeBody<D>* free = bodies.free_body(b);
+    return free ? free->omega : Eigen::Vector3d(motions_[b].angular_velocity(bodies.time()) * motions_[b].axis);
   }
 
   // A body's surface faces as laid out: centres and area normals (outwards).

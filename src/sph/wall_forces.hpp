@@ -36,15 +36,22 @@ template <int D> Eigen::Vector3d moment_of(const Vector<D>& r, const Vector<D>& 
   return r3.cross(f3);
 }
 
+// One owned wall particle's viscous force, where it acts (its pairs' midpoints, weighted as the
+// force is) and the direction of the fluid that exerts it (the kernel-weighted mean of the directions
+// to its fluid neighbours): for spreading it onto a body's surface (surface_shear.hpp).
+template <int D> struct WallParticleShear {
+  int group = -1;
+  Vector<D> force = Vector<D>::Zero(), at = Vector<D>::Zero(), towards_fluid = Vector<D>::Zero();
+};
+
 // Forces on groups 0..n_groups-1 of owned wall particles (group[i] < 0: in none), reduced over all
 // ranks. p, rho: the pressure and density with current ghost values; nu: the kinematic viscosity (0: no
-// viscous part); about[g]: group g's moment reference point.
-template <int D> std::vector<GroupForce<D>> wall_group_forces(const Particles<D>& P, const NeighbourList<D>& nl,
-                                                              const Kernel<D>& K, const std::vector<double>& p,
-                                                              const std::vector<double>& rho,
-                                                              const std::vector<int>& group, double nu,
-                                                              const std::vector<Vector<D>>& about,
-                                                              const MovingBodies<D>* bodies = nullptr) {
+// viscous part); about[g]: group g's moment reference point. shear (if given): each owned wall
+// particle's viscous force in a group, on this rank.
+template <int D> std::vector<GroupForce<D>> wall_group_forces(
+    const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const std::vector<double>& p,
+    const std::vector<double>& rho, const std::vector<int>& group, double nu, const std::vector<Vector<D>>& about,
+    const MovingBodies<D>* bodies = nullptr, std::vector<WallParticleShear<D>>* shear = nullptr) {
   const std::size_t n_groups = about.size();
   check_ghosts(nl, p, "the wall forces' pressure");
   check_ghosts(nl, rho, "the wall forces' density");
@@ -85,8 +92,13 @@ template <int D> std::vector<GroupForce<D>> wall_group_forces(const Particles<D>
       const Vector<D> mirror =
           AdamiWall<D>::mirror_velocity(P, w, s.shepard_u / s.shepard_weight, s.shepard_r / s.shepard_weight, bodies);
       // sum_f m_w k_f (mirror - u_f), and its moment about the pairs' midpoints.
-      F.viscous += P.m[w] * (s.viscous_weight * mirror - s.viscous_u);
+      const Vector<D> viscous = P.m[w] * (s.viscous_weight * mirror - s.viscous_u);
+      F.viscous += viscous;
       F.moment += P.m[w] * (moment_of<D>(s.viscous_arm, mirror) - s.viscous_moment_u);
+      if (shear && s.viscous_weight != 0.0)
+        shear->push_back({group[w], viscous,
+                          Vector<D>(about[static_cast<std::size_t>(group[w])] + s.viscous_arm / s.viscous_weight),
+                          Vector<D>(-s.shepard_r / s.shepard_weight)});
     }
   }
   std::vector<double> flat;

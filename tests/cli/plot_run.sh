@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # scripts/plot-run: a run with a body (the baffle, nx 12) and one on 2 ranks (.pvtp frames) each give a
-# PNG holding the frame and the force histories; the body's surface file carries the pressure and
-# traction its force was taken with; the frame nearest --time is taken; a field or a column
+# PNG holding the frame and the force histories; the body's surface file carries the pressure, shear
+# and traction its force was taken with; the frame nearest --time is taken; a field or a column
 # the run lacks, or a folder that is no run, gives one error line naming what exists, exit non-zero.
 #   usage: plot_run.sh <sph executable> <source dir>; $MPIEXEC names mpiexec.
 set -u
@@ -33,9 +33,10 @@ t=$(echo "$out" | sed -n 's/.*frame at t = \([0-9.e-]*\)).*/\1/p')
 [ -s "$tmp/t.png" ] && python3 -c "import sys; sys.exit(not 0.04 < float('$t') < 0.07)" 2>/dev/null &&
   ok "--time 0.04 --field speed --columns force_baffle_x: $out" || bad "--time 0.04: $out"
 
-# The surface files carry each face's pressure and traction from the step's force: their integral is
-# the force_baffle_pressure column at that time; the first frame, before any step, carries none.
-/usr/bin/python3 - "$tmp/one" <<'PY' && ok "the baffle's surface traction sums to its pressure force" || bad "surface loads"
+# The surface files carry each face's pressure, shear and traction from the step's state: the
+# pressure's traction integrates to the force_baffle_pressure column at that time, the shear to the
+# force_baffle_viscous one; the first frame, before any step, carries none.
+/usr/bin/python3 - "$tmp/one" <<'PY' && ok "the baffle's surface loads sum to its pressure and viscous forces" || bad "surface loads"
 import csv, sys
 import numpy as np
 import vtk
@@ -46,12 +47,17 @@ def read(k):
 o = read(2)
 pts, lines = n(o.GetPoints().GetData()), o.GetLines()
 ids, off = n(lines.GetConnectivityArray()), n(lines.GetOffsetsArray())
-traction = n(o.GetCellData().GetArray("traction"))
+# The traction is the pressure's, -p n, plus the viscous shear, which each face carries apart.
+traction = n(o.GetCellData().GetArray("traction")) - n(o.GetCellData().GetArray("shear"))
 F = sum(traction[c] * np.linalg.norm(pts[ids[b - 1]] - pts[ids[a]]) for c, (a, b) in enumerate(zip(off[:-1], off[1:])))
+shear = n(o.GetCellData().GetArray("shear"))
+S = sum(shear[c] * np.linalg.norm(pts[ids[b - 1]] - pts[ids[a]]) for c, (a, b) in enumerate(zip(off[:-1], off[1:])))
 row = list(csv.DictReader(open(f"{run}/timeseries.csv")))[-1]
 want = np.array([float(row["force_baffle_pressure_x"]), float(row["force_baffle_pressure_y"])])
-print(f"surface {F[:2]}, force columns {want}")
+viscous = np.array([float(row["force_baffle_viscous_x"]), float(row["force_baffle_viscous_y"])])
+print(f"surface {F[:2]}, force columns {want}; shear {S[:2]}, viscous columns {viscous}")
 sys.exit(not (abs(F[:2] - want).max() <= 1e-9 * abs(want).max() and abs(want).max() > 0
+              and abs(S[:2] - viscous).max() <= 1e-9 * abs(viscous).max() and abs(viscous).max() > 0
               and read(0).GetCellData().GetNumberOfArrays() == 0))
 PY
 
