@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Each solver's own point arrays in the VTK frames, and -output_fields vorticity against the exact
-# Taylor-Green vorticity.   usage: output_fields.sh <sph executable> <source dir>
+# Taylor-Green vorticity; frames and fields never change a run (bodies and plates included).   usage: output_fields.sh <sph executable> <source dir>
 set -u
 sph="$1"; src="$2"; tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail=0
@@ -17,6 +17,16 @@ for s in isph wcsph; do
     extra=""; [ $f = vorticity ] && extra="-output_fields vorticity"
     expect_ok -case dam_break -nx 8 -solver $s -t_end 0.3 -progress 0 -threads 1 -output_interval 0.05 $extra -output_dir "$tmp/$s-$f"
     expect_ok -case taylor_green -nx 16 -solver $s -t_end 0.2 -progress 0 -threads 1 -output_interval 0.02 $extra -output_dir "$tmp/$s-tg-$f"
+  done
+done
+# Frames never change a run with bodies either: the baffle (a plate: its screens, its surface's
+# pressure, shear and their fits) and a free body, with frames every 0.05 and without.
+for s in isph wcsph; do
+  for oi in 0 0.05; do
+    expect_ok -case scene -scene_file "$src/cases/scenes/baffle_sloshing.yaml" -nx 12 -solver $s -t_end 0.2 \
+      -progress 0 -threads 1 -output_interval $oi -output_dir "$tmp/baffle-$s-$oi"
+    expect_ok -case scene -scene_file "$src/cases/scenes/floating_box.yaml" -nx 20 -solver $s -t_end 0.1 \
+      -progress 0 -threads 1 -output_interval $oi -output_dir "$tmp/box-$s-$oi"
   done
 done
 expect_error "-output_fields takes vorticity \(got 'curl'\)" -case taylor_green -nx 8 -output_fields curl -output_dir "$tmp/refused"
@@ -67,6 +77,10 @@ for s in ("isph", "wcsph", "isph-tg", "wcsph-tg"):
     xb, b = frame(f"{s}-vorticity", last)
     check(np.array_equal(xa, xb) and all(np.array_equal(a[k], b[k]) for k in ("velocity", "pressure")),
           f"{s}: frame {last} the same bitwise with and without -output_fields vorticity")
+# Every step's state, forces and energy budget, bitwise.
+for run in ("baffle-isph", "baffle-wcsph", "box-isph", "box-wcsph"):
+    a, b = (open(f"{tmp}/{run}-{oi}/timeseries.csv").read() for oi in ("0", "0.05"))
+    check(a == b and a.count("\n") > 10, f"{run}: timeseries.csv the same bitwise with and without frames")
 finish()
 PY
 exit $fail
