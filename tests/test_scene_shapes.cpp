@@ -202,17 +202,21 @@ TEST(SceneShapes, HydrostaticPressureIsRhoGDepth) {
   EXPECT_EQ(block, 20 * 20);
 }
 
-// A tilted surface (the sloshing tank's start) and a body under water: each particle's pressure is
-// rho0 g times its depth below the surface above it, which the body does not interrupt.
+// A tilted surface (the sloshing tank's start) and bodies under water: each particle's pressure is
+// rho0 g times its depth below the surface above it, which the bodies do not interrupt, nor the side of
+// one cut out of the fluid's region whose face lies on a lattice column (at dx 0.05 the block's sides
+// are columns of points at distance 0 from both the fluid's region and the block).
 TEST(SceneShapes, HydrostaticPressureFollowsATiltedSurface) {
   const std::string text =
       "dimension: 2\nbox: [-0.2, 2.2, -0.2, 1.2]\nphysics: {gravity: [0, -9.81], rho0: 1000}\nregions:\n"
       "  - {role: wall, shape: {difference: [{box: [-0.2, 2.2, -0.2, 1.2]}, {box: [0, 2, 0, 1.2]}]}}\n"
-      "  - {role: fluid, shape: {polygon: [[0, 0], [2, 0], [2, 0.3], [0, 0.5]]}, pressure: hydrostatic}\n"
-      "  - {role: {body: stone}, shape: {circle: {centre: [1, 0.15], radius: 0.08}}}\n";
+      "  - {role: fluid, shape: {difference: [{polygon: [[0, 0], [2, 0], [2, 0.3], [0, 0.5]]}, "
+      "{box: [1.425, 1.575, 0.1, 0.25]}]}, pressure: hydrostatic}\n"
+      "  - {role: {body: stone}, shape: {circle: {centre: [1, 0.15], radius: 0.08}}}\n"
+      "  - {role: {body: block}, shape: {box: [1.425, 1.575, 0.1, 0.25]}}\n";
   for (const double dx : {0.05, 0.0125}) {
     const sph::YamlScene s = sample("tilted", text, dx);
-    long fluid = 0, under_stone = 0;
+    long fluid = 0, under_stone = 0, beside_block = 0;
     for (std::size_t i = 0; i < s.file.x.size(); ++i) {
       if (s.file.kind[i] != sph::kSceneFluid) continue;
       const double x = s.file.x[i][0], y = s.file.x[i][1];
@@ -220,9 +224,13 @@ TEST(SceneShapes, HydrostaticPressureFollowsATiltedSurface) {
       EXPECT_NEAR(s.file.p[i], 1000 * 9.81 * (surface - y), 1e-9) << x << ", " << y << " at dx " << dx;
       ++fluid;
       under_stone += std::abs(x - 1) < 0.05 && y < 0.07;
+      beside_block += std::abs(x - 1.425) < 1e-9 && y < 0.1;
     }
     EXPECT_GT(fluid, 0);
     EXPECT_GT(under_stone, 0);
+    if (dx == 0.05) {
+      EXPECT_GT(beside_block, 0);
+    }
   }
 }
 

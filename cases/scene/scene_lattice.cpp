@@ -16,14 +16,16 @@ namespace {
 // `occupied` (a signed distance: negative inside the scene's fluid regions or solids) leaves empty, so
 // that a tilted or curved surface starts in hydrostatic balance column by column and a submerged body
 // does not cut the column. Marched in steps of dx (an overhang is found) and refined by bisection to
-// round-off; `top` (the box's highest point along up) ends the march.
+// round-off; `top` (the box's highest point along up) ends the march. A point on the face where the
+// fluid meets a solid is in both (distance 0 to each) and counts as occupied, as the lattice counts it
+// (kOnSurface): a column up the side of a submerged body's lattice-aligned face stopped there.
 template <class Occupied>
 double depth_below_surface(const Occupied& occupied, const Point3& x, const Point3& up, double top, double dx) {
-  const double reach = top - up.dot(x);
-  if (reach <= 0.0 || occupied(x) >= 0.0) return 0.0;
+  const double reach = top - up.dot(x), on = kOnSurface * dx;
+  if (reach <= 0.0 || occupied(x) > on) return 0.0;
   double inside = 0.0, outside = reach;
   for (double s = dx; s < reach; s += dx) {
-    if (occupied(x + s * up) >= 0.0) {
+    if (occupied(x + s * up) > on) {
       outside = s;
       break;
     }
