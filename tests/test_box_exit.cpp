@@ -55,6 +55,15 @@ TEST(BoxExit, FluidThrownOverTheWallsTopLeftThroughAnOpenSide) {
     EXPECT_TRUE(w.domain.outside(w.P.x[i]));
     EXPECT_FALSE(w.through_wall(i)) << y;
   }
+  // Up the wall's face to the box's top (a box whose top cuts the wall at 8 dx): beside the face, over an
+  // open side; a little inside it, through the wall.
+  for (const double x : {0.04, -0.04}) {
+    CutWall w;
+    w.domain.hi[1] = 8 * kDx;
+    const std::size_t i = w.add(V2(x * kDx, 8.3 * kDx), kFluid);
+    EXPECT_TRUE(w.domain.outside(w.P.x[i]));
+    EXPECT_EQ(w.through_wall(i), x < 0) << x;
+  }
   // Out through the box's floor, away from any wall.
   CutWall w;
   const std::size_t i = w.add(V2(0.5, -0.3 * kDx), kFluid);
