@@ -18,7 +18,7 @@ namespace {
 // does not cut the column. Marched in steps of dx (an overhang is found) and refined by bisection to
 // round-off; `top` (the box's highest point along up) ends the march. A point on the face where the
 // fluid meets a solid is in both (distance 0 to each) and counts as occupied, as the lattice counts it
-// (kOnSurface): a column up the side of a submerged body's lattice-aligned face stopped there.
+// (kOnSurface), so a column up a body's side is not cut where the side lies on a lattice column.
 template <class Occupied>
 double depth_below_surface(const Occupied& occupied, const Point3& x, const Point3& up, double top, double dx) {
   const double reach = top - up.dot(x), on = kOnSurface * dx;

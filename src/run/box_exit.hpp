@@ -19,8 +19,7 @@ namespace sph {
 // it crossed the box's side (its place clipped to the box) lies in a wall, within half a spacing of a
 // wall particle along every axis (a wall particle's lattice cell, to round-off). A particle thrown over
 // a wall's top crosses at least its gap to the wall above the top layer; one that climbed a wall's face
-// to the box's top crosses beside the wall's cells (with a margin of a tenth of dx, a dam break's jet
-// up a side wall at nx 20, 0.04 dx off the face, was taken for a leak and stopped the run).
+// to the box's top crosses just beside the wall's cells, so the cells take no margin beyond round-off.
 template <int D> bool left_through_wall(const Particles<D>& P, const NeighbourList<D>& nl, const Domain<D>& domain,
                                         std::size_t i, double dx) {
   Vector<D> crossing = P.x[i];

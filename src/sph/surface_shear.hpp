@@ -3,10 +3,9 @@
 // viscous pair forces (wall_forces.hpp) spread onto the faces near where they act, so that the faces'
 // shear integrates to the force_<body>_viscous columns exactly, plus the stress's part that the pair
 // sums' Laplacian form leaves out, mu (grad u)^T n = -mu w x n on the wall of a body turning at w
-// (zero force, the torque -2 mu V w that WallGroups::forces adds). A fit of the fluid's velocity gradient
-// at each face was tried first: exact for linear and quadratic fields, but over the first rows of
-// fluid at a wall it read the discrete solution's near-wall error, and a cylinder in circular Couette
-// flow had its wall shear 35 % and 22 % short at nx 20 and 40 (docs/verification/body_forces.md).
+// (zero force, the torque -2 mu V w that WallGroups::forces adds). The pair sums rather than a fit of
+// the velocity gradient at each face: they carry the scheme's own momentum balance at the wall
+// (docs/verification/body_forces.md, "The shear on the faces").
 #include <mpi.h>
 #include <petscsys.h>
 
