@@ -59,7 +59,7 @@ std::vector<OptionOwner> option_owners(const RunOptions& chosen) {
     auto reads_late = [name](const std::string& option) { return create_solver<2>(name)->reads_late(option); };
     auto renamed = [name](const std::string& option) { return create_solver<2>(name)->renamed_option(option); };
     owners.push_back({"-solver " + name, [name] { create_solver<2>(name)->set_from_options(); }, reads_late,
-                      name == chosen.solver_name, renamed});
+                      name == chosen.solver_name, renamed, create_solver<2>(name)->options_prefix()});
   }
   owners.push_back({"",
                     [] {  // run control and kernel: read by every run

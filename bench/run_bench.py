@@ -54,9 +54,9 @@ WORKLOADS = [
     # The plain scheme of the fastest published CPU codes (no correction matrices, no consistent
     # Laplacian, no shifting): what the per-core speed target is measured against.
     ("wcsph2d-plain-1e5", "wcsph", 2, 20,
-     TGV + ["-solver", "wcsph", "-nx", "316", "-operators", "classic", "-shifting", "0"], "explicit"),
+     TGV + ["-solver", "wcsph", "-nx", "316", "-wcsph_operators", "classic", "-shifting", "0"], "explicit"),
     ("wcsph2d-plain-1e6", "wcsph", 2, 20,
-     TGV + ["-solver", "wcsph", "-nx", "1000", "-operators", "classic", "-shifting", "0"], "explicit"),
+     TGV + ["-solver", "wcsph", "-nx", "1000", "-wcsph_operators", "classic", "-shifting", "0"], "explicit"),
     ("isph3d-1e5", "isph", 3, 3, BELTRAMI + ["-solver", "isph", "-nx", "46"], False),
     ("isph3d-1e6", "isph", 3, 2, BELTRAMI + ["-solver", "isph", "-nx", "100"], "explicit"),
     ("wcsph3d-1e5", "wcsph", 3, 10, BELTRAMI + ["-solver", "wcsph", "-nx", "46"], False),

@@ -60,11 +60,12 @@ struct PressureTotal {
   double total, exchanged;
 };
 PressureTotal wcsph_pressure_total(double dt, const std::string& tag) {
-  const auto r = run_sph("energy_budget_adjoint_" + tag,
-                         "-case taylor_green -solver wcsph -nx 16 -re 1e6 -t_end 0.2 -output_interval 0 "
-                         "-checkpoint_interval 0 -pressure_gradient symmetric -density_diffusion none -shifting 0 "
-                         "-closed_volume 0 -dt " +
-                             std::to_string(dt));
+  const auto r =
+      run_sph("energy_budget_adjoint_" + tag,
+              "-case taylor_green -solver wcsph -nx 16 -re 1e6 -t_end 0.2 -output_interval 0 "
+              "-checkpoint_interval 0 -wcsph_pressure_gradient symmetric -density_diffusion none -shifting 0 "
+              "-closed_volume 0 -dt " +
+                  std::to_string(dt));
   EXPECT_EQ(r.exit_code, 0) << r.summary.dump();
   const auto& b = r.summary["conservation"]["energy_budget"];
   EXPECT_LT(std::abs(b["closure"].get<double>()), 1e-12 * b["kinetic_energy_start"].get<double>());

@@ -112,6 +112,14 @@ TEST(Restart, CheckpointOfTheOldOptionNamesReadsThemUnderTheNewOnes) {
   nlohmann::json isph = wcsph, isph_now = wcsph;
   isph["solver"] = isph_now["solver"] = "isph";
   EXPECT_EQ(sph::check_same_run(isph, isph_now, "checkpoint.bin"), nlohmann::json::object());
+
+  // The schemes' own operator choices now carry the scheme's prefix.
+  isph["options"] = {{"operators", "classic"}, {"pressure_gradient", "symmetric"}};
+  isph_now["options"] = {{"isph_operators", "classic"}, {"isph_pressure_gradient", "symmetric"}};
+  EXPECT_EQ(sph::check_same_run(isph, isph_now, "checkpoint.bin"), nlohmann::json::object());
+  wcsph["options"] = {{"operators", "classic"}};
+  wcsph_now["options"] = {{"wcsph_operators", "classic"}};
+  EXPECT_EQ(sph::check_same_run(wcsph, wcsph_now, "checkpoint.bin"), nlohmann::json::object());
 }
 
 // Each health check on a constructed bad state.

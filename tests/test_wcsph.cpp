@@ -34,8 +34,8 @@ TEST(Wcsph, TaylorGreenMatchesAnalyticDecay) {
 TEST(Wcsph, ConservesMomentumToRoundOff) {
   const auto r = run_sph("wcsph_momentum",
                          "-case taylor_green -solver wcsph -nx 24 -t_end 0.2 -shifting 0 "
-                         "-av_alpha 0.1 -density_diffusion none -pressure_gradient symmetric "
-                         "-operators classic");
+                         "-av_alpha 0.1 -density_diffusion none -wcsph_pressure_gradient symmetric "
+                         "-wcsph_operators classic");
   ASSERT_EQ(r.exit_code, 0);
   EXPECT_LT(r.summary["conservation"]["momentum_drift"].get<double>(), 1e-13);
 }

@@ -4,6 +4,7 @@
 #include "src/boundary/wall_options.hpp"
 #include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
+#include "src/sph/operator_options.hpp"
 #include "src/sph/step_limits.hpp"
 
 namespace sph {
@@ -26,16 +27,14 @@ PetscErrorCode read_options(RawOptions* o) {
   PetscCall(option_real(PetscOptionsObject, kAdvectiveCfl,
                         "ISPH: advective Courant number, dt <= cfl h / U (the explicit schemes' is -acoustic_cfl)",
                         o->cfl, &o->cfl, nullptr));
-  PetscCall(option_choice(PetscOptionsObject, "-pressure_gradient",
+  PetscCall(option_choice(PetscOptionsObject, scheme_option(kIsphPrefix, "pressure_gradient").c_str(),
                           "Pressure gradient: corrected (Bonet & Lok), difference, symmetric (Monaghan)",
                           gradient_names, 3, gradient_names[o->gradient], &o->gradient, nullptr));
-  PetscCall(option_choice(PetscOptionsObject, "-operators",
+  PetscCall(option_choice(PetscOptionsObject, scheme_option(kIsphPrefix, "operators").c_str(),
                           "Viscous and PPE Laplacian, PPE divergence: consistent (exact for quadratic / linear "
                           "fields on any particle distribution) or classic (Morris, Cummins & Rudman, plain)",
                           operator_set_names, 2, operator_set_names[o->operators], &o->operators, nullptr));
-  PetscCall(option_choice(PetscOptionsObject, "-viscous_laplacian", viscous_laplacian_help, viscous_laplacian_names, 2,
-                          viscous_laplacian_names[o->viscous_laplacian], &o->viscous_laplacian, nullptr,
-                          OptionLevel::expert));
+  PetscCall(read_shared_operator_options(PetscOptionsObject, &o->viscous_laplacian));
   PetscCall(option_real(PetscOptionsObject, "-ppe_particle_divergence_rate",
                         "Rate, in U/h, at which the PPE removes the particle-scale divergence of the previous "
                         "step's velocity, which the projection cannot remove (R: a fraction R U dt / (2 h) per "

@@ -20,11 +20,11 @@
 // end of the step, viscosity at its start) is first order in dt, and with consistent operators that time
 // error dominates (docs/verification/taylor_green.md, "History").
 //
-// Operators (-operators): by default the consistent Laplacian (src/sph/consistent_laplacian.hpp) for
+// Operators (-isph_operators): by default the consistent Laplacian (src/sph/consistent_laplacian.hpp) for
 // the viscous term and the PPE, the corrected divergence for the PPE source and the corrected
 // gradient for the pressure force: all exact for linear (the Laplacian: quadratic) fields on any
 // particle distribution, so the projection leaves no first-order divergence of its own making that
-// the next step must remove again (a second-order one it does: below). `-operators classic` keeps the
+// the next step must remove again (a second-order one it does: below). `-isph_operators classic` keeps the
 // Morris viscous term, the Cummins & Rudman PPE and the plain divergence: a symmetric PPE (CG), kept for
 // comparison only, being far less accurate (docs/verification/taylor_green.md, "Design measurements").
 //
@@ -57,6 +57,7 @@
 #include "src/sph/free_surface.hpp"
 #include "src/sph/kernel_average.hpp"
 #include "src/sph/laplacian_smoothing.hpp"
+#include "src/sph/operator_options.hpp"
 #include "src/sph/shifting.hpp"
 #include "src/sph/step_limits.hpp"
 
@@ -87,8 +88,10 @@ template <int D> class IsphSolver : public Solver<D> {
   StepReport step(double dt) override;
   nlohmann::json describe() const override;
   bool reads_late(const std::string& option) const override { return PressurePoisson<D>::reads_late(option); }
+  std::string options_prefix() const override { return kIsphPrefix; }
   RenamedOption renamed_option(const std::string& option) const override {
-    return PressurePoisson<D>::renamed_option(option);
+    const RenamedOption own = scheme_operator_rename(kIsphPrefix, option);
+    return own.now.empty() ? PressurePoisson<D>::renamed_option(option) : own;
   }
   nlohmann::json checkpoint_scalars() const override {
     return {{"pressure_solves", solves_}, {"energy_budget", energy_.to_json()}};

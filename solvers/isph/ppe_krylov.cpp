@@ -64,11 +64,12 @@ template <int D> void PressurePoisson<D>::check_ksp_choice() {
   if (nonsymmetric_ && symmetric_only && !warned) {
     KSPType type = nullptr;
     SPH_PETSC(KSPGetType(ksp_, &type));
-    SPH_PETSC(PetscFPrintf(PETSC_COMM_WORLD, stderr,
-                           "sph: warning: -ppe_ksp_type %s assumes a symmetric matrix, and this run's pressure matrix "
-                           "is not (the consistent operators, walls or a free surface make it so): it may not "
-                           "converge; the default (gmres) or bcgs suit it, or -operators classic in a periodic scene\n",
-                           type));
+    SPH_PETSC(
+        PetscFPrintf(PETSC_COMM_WORLD, stderr,
+                     "sph: warning: -ppe_ksp_type %s assumes a symmetric matrix, and this run's pressure matrix "
+                     "is not (the consistent operators, walls or a free surface make it so): it may not "
+                     "converge; the default (gmres) or bcgs suit it, or -isph_operators classic in a periodic scene\n",
+                     type));
     warned = true;
   }
 }

@@ -43,7 +43,7 @@ std::string requested_type(PetscInt n) {
   if (half && !symmetric)
     throw OptionError("-mat_type " + type +
                       " stores half of a symmetric matrix, but this pressure matrix is not symmetric (walls, a free "
-                      "surface or -operators consistent); use -mat_type aij");
+                      "surface or -isph_operators consistent); use -mat_type aij");
   SPH_PETSC(MatCreate(PETSC_COMM_WORLD, &A));
   SPH_PETSC(MatSetSizes(A, n, n, PETSC_DETERMINE, PETSC_DETERMINE));
   SPH_PETSC(MatSetType(A, type.c_str()));

@@ -8,7 +8,7 @@
 //    sum_j w_ij (p_j - p_i) / rho_i with the density at rho0: exact for quadratic p on any particle
 //    distribution, positive weights, zero row sums, but not symmetric: GMRES with AMG. Periodic
 //    domains, where the system is singular, get a tiny diagonal shift (see assemble);
-//  - with -operators classic, the Laplacian of Cummins & Rudman (1999),
+//  - with -isph_operators classic, the Laplacian of Cummins & Rudman (1999),
 //    div(grad p / rho)_i = sum_j c_ij (p_i - p_j),  c_ij = 8 m_j F_ij / (rho_i + rho_j)^2.
 //    Because m_i c_ij = m_j c_ji the matrix is symmetric, and since F_ij < 0 it is a positive
 //    semi-definite M-matrix: CG with AMG applies. With no Dirichlet rows (periodic or closed domains)

@@ -7,6 +7,7 @@
 #include "src/boundary/wall_options.hpp"
 #include "src/core/option_reads.hpp"
 #include "src/core/options.hpp"
+#include "src/sph/operator_options.hpp"
 #include "src/sph/step_limits.hpp"
 
 namespace sph {
@@ -67,14 +68,12 @@ PetscErrorCode read_options(RawOptions* o) {
       option_real(PetscOptionsObject, "-av_beta", "Monaghan artificial viscosity beta", o->beta, &o->beta, nullptr));
   PetscCall(option_real(PetscOptionsObject, "-av_epsilon", "Artificial viscosity singularity guard epsilon", o->epsilon,
                         &o->epsilon, nullptr, OptionLevel::expert));
-  PetscCall(option_choice(PetscOptionsObject, "-operators",
+  PetscCall(option_choice(PetscOptionsObject, scheme_option(kWcsphPrefix, "operators").c_str(),
                           "Continuity divergence and viscous Laplacian: consistent (corrected divergence, "
                           "consistent Laplacian) or classic (plain divergence, Morris)",
                           operator_set_names, 2, operator_set_names[o->operators], &o->operators, nullptr));
-  PetscCall(option_choice(PetscOptionsObject, "-viscous_laplacian", viscous_laplacian_help, viscous_laplacian_names, 2,
-                          viscous_laplacian_names[o->viscous_laplacian], &o->viscous_laplacian, nullptr,
-                          OptionLevel::expert));
-  PetscCall(option_choice(PetscOptionsObject, "-pressure_gradient",
+  PetscCall(read_shared_operator_options(PetscOptionsObject, &o->viscous_laplacian));
+  PetscCall(option_choice(PetscOptionsObject, scheme_option(kWcsphPrefix, "pressure_gradient").c_str(),
                           "Pressure force: corrected (Bonet & Lok, p_j - p_i), symmetric (Monaghan, momentum-"
                           "conserving), auto (symmetric with a free surface, whose zero pressure it imposes; "
                           "else corrected)",

@@ -104,9 +104,9 @@ template <int D> void WcsphSolver<D>::resolve_choices(const Discretisation<D>& d
   // that gives it one (docs/verification/free_surface.md, "What moves WCSPH's lattice").
   if (gradient_ == WcsphGradient::Corrected && disc.physics.free_surface)
     throw Error(
-        "-pressure_gradient corrected needs a scene without a free surface (WCSPH imposes the surface's zero "
+        "-wcsph_pressure_gradient corrected needs a scene without a free surface (WCSPH imposes the surface's zero "
         "pressure through the symmetric form; with the corrected one still water blows up at once): use "
-        "-pressure_gradient auto or symmetric");
+        "-wcsph_pressure_gradient auto or symmetric");
   if (gradient_ == WcsphGradient::Auto)
     gradient_ = disc.physics.free_surface ? WcsphGradient::Symmetric : WcsphGradient::Corrected;
 }

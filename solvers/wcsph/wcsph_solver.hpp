@@ -11,6 +11,7 @@
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/free_surface.hpp"
 #include "src/sph/laplacian_smoothing.hpp"
+#include "src/sph/operator_options.hpp"
 #include "src/sph/shifting.hpp"
 #include "src/sph/step_limits.hpp"
 
@@ -37,7 +38,11 @@ template <int D> class WcsphSolver : public Solver<D> {
   KernelChoice default_kernel(const Physics<D>& phys) const override {
     return phys.free_surface ? KernelChoice{KernelType::QuinticSpline, 0.93} : KernelChoice{};
   }
-  RenamedOption renamed_option(const std::string& option) const override { return acoustic_cfl_rename(option); }
+  std::string options_prefix() const override { return kWcsphPrefix; }
+  RenamedOption renamed_option(const std::string& option) const override {
+    const RenamedOption own = scheme_operator_rename(kWcsphPrefix, option);
+    return own.now.empty() ? acoustic_cfl_rename(option) : own;
+  }
   // Measured (docs/performance.md, "Memory per particle").
   double bytes_per_particle() const override { return D == 3 ? 1.6e3 : 0.56e3; }
   double density_at_pressure(double p) const override { return eos_.density(p); }

@@ -180,12 +180,18 @@ bool reads(const OptionOwner& o, const std::string& name, const std::optional<st
   return used;
 }
 
-// The owners not chosen for this run that read `name`, at start-up or later.
+bool has_prefix(const OptionOwner& o, const std::string& name) {
+  return !o.prefix.empty() && name.rfind(o.prefix, 0) == 0;
+}
+
+// The owners not chosen for this run that read `name`, at start-up or later. A name under an owner's
+// prefix is asked of that owner only.
 std::vector<const OptionOwner*> inactive_readers(const std::string& name, const std::optional<std::string>& value,
                                                  const std::vector<OptionOwner>& owners) {
+  const bool prefixed = std::any_of(owners.begin(), owners.end(), [&](const auto& o) { return has_prefix(o, name); });
   std::vector<const OptionOwner*> readers;
   for (const OptionOwner& o : owners)
-    if (!o.active && reads(o, name, value, false)) readers.push_back(&o);
+    if (!o.active && (!prefixed || has_prefix(o, name)) && reads(o, name, value, false)) readers.push_back(&o);
   return readers;
 }
 
@@ -195,8 +201,9 @@ bool read_late_by_active(const std::string& name, const std::vector<OptionOwner>
   return false;
 }
 
-// An old name's name now (see OptionOwner::renamed), from any owner, chosen or not; `known` when
-// that owner reads the new name (a typo of an old name has a new name nobody reads).
+// An old name's name now (see OptionOwner::renamed), from any owner, the chosen ones first (an old
+// name two owners renamed apart, -operators, is told this run's); `known` when that owner reads the
+// new name (a typo of an old name has a new name nobody reads).
 struct Rename {
   RenamedOption to;
   bool known = false;
@@ -204,12 +211,13 @@ struct Rename {
 
 Rename renamed(const std::string& name, const std::optional<std::string>& value,
                const std::vector<OptionOwner>& owners) {
-  for (const OptionOwner& o : owners) {
-    if (!o.renamed) continue;
-    const RenamedOption to = o.renamed(name);
-    if (to.now.empty()) continue;
-    return {to, reads(o, to.now, value, true)};
-  }
+  for (const bool chosen : {true, false})
+    for (const OptionOwner& o : owners) {
+      if (o.active != chosen || !o.renamed) continue;
+      const RenamedOption to = o.renamed(name);
+      if (to.now.empty()) continue;
+      return {to, reads(o, to.now, value, true)};
+    }
   return {};
 }
 

@@ -36,6 +36,9 @@ struct OptionOwner {
   bool active = false;                                 // chosen for this run
   // The name now of an option it read under an old name, named without the dash (may be empty).
   std::function<RenamedOption(const std::string&)> renamed = {};
+  // The prefix its own options carry (without the dash; empty: none): an unused option under it is
+  // looked up in this owner alone.
+  std::string prefix = {};
 };
 
 // At start-up, every option in the database must have been read by now, except the ones an active

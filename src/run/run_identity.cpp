@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "src/core/error.hpp"
+#include "src/sph/operator_options.hpp"
 
 namespace sph {
 
@@ -82,15 +83,19 @@ bool changes_numerics_only(const std::string& name) {
 }
 
 // A checkpoint written before the pressure solve's options took the prefix ppe_ records -ksp_rtol
-// where this run has -ppe_ksp_rtol, and one of an explicit scheme written before its Courant number
-// was named -acoustic_cfl records -cfl: its names are read as they are spelled now.
+// where this run has -ppe_ksp_rtol, one of an explicit scheme written before its Courant number was
+// named -acoustic_cfl records -cfl, and one written before the schemes' own operator choices took
+// their prefix records -operators: its names are read as they are spelled now.
 nlohmann::json with_current_names(const nlohmann::json& options, const std::string& solver) {
   static const char* old_prefixes[] = {"ksp_", "pc_", "sub_ksp_", "sub_pc_"};
   nlohmann::json renamed = nlohmann::json::object();
   for (const auto& [name, value] : options.items()) {
     bool old = false;
     for (const char* p : old_prefixes) old = old || name.rfind(p, 0) == 0;
+    bool scheme_own = false;
+    for (const char* own : scheme_operator_options) scheme_own = scheme_own || name == own;
     if (solver != "isph" && name == "cfl") renamed["acoustic_cfl"] = value;
+    else if (scheme_own) renamed[solver + "_" + name] = value;
     else renamed[old ? "ppe_" + name : name] = value;
   }
   return renamed;

@@ -76,6 +76,9 @@ template <int D> class Solver {
   // The name now of an option this solver once read under another (without the dash): a run given the
   // old one is told the new one (see check_unused_options).
   virtual RenamedOption renamed_option(const std::string&) const { return {}; }
+  // The prefix of the options that are its own where another scheme reads the same word (without the
+  // dash; src/sph/operator_options.hpp), or "".
+  virtual std::string options_prefix() const { return ""; }
   // The kernel and h of a run that gives neither -kernel nor -h_over_dx (src/kernels/kernel_options.hpp).
   virtual KernelChoice default_kernel(const Physics<D>&) const { return {}; }
   // The option that sets its Courant number (src/sph/step_limits.hpp): failure messages name it.

@@ -39,8 +39,8 @@
 
 namespace sph {
 
-// The operator set a solver uses (-operators): the consistent forms of this file with the corrected
-// divergence, or the classic SPH forms (Morris Laplacian, plain divergence).
+// The operator set a solver uses (-isph_operators, -wcsph_operators): the consistent forms of this file with the
+// corrected divergence, or the classic SPH forms (Morris Laplacian, plain divergence).
 enum class OperatorSet { Consistent, Classic };
 inline const char* const operator_set_names[] = {"consistent", "classic"};
 

@@ -48,6 +48,18 @@ expect_error "option -cfl is now -acoustic_cfl" -case sod -solver compressible -
 expect_error "option -acoustic_cfl is read by -solver wcsph, -solver compressible, not by this run's -case taylor_green and -solver isph" $small -acoustic_cfl 0.2
 expect_error "-acoustic_cfl must be in \(0, 1\]" $small -solver wcsph -acoustic_cfl 2
 expect_error "option -wall_layers is read by -case lid_driven_cavity.*-case poiseuille" $small -wall_layers 4
+# A scheme's own operator choices carry its prefix: the old shared name is told the chosen scheme's
+# new one, and one scheme's option given to the other names its owner.
+expect_error "^sph: error: option -operators is now -wcsph_operators: the schemes' own operator choices carry their prefix" $small -solver wcsph -operators classic
+expect_error "option -operators is now -isph_operators" $small -operators classic
+expect_error "option -pressure_gradient is now -isph_pressure_gradient" $small -pressure_gradient symmetric
+expect_error "option -pressure_gradient is now -wcsph_pressure_gradient" $small -solver wcsph -pressure_gradient symmetric
+expect_error "option -wcsph_operators is read by -solver wcsph, not by this run's -case taylor_green and -solver isph" $small -wcsph_operators classic
+expect_error "option -isph_pressure_gradient is read by -solver isph, not by this run's" $small -solver wcsph -isph_pressure_gradient symmetric
+expect_error "unknown option -isph_operatrs .*did you mean -isph_operators\?" $small -isph_operatrs classic
+for name in -isph_operators -isph_pressure_gradient -wcsph_operators -wcsph_pressure_gradient -viscous_laplacian; do
+  "$sph" -help 2>&1 | grep -q -- "^  $name <" || { echo "FAIL: -help does not list $name"; fail=1; }
+done
 expect_error "-lid_corners symmetric is 2D only" -case lid_driven_cavity -dim 3 -nx 8 -lid_corners symmetric -progress 0 -output_dir $tmp/out -overwrite
 expect_error "option -profile_interpolation has the value 'foo', which is none of its choices \\(shepard, linear\\)$" -case lid_driven_cavity -nx 8 -profile_interpolation foo -progress 0 -output_dir $tmp/out -overwrite
 # A mistyped choice is named with the choices and the nearest of them.
@@ -103,16 +115,16 @@ expect_error "use -solver compressible" -case toy_star -solver isph -nx 50 -prog
 # BoomerAMG it diverges at step 1), and a direct solve needs no first-guess option.
 "$sph" -help 2>&1 | grep -q -- "-ppe_ksp_type <now gmres" && "$sph" -help 2>&1 | grep -q -- "-ppe_ksp_pc_side <now RIGHT" \
   && echo "ok: -help shows gmres and RIGHT" || { echo "FAIL: -help does not show the default KSP (gmres, RIGHT)"; fail=1; }
-"$sph" -help -operators classic 2>&1 | grep -q -- "-ppe_ksp_type <now cg" && echo "ok: -help -operators classic shows cg" \
-  || { echo "FAIL: -help -operators classic does not show cg"; fail=1; }
+"$sph" -help -isph_operators classic 2>&1 | grep -q -- "-ppe_ksp_type <now cg" && echo "ok: -help -isph_operators classic shows cg" \
+  || { echo "FAIL: -help -isph_operators classic does not show cg"; fail=1; }
 "$sph" $small -ppe_ksp_type cg -max_steps 1 >/dev/null 2>"$tmp/stderr"
 [ "$(grep -c "warning: -ppe_ksp_type cg assumes a symmetric matrix, and this run's pressure matrix is not" "$tmp/stderr")" -eq 1 ] \
   && echo "ok: -ppe_ksp_type cg on the non-symmetric matrix is warned against, once" || { echo "FAIL: no single cg warning:"; cat "$tmp/stderr"; fail=1; }
-"$sph" -case lid_driven_cavity -operators classic -nx 8 -max_steps 1 -progress 0 -output_dir $tmp/out -overwrite -ppe_ksp_type minres >/dev/null 2>"$tmp/stderr"
+"$sph" -case lid_driven_cavity -isph_operators classic -nx 8 -max_steps 1 -progress 0 -output_dir $tmp/out -overwrite -ppe_ksp_type minres >/dev/null 2>"$tmp/stderr"
 grep -q "warning: -ppe_ksp_type minres assumes a symmetric matrix" "$tmp/stderr" && echo "ok: minres in the walled cavity warned against" \
   || { echo "FAIL: no minres warning with walls:"; cat "$tmp/stderr"; fail=1; }
 expect_ok $small -ppe_ksp_type preonly -ppe_pc_type lu
-expect_ok $small -operators classic -ppe_ksp_type cg
+expect_ok $small -isph_operators classic -ppe_ksp_type cg
 
 # PETSc options read late (a solve's viewers, -log_view at the end) are accepted, and act.
 "$sph" $small -t_end 1 -max_steps 2 -output_dir "$tmp/late" -ppe_ksp_converged_reason -ppe_pc_view -log_view :"$tmp/log.txt" \

@@ -45,7 +45,7 @@ matrix() {
 }
 
 tgv="-case taylor_green -nx 12 -max_steps $steps -ppe_ksp_rtol 1e-10"
-classic="$tgv -operators classic"  # symmetric matrix: CG, ICC
+classic="$tgv -isph_operators classic"  # symmetric matrix: CG, ICC
 cavity="-case lid_driven_cavity -nx 10 -max_steps $steps -ppe_ksp_rtol 1e-10"
 parallel=("" "-ppe_pc_type gamg" "-ppe_pc_type bjacobi -ppe_sub_pc_type ilu" "-ppe_pc_type asm -ppe_sub_pc_type ilu"
           "-ppe_pc_type jacobi" "-ppe_pc_type sor" "-ppe_pc_type none" "-ppe_pc_hypre_type euclid"
