@@ -429,6 +429,21 @@ TEST(SceneShapes, RefusalsNameTheFileTheKeyAndTheFix) {
            "  - {role: {body: b}, shape: {box: [0, 1, -1, 0]}, motion: {type: constant, velocity: [1, 0]}}\n"
            "  - {role: {body: b}, shape: {box: [2, 3, -1, 0]}, motion: {type: constant, velocity: [1, 0]}}\n",
        "regions[2].motion: moves body 'b' a second time; give its motion on one region"},
+      {"probes_map", "dimension: 2\nregions:\n" + ok_region + "probes: {name: P1, at: [0.5, 0.5]}\n",
+       "probes: is not a list; write probes: [{name: P1, at: [x, y]}]"},
+      {"probe_name", "dimension: 2\nregions:\n" + ok_region + "probes:\n  - {name: P-1, at: [0.5, 0.5]}\n",
+       "probes[0].name: is 'P-1'; give letters, digits and _ only"},
+      {"probe_twice",
+       "dimension: 2\nregions:\n" + ok_region +
+           "probes:\n  - {name: P, at: [0.5, 0.5]}\n  - {name: P, at: [0.2, 0.5]}\n",
+       "probes[1].name: repeats the probe name 'P'"},
+      {"probe_outside",
+       "dimension: 2\nbox: [0, 1, 0, 1]\nregions:\n" + ok_region + "probes:\n  - {name: P, at: [0.5, 1.2]}\n",
+       "probes[0].at: lies outside the box along y; move it inside"},
+      {"probe_point", "dimension: 2\nregions:\n" + ok_region + "probes:\n  - {name: P}\n",
+       "probes[0]: needs a name and a point; write {name: P1, at: [x, y]}"},
+      {"probe_3d", "dimension: 2\nregions:\n" + ok_region + "probes:\n  - {name: P, at: [0.5, 0.5, 0.5]}\n",
+       "probes[0].at: has 3 numbers; a 2D scene takes 2: [x, y]"},
   };
   for (const Case& c : cases) {
     const std::string path = folder() + "/" + c.name + ".yaml";

@@ -83,6 +83,46 @@ PetscErrorCode read_options(SceneOptions* o) {
   PetscFunctionReturn(0);
 }
 
+template <int D> std::vector<Probe<D>> probes_of(const std::vector<ProbeSpec>& specs) {
+  std::vector<Probe<D>> probes;
+  for (const ProbeSpec& spec : specs) {
+    Probe<D> probe{spec.name};
+    for (int a = 0; a < D; ++a) probe.at[a] = spec.at[a];
+    probes.push_back(probe);
+  }
+  return probes;
+}
+
+// A body's motion as the run moves it: angles in radians, tables as splines; a free body's none.
+template <int D> PrescribedMotion<D> motion_of(const MotionSpec& spec) {
+  PrescribedMotion<D> m;
+  using Type = typename PrescribedMotion<D>::Type;
+  auto type_of = [](const std::string& name) {
+    return name == "constant"     ? Type::Constant
+           : name == "sinusoidal" ? Type::Sinusoidal
+           : name == "table"      ? Type::Table
+                                  : Type::Fixed;
+  };
+  m.type = type_of(spec.type);
+  if (m.type == Type::Table)
+    for (int a = 0; a < D; ++a) m.table_position.emplace_back(spec.table_t, spec.table_x[a]);
+  for (int a = 0; a < D; ++a) m.velocity[a] = spec.velocity[a], m.amplitude[a] = spec.amplitude[a];
+  m.period = spec.period, m.phase = spec.phase_degrees * M_PI / 180.0;
+  m.spin = type_of(spec.spin);
+  const double degree = M_PI / 180.0;
+  if (m.spin == Type::Table) {
+    std::vector<double> radians;
+    for (double a : spec.table_angle_degrees) radians.push_back(a * degree);
+    m.table_angle = CubicSpline(spec.table_t, radians);
+  }
+  m.rate = spec.rate_degrees * degree, m.angle = spec.angle_degrees * degree;
+  m.spin_period = spec.spin_period, m.spin_phase = spec.spin_phase_degrees * degree;
+  for (int a = 0; a < D; ++a) m.centre[a] = spec.centre[a];
+  m.axis = Eigen::Vector3d(spec.axis[0], spec.axis[1], spec.axis[2]);
+  if (spec.type == "free") m = PrescribedMotion<D>{};  // the fluid moves it
+  return m;
+}
+
 }  // namespace
 
 template <int D> void SceneCase<D>::set_from_options() {
@@ -150,6 +190,7 @@ template <int D> void SceneCase<D>::read_file() {
   if (std::find(scene.free_slip.begin(), scene.free_slip.end(), 1) != scene.free_slip.end())
     free_slip_ = std::move(scene.free_slip);
   surfaces_ = std::move(scene.surfaces);
+  probes_ = probes_of<D>(scene.probes);
   if (!scene.plates.empty()) {
     plate_face_ = std::move(scene.plate_face);
     for (std::size_t k = 0; k < scene.plates.size(); ++k) {
@@ -160,34 +201,7 @@ template <int D> void SceneCase<D>::read_file() {
       plates_.push_back(plate);
     }
   }
-  for (const MotionSpec& spec : scene.motions) {
-    PrescribedMotion<D> m;
-    using Type = typename PrescribedMotion<D>::Type;
-    auto type_of = [](const std::string& name) {
-      return name == "constant"     ? Type::Constant
-             : name == "sinusoidal" ? Type::Sinusoidal
-             : name == "table"      ? Type::Table
-                                    : Type::Fixed;
-    };
-    m.type = type_of(spec.type);
-    if (m.type == Type::Table)
-      for (int a = 0; a < D; ++a) m.table_position.emplace_back(spec.table_t, spec.table_x[a]);
-    for (int a = 0; a < D; ++a) m.velocity[a] = spec.velocity[a], m.amplitude[a] = spec.amplitude[a];
-    m.period = spec.period, m.phase = spec.phase_degrees * M_PI / 180.0;
-    m.spin = type_of(spec.spin);
-    const double degree = M_PI / 180.0;
-    if (m.spin == Type::Table) {
-      std::vector<double> radians;
-      for (double a : spec.table_angle_degrees) radians.push_back(a * degree);
-      m.table_angle = CubicSpline(spec.table_t, radians);
-    }
-    m.rate = spec.rate_degrees * degree, m.angle = spec.angle_degrees * degree;
-    m.spin_period = spec.spin_period, m.spin_phase = spec.spin_phase_degrees * degree;
-    for (int a = 0; a < D; ++a) m.centre[a] = spec.centre[a];
-    m.axis = Eigen::Vector3d(spec.axis[0], spec.axis[1], spec.axis[2]);
-    if (spec.type == "free") m = PrescribedMotion<D>{};  // the fluid moves it
-    motions_.push_back(m);
-  }
+  for (const MotionSpec& spec : scene.motions) motions_.push_back(motion_of<D>(spec));
   free_ = free_bodies_of(scene.motions, file_.field["dx"].at(0));
   bodies_ = std::move(scene.bodies);
   for (const OpenBoundarySpec& spec : scene.open) {
@@ -511,6 +525,8 @@ template <int D> nlohmann::json SceneCase<D>::parameters() const {
                       {"wall_thickness_dx", walls_ / dx_}};
   if (!bodies_.empty()) p["bodies"] = bodies;
   if (!open_.empty()) p["inlet_particles"] = counts[kSceneInlet], p["outlet_particles"] = counts[kSceneOutlet];
+  for (const Probe<D>& probe : probes_)
+    p["probes"][probe.name] = std::vector<double>(probe.at.data(), probe.at.data() + D);
   return p;
 }
 

@@ -58,6 +58,7 @@ template <int D> class SceneCase : public Case<D> {
   std::vector<FreeBody<D>> free_bodies() const override { return free_; }
   std::vector<SurfaceMesh> body_surfaces() const override { return surfaces_; }
   std::vector<OpenBoundary<D>> open_boundaries() const override { return open_; }
+  std::vector<Probe<D>> probes() const override { return probes_; }
 
  private:
   void read_file();           // the .vtp file, or the YAML file sampled at -nx, -scene_dx or its dx
@@ -80,6 +81,7 @@ template <int D> class SceneCase : public Case<D> {
   std::vector<PrescribedMotion<D>> motions_;  // YAML scenes: per body
   std::vector<FreeBody<D>> free_;             // YAML scenes: per body, active where the fluid moves it
   std::vector<SurfaceMesh> surfaces_;         // YAML scenes: per body, at t = 0
+  std::vector<Probe<D>> probes_;              // YAML scenes: the pressure probes
   std::vector<OpenBoundary<D>> open_;         // YAML scenes: inlets and outlets
   // YAML scenes: the thin plates (src/neighbours/screens.hpp), and per particle the plate face it
   // stands for (0: none; empty without plates).

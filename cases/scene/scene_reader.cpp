@@ -74,7 +74,7 @@ YAML::Node Reader::parse() {
                 "(docs/user-guide.md, YAML scenes)");
   only_keys(root, "",
             {"dimension", "dx", "box", "periodic", "physics", "regions", "gravity", "nu", "rho0", "U", "free_surface",
-             "t_end"});
+             "t_end", "probes"});
   const YAML::Node d = root["dimension"];
   if (!d.IsDefined()) fail(YAML::Node(), "", "has no key 'dimension'; add dimension: 2 or dimension: 3");
   const double value = number(d, "dimension");

@@ -135,6 +135,38 @@ void add_body_surfaces(const SceneFrame& f, const SceneRegions& g, YamlScene& ou
   }
 }
 
+// The pressure probes: a name each (unique; letters, digits and _, for a column name) and a point
+// within the box (on its side counts: a probe on a wall's face).
+std::vector<ProbeSpec> read_probes(Reader& r, const YAML::Node& root, const SceneFrame& f) {
+  std::vector<ProbeSpec> probes;
+  const YAML::Node list = root["probes"];
+  if (!list.IsDefined()) return probes;
+  if (!list.IsSequence()) r.fail(list, "probes", "is not a list; write probes: [{name: P1, at: [x, y]}]");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string key = "probes[" + std::to_string(k) + "]";
+    r.only_keys(list[k], key, {"name", "at"});
+    if (!list[k]["name"].IsDefined() || !list[k]["at"].IsDefined())
+      r.fail(list[k], key, "needs a name and a point; write {name: P1, at: [x, y]}");
+    ProbeSpec p;
+    p.name = list[k]["name"].Scalar();
+    const bool word = !p.name.empty() && std::all_of(p.name.begin(), p.name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+    });
+    if (!word) r.fail(list[k]["name"], key + ".name", "is '" + p.name + "'; give letters, digits and _ only");
+    for (const ProbeSpec& q : probes)
+      if (q.name == p.name) r.fail(list[k]["name"], key + ".name", "repeats the probe name '" + p.name + "'");
+    const Point3 at = r.point(list[k]["at"], key + ".at");
+    for (int a = 0; a < f.dim; ++a) {
+      p.at[a] = at[a];
+      const double slack = kOnSurface * f.dx;
+      if (f.has_box && (at[a] < f.box_lo[a] - slack || at[a] > f.box_hi[a] + slack))
+        r.fail(list[k]["at"], key + ".at", std::string("lies outside the box along ") + "xyz"[a] + "; move it inside");
+    }
+    probes.push_back(p);
+  }
+  return probes;
+}
+
 }  // namespace
 }  // namespace scene_detail
 
@@ -159,6 +191,7 @@ YamlScene read_yaml_scene(const std::string& path, double dx, int wall_layers) {
   out.file.dim = r.dim;
   const SceneFrame frame = read_frame(r, root, dx, out.file);
   const SceneRegions regions = read_regions(r, root, frame, wall_layers, out);
+  out.probes = read_probes(r, root, frame);
   fill_lattice(r, frame, regions, wall_layers, out);
   add_body_surfaces(frame, regions, out);
   std::uint64_t h = r.checksum;

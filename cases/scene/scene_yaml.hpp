@@ -38,6 +38,9 @@
 // solids (a channel's or a duct's walls); a ramp starts it from rest, (1 - cos(pi t / T)) / 2, and
 // speed_table: FILE (t,factor) scales it in time.
 //
+// Probes: probes: [{name: P1, at: [x, y]}, ...] adds the pressure at each point to timeseries.csv
+// (probe_P1_p, src/run/probes.hpp); a name is letters, digits and _, a point lies within the box.
+//
 // Sampling: lattice points (i + 1/2) dx within the box (and within the regions' bounds), so a box from
 // 0 to 1 holds 1/dx points per side. A point inside a wall or body is a wall particle when it lies
 // within wall_layers dx of the solids' surface (thick walls do not fill up; a solid may run past the
@@ -92,6 +95,12 @@ struct OpenBoundarySpec {
   double pressure = 0.0;                             // outlet
 };
 
+// A pressure probe (src/run/probes.hpp): {name: P1, at: [x, y(, z)]}.
+struct ProbeSpec {
+  std::string name;
+  std::array<double, 3> at{};
+};
+
 struct YamlScene {
   SceneFile file;                     // particles and field data, as read_scene_file gives them
   std::vector<int> body;              // per particle: index into bodies, -1 for fluid and walls
@@ -105,6 +114,7 @@ struct YamlScene {
   std::vector<std::array<double, 4>> plates;
   std::vector<int> plate_body;         // per plate: the body it belongs to, -1 for a wall's
   std::vector<OpenBoundarySpec> open;  // inlets and outlets; their particles are kinds kSceneInlet, kSceneOutlet
+  std::vector<ProbeSpec> probes;       // pressure probes, in the file's order
 };
 
 // By the extension: .yaml or .yml.

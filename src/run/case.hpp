@@ -13,6 +13,7 @@
 #include "src/core/physics.hpp"
 #include "src/io/surface_writer.hpp"
 #include "src/particles/particles.hpp"
+#include "src/run/probes.hpp"
 
 namespace sph {
 
@@ -60,6 +61,8 @@ template <int D> class Case {
   virtual std::vector<OpenBoundary<D>> open_boundaries() const { return {}; }
   // Each body's surface at t = 0, for ParaView (empty: none).
   virtual std::vector<SurfaceMesh> body_surfaces() const { return {}; }
+  // Points whose pressure timeseries.csv reports every step (src/run/probes.hpp; empty: none).
+  virtual std::vector<Probe<D>> probes() const { return {}; }
 
   // Thickness of the wall-particle layers (0 without walls): the kernel support must fit in it.
   virtual double wall_thickness() const { return 0.0; }

@@ -46,6 +46,8 @@ template <int D> void TimeLoop<D>::open_outputs() {
   }
   const std::vector<std::string> free = free_body_columns(case_.body_names(), s_.disc.bodies);
   columns.insert(columns.end(), free.begin(), free.end());
+  const std::vector<std::string> probes = probe_columns(case_.probes());
+  columns.insert(columns.end(), probes.begin(), probes.end());
   if (restarting) series_.emplace(dir + "/timeseries.csv", columns, 1, resumed_.t);
   else series_.emplace(dir + "/timeseries.csv", columns);
 }

@@ -36,8 +36,9 @@ inline PetscErrorCode read_shared_operator_options(PetscOptionItems* block, Pets
 inline RenamedOption scheme_operator_rename(const char* prefix, const std::string& option) {
   for (const char* name : scheme_operator_options)
     if (option == name)
-      return {prefix + option, "the schemes' own operator choices carry their prefix (-isph_, -wcsph_), since the "
-                               "same words pick different operators in each"};
+      return {prefix + option,
+              "the schemes' own operator choices carry their prefix (-isph_, -wcsph_), since the "
+              "same words pick different operators in each"};
   return {};
 }
 
