@@ -11,6 +11,7 @@ expect_error "-output_interval must be -1 .* or positive \(got -2\)" $small -out
 expect_error "-checkpoint_interval must be -1 .* \(got -5\)" $small -checkpoint_interval -5 -output_dir "$tmp/a"
 expect_error "-steady_tol must be -1 .* \(got -3\)" $small -steady_tol -3 -output_dir "$tmp/a"
 expect_error "-wcsph_pressure_gradient corrected needs a scene without a free surface" -case still_water -solver wcsph -nx 8 -wcsph_pressure_gradient corrected -progress 0 -output_dir "$tmp/pgc"
+expect_error "-density summation needs a scene without a free surface.*use -density continuity" -case still_water -solver wcsph -nx 8 -density summation -progress 0 -output_dir "$tmp/dsum"
 expect_error "-max_steps must be -1 .* \(got -4\)" $small -max_steps -4 -output_dir "$tmp/a"
 expect_error "-ppe_pc_drop_tol must be in \[0, 1\) \(got 1.5\)" $small -ppe_pc_drop_tol 1.5 -output_dir "$tmp/a"
 expect_error "raise -c0 so that c0 > " -case taylor_green -solver wcsph -c0 0.01 -nx 8 -t_end 0.02 -progress 0 -output_dir "$tmp/a"
