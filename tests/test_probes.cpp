@@ -39,7 +39,7 @@ TEST(Probes, ReadALinearFieldExactlyWhereTheLatticeIsSymmetric) {
   const sph::Domain<2> box;
   // In the fluid, at a particle and between four.
   const sph::Particles<2> fluid = lattice(0.025, sph::kFluid, linear);
-  for (const sph::Vector<2> at : {sph::Vector<2>(0.5125, 0.6125), sph::Vector<2>(0.5, 0.6)})
+  for (const sph::Vector<2>& at : {sph::Vector<2>(0.5125, 0.6125), sph::Vector<2>(0.5, 0.6)})
     EXPECT_NEAR(read(fluid, box, at), linear(at), 1e-12);
   // On the face between walls that hold the field continued and the fluid above: as a flush transducer.
   const sph::Particles<2> walls = lattice(0.025, sph::kWall, linear);
