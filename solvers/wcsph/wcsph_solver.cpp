@@ -108,7 +108,7 @@ template <int D> void WcsphSolver<D>::resolve_choices(const Discretisation<D>& d
         "pressure through the symmetric form; with the corrected one still water blows up at once): use "
         "-wcsph_pressure_gradient auto or symmetric");
   // The kernel sum is cut off at a free surface: its particles' density falls by up to half, and the
-  // pressure that follows pulls the surface in (still water blows up within 0.03 s).
+  // pressure that follows pulls the surface in: still water blows up at once.
   if (density_ == DensityMethod::Summation && disc.physics.free_surface)
     throw Error(
         "-density summation needs a scene without a free surface (the kernel sum is cut off at the surface, "
