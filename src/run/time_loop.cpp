@@ -231,8 +231,10 @@ template <int D> void TimeLoop<D>::advance() {
   }
   const std::vector<double> free = free_body_row(s_.disc.bodies);
   row.insert(row.end(), free.begin(), free.end());
-  const std::vector<double> probes = probe_pressures(s_.P, s_.domain, s_.kernel, case_.probes());
-  row.insert(row.end(), probes.begin(), probes.end());
+  if (!probes_.empty()) {
+    const std::vector<double> probes = probe_pressures(s_.P, s_.domain, s_.kernel, probes_);
+    row.insert(row.end(), probes.begin(), probes.end());
+  }
   series_->row(row);
   log_diagnostics.end();
   progress_->update(step_, t_, dt, report.linear_iterations);

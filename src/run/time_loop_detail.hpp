@@ -146,6 +146,7 @@ template <int D> class TimeLoop {
   OutputDirLock dir_lock_;  // held to the end of the run
   std::optional<ParticleWriter<D>> writer_;
   std::optional<CsvWriter> series_;
+  std::vector<Probe<D>> probes_;              // the case's pressure probes (empty: none, and no reduction per step)
   std::optional<WallGroups<D>> wall_groups_;  // timeseries.csv's force columns
   std::vector<SurfaceMesh> body_surfaces_;    // each body's, at t = 0
   std::vector<SurfaceWriter> surface_writers_;

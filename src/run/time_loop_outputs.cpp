@@ -46,8 +46,9 @@ template <int D> void TimeLoop<D>::open_outputs() {
   }
   const std::vector<std::string> free = free_body_columns(case_.body_names(), s_.disc.bodies);
   columns.insert(columns.end(), free.begin(), free.end());
-  const std::vector<std::string> probes = probe_columns(case_.probes());
-  columns.insert(columns.end(), probes.begin(), probes.end());
+  probes_ = case_.probes();
+  const std::vector<std::string> probe_names = probe_columns(probes_);
+  columns.insert(columns.end(), probe_names.begin(), probe_names.end());
   if (restarting) series_.emplace(dir + "/timeseries.csv", columns, 1, resumed_.t);
   else series_.emplace(dir + "/timeseries.csv", columns);
 }
