@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "src/boundary/adami_wall.hpp"
+#include "src/boundary/adami_wall_model.hpp"
 #include "src/core/domain.hpp"
 #include "src/kernels/kernel.hpp"
 #include "src/neighbours/neighbourhood.hpp"
@@ -42,7 +43,7 @@ struct Corner {
         const bool wall = i < 0 || j < 0;
         if (!wall && !fluid(i, j)) continue;
         P.add(site(i, j), V2::Zero(), kDx * kDx * kRho, kRho, 0.0, wall ? kWall : kFluid);
-        P.gid.back() = static_cast<long>(P.n_owned) - 1;
+        P.gid.back() = P.id.back() = static_cast<long>(P.n_owned) - 1;
       }
     P.n_global = static_cast<long>(P.n_owned);
     nh = std::make_unique<Neighbourhood<2>>(domain, K.support_radius(), 0.0);
@@ -100,6 +101,34 @@ TEST_P(WallPressure, GivesALoneParticlesPressureToTheWallsAroundIt) {
   AdamiWall<2>::extrapolate_pressure(c.P, *c.nh, c.K, kGravity);  // -wall_pressure adami, the default
   for (std::size_t w : walls)
     EXPECT_NEAR(c.P.p[w], 7.0 + kRho * kG * (c.P.x[f].y() - c.P.x[w].y()), 1e-9) << "wall at " << c.P.x[w].transpose();
+}
+
+// Each wall group continues the pressure in the form it chose (a scene's wall_pressure:), the others
+// in the option's: through the wall model, the side wall below the lone particle chooses continued and
+// takes its 7 Pa, the walls above keep Adami's column; and the other way round.
+TEST_P(WallPressure, TakesEachWallGroupsOwnForm) {
+  Corner c(GetParam().first, GetParam().second, [](int i, int j) { return i == 0 && j == kRows / 2; });
+  std::size_t f = 0;
+  for (std::size_t i = 0; i < c.P.n_owned; ++i)
+    if (c.P.kind[i] == kFluid) f = i, c.P.p[i] = 7.0;
+  auto below = [&](std::size_t w) { return c.P.x[w].y() < c.P.x[f].y(); };
+  const std::vector<std::size_t> walls = c.wetted_walls();
+  for (const sph::WallPressure form : {sph::WallPressure::Adami, sph::WallPressure::Continued}) {
+    const auto other = form == sph::WallPressure::Adami ? sph::WallPressure::Continued : sph::WallPressure::Adami;
+    std::vector<signed char> chosen(c.P.n_owned, -1);
+    for (std::size_t w = 0; w < c.P.n_owned; ++w)
+      if (c.P.kind[w] == kWall && below(w)) chosen[w] = static_cast<signed char>(other);
+    const MovingBodies<2> groups({}, {}, 0.0, {}, {}, chosen);
+    make_wall_model<2>(form, groups)->extrapolate_pressure(c.P, *c.nh, c.K, kGravity);
+    int each[2] = {0, 0};
+    for (std::size_t w : walls) {
+      const bool continued = (below(w) ? other : form) == sph::WallPressure::Continued;
+      const double column = continued ? 0.0 : kRho * kG * (c.P.x[f].y() - c.P.x[w].y());
+      EXPECT_NEAR(c.P.p[w], 7.0 + column, 1e-9) << "wall at " << c.P.x[w].transpose();
+      ++each[continued];
+    }
+    EXPECT_GE(std::min(each[0], each[1]), 3) << "walls in each form";
+  }
 }
 
 // A tank accelerating at a_w: the normal head is (g - a_w) . n, the head along the wall the fluid's

@@ -189,6 +189,9 @@ template <int D> void SceneCase<D>::read_file() {
   body_ = std::move(scene.body);
   if (std::find(scene.free_slip.begin(), scene.free_slip.end(), 1) != scene.free_slip.end())
     free_slip_ = std::move(scene.free_slip);
+  if (std::find_if(scene.wall_pressure.begin(), scene.wall_pressure.end(), [](signed char c) { return c >= 0; }) !=
+      scene.wall_pressure.end())
+    wall_pressure_ = std::move(scene.wall_pressure);
   surfaces_ = std::move(scene.surfaces);
   probes_ = probes_of<D>(scene.probes);
   if (!scene.plates.empty()) {

@@ -54,6 +54,7 @@ template <int D> class SceneCase : public Case<D> {
   std::vector<std::string> body_names() const override { return bodies_; }
   std::vector<int> body_of_particles() const override { return body_; }
   std::vector<char> free_slip_of_particles() const override { return free_slip_; }
+  std::vector<signed char> wall_pressure_of_particles() const override { return wall_pressure_; }
   std::vector<PrescribedMotion<D>> body_motions() const override { return motions_; }
   std::vector<FreeBody<D>> free_bodies() const override { return free_; }
   std::vector<SurfaceMesh> body_surfaces() const override { return surfaces_; }
@@ -77,6 +78,7 @@ template <int D> class SceneCase : public Case<D> {
   bool yaml_ = false;
   std::vector<int> body_;                     // YAML scenes: per particle, index into bodies_ (-1: none)
   std::vector<char> free_slip_;               // per particle, 1 on free-slip walls (empty: none)
+  std::vector<signed char> wall_pressure_;    // per particle, a wall group's own WallPressure (empty: none)
   std::vector<std::string> bodies_;           // YAML scenes: the names of the bodies
   std::vector<PrescribedMotion<D>> motions_;  // YAML scenes: per body
   std::vector<FreeBody<D>> free_;             // YAML scenes: per body, active where the fluid moves it

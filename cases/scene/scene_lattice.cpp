@@ -362,12 +362,14 @@ void Lattice::add_point(const Point3& x) {
   if (f.holder) {
     s.v.push_back({0.0, 0.0, 0.0}), s.p.push_back(0.0), s.kind.push_back(kSceneFixedWall);
     out_.body.push_back(f.holder->body), out_.free_slip.push_back(f.holder->free_slip);
+    out_.wall_pressure.push_back(f.holder->wall_pressure);
     return;
   }
   const Region& in = *f.fluid;
   const double p = start_pressure(in, x);
   s.v.push_back({in.velocity[0], in.velocity[1], in.velocity[2]});
   s.p.push_back(p), s.kind.push_back(kSceneFluid), out_.body.push_back(-1), out_.free_slip.push_back(0);
+  out_.wall_pressure.push_back(-1);
   ++fluid_;
 }
 
@@ -384,7 +386,7 @@ void Lattice::add_buffer_particle(const Point3& x, int o) {
   s.x.push_back({x[0], x[1], x[2]});
   s.v.push_back({u[0], u[1], u[2]});
   s.p.push_back(p), s.kind.push_back(b.inlet ? kSceneInlet : kSceneOutlet);
-  out_.body.push_back(-1), out_.free_slip.push_back(0);
+  out_.body.push_back(-1), out_.free_slip.push_back(0), out_.wall_pressure.push_back(-1);
   sections_[o].push_back(y);
 }
 

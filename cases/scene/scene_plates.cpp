@@ -95,6 +95,7 @@ void add_plate_layers(const std::vector<Region>& plates, const std::vector<Regio
           s.x.push_back({x[0], x[1], 0.0});
           s.v.push_back({0.0, 0.0, 0.0}), s.p.push_back(0.0), s.kind.push_back(kSceneFixedWall);
           out.body.push_back(plates[k].body), out.free_slip.push_back(plates[k].free_slip);
+          out.wall_pressure.push_back(plates[k].wall_pressure);
           out.plate_face.push_back(static_cast<std::int8_t>(face * (static_cast<int>(out.plates.size()) + 1)));
         }
     const Point3 a = p.a - (before * step) * e, b = p.b + (after * step) * e;

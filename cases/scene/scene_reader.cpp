@@ -11,6 +11,7 @@
 #include <map>
 
 #include "cases/scene/body_surface.hpp"
+#include "src/boundary/wall_pressure.hpp"
 #include "src/core/error.hpp"
 
 namespace sph::scene_detail {
@@ -390,10 +391,31 @@ void Reader::read_role(const YAML::Node& n, const std::string& key, Region& r, s
   }
 }
 
+// A wall or body region's own wall conditions: slip: free | no_slip, wall_pressure: adami | continued.
+void Reader::wall_conditions(const YAML::Node& n, const std::string& key, Region& r) const {
+  if (const YAML::Node slip = n["slip"]; slip.IsDefined()) {
+    if (r.role == Role::Fluid)
+      fail(slip, key + ".slip", "is given for fluid; only walls and bodies have a slip condition");
+    if (!slip.IsScalar() || (slip.Scalar() != "free" && slip.Scalar() != "no_slip"))
+      fail(slip, key + ".slip", "is not free or no_slip; give one of those");
+    r.free_slip = slip.Scalar() == "free";
+  }
+  if (const YAML::Node form = n["wall_pressure"]; form.IsDefined()) {
+    if (r.role == Role::Fluid)
+      fail(form, key + ".wall_pressure", "is given for fluid; only walls and bodies continue the fluid's pressure");
+    const auto* names = std::begin(wall_pressure_names);
+    const auto* found = form.IsScalar() ? std::find(names, std::end(wall_pressure_names), form.Scalar())
+                                        : std::end(wall_pressure_names);
+    if (found == std::end(wall_pressure_names))
+      fail(form, key + ".wall_pressure", "is not adami or continued; give one of those (-help, -wall_pressure)");
+    r.wall_pressure = static_cast<signed char>(found - names);
+  }
+}
+
 Region Reader::region(const YAML::Node& n, const std::string& key, std::vector<std::string>& bodies, const Point3& g) {
-  only_keys(n, key, {"role",   "shape",    "velocity", "pressure",  "motion",  "slip",   "name", "of",
-                     "bounds", "vertices", "file",     "centre",    "center",  "radius", "ends", "point",
-                     "normal", "from",     "to",       "thickness", "density", "mass"});
+  only_keys(n, key, {"role",   "shape",    "velocity", "pressure",  "motion",  "slip",   "name",         "of",
+                     "bounds", "vertices", "file",     "centre",    "center",  "radius", "ends",         "point",
+                     "normal", "from",     "to",       "thickness", "density", "mass",   "wall_pressure"});
   Region r;
   read_role(n, key, r, bodies);
   const YAML::Node s = n["shape"];
@@ -417,13 +439,7 @@ Region Reader::region(const YAML::Node& n, const std::string& key, std::vector<s
            "is given for a wall; walls are at rest with no pressure of their own: "
            "remove it or make the region's role fluid");
   if (n["velocity"].IsDefined()) r.velocity = point(n["velocity"], key + ".velocity");
-  if (const YAML::Node slip = n["slip"]; slip.IsDefined()) {
-    if (r.role == Role::Fluid)
-      fail(slip, key + ".slip", "is given for fluid; only walls and bodies have a slip condition");
-    if (!slip.IsScalar() || (slip.Scalar() != "free" && slip.Scalar() != "no_slip"))
-      fail(slip, key + ".slip", "is not free or no_slip; give one of those");
-    r.free_slip = slip.Scalar() == "free";
-  }
+  wall_conditions(n, key, r);
   if (const YAML::Node m = n["motion"]; m.IsDefined()) {
     if (r.role != Role::Body)
       fail(m, key + ".motion",

@@ -56,7 +56,9 @@ struct Region {
   double top = 0.0;  // hydrostatic: the region's highest point along -g
   MotionSpec motion;
   bool free_slip = false;  // walls and bodies: slip: free
-  bool is_plate = false;   // shape: plate (then `shape` is its outline, for the bounds)
+  signed char wall_pressure =
+      -1;                 // walls and bodies: wall_pressure: adami | continued (a WallPressure; -1: the option's)
+  bool is_plate = false;  // shape: plate (then `shape` is its outline, for the bounds)
   PlateSpec plate;
   std::string key;  // regions[k], for the messages
   YAML::Node at;
@@ -112,6 +114,7 @@ class Reader {
   // for a hydrostatic start.
   void read_role(const YAML::Node& n, const std::string& key, Region& r, std::vector<std::string>& bodies) const;
   Region region(const YAML::Node& n, const std::string& key, std::vector<std::string>& bodies, const Point3& g);
+  void wall_conditions(const YAML::Node& n, const std::string& key, Region& r) const;
 
   // A CSV table in the file that file_key names (relative to the scene file; `what` names it in the
   // error for a folder): its header, then rows of finite numbers as many as the header's cells, the

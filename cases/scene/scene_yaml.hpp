@@ -28,7 +28,8 @@
 // Region values (fluid only): velocity (default zero); pressure, a number (default 0) or hydrostatic:
 // rho0 |g| times the depth below the free surface above the particle (along -g, to the first point in
 // no fluid region and no solid: a tilted surface starts in balance). Walls and bodies: slip: free
-// (no shear on the fluid; default no_slip, src/boundary/moving_bodies.hpp).
+// (no shear on the fluid; default no_slip, src/boundary/moving_bodies.hpp) and wall_pressure: adami |
+// continued (how their pressure continues the fluid's; default -wall_pressure's, src/boundary/adami_wall_model.hpp).
 //
 // Open boundaries: {role: inlet, side: x-, velocity: [u, v] or {parabolic: U_max}, ramp: T,
 // speed_table: FILE} and
@@ -102,12 +103,13 @@ struct ProbeSpec {
 };
 
 struct YamlScene {
-  SceneFile file;                     // particles and field data, as read_scene_file gives them
-  std::vector<int> body;              // per particle: index into bodies, -1 for fluid and walls
-  std::vector<char> free_slip;        // per particle: 1 on walls and bodies given slip: free
-  std::vector<std::string> bodies;    // the body names, in order of first appearance
-  std::vector<MotionSpec> motions;    // per body
-  std::vector<SurfaceMesh> surfaces;  // per body, where the body is at t = 0 (within the box)
+  SceneFile file;                          // particles and field data, as read_scene_file gives them
+  std::vector<int> body;                   // per particle: index into bodies, -1 for fluid and walls
+  std::vector<char> free_slip;             // per particle: 1 on walls and bodies given slip: free
+  std::vector<signed char> wall_pressure;  // per particle: a wall or body's wall_pressure (-1: none given)
+  std::vector<std::string> bodies;         // the body names, in order of first appearance
+  std::vector<MotionSpec> motions;         // per body
+  std::vector<SurfaceMesh> surfaces;       // per body, where the body is at t = 0 (within the box)
   // Thin plates (2D): per particle, 0 or the face whose layers it belongs to, +-(k + 1) for plate k
   // (src/neighbours/screens.hpp); each plate's mid-line x0, y0, x1, y1.
   std::vector<std::int8_t> plate_face;

@@ -82,7 +82,7 @@ template <int D> void IsphSolver<D>::set_from_options() {
       static_cast<PetscInt>(surface_condition_),
       PETSC_FALSE,
       PETSC_FALSE,
-      {wall_bounding_option_ > 0 ? PETSC_TRUE : PETSC_FALSE, PETSC_FALSE, static_cast<PetscInt>(ppe_.wall_pressure)}};
+      {wall_bounding_option_ > 0 ? PETSC_TRUE : PETSC_FALSE, PETSC_FALSE, static_cast<PetscInt>(wall_pressure_)}};
   SPH_PETSC(read_options(&o));
   require(o.cfl > 0 && o.cfl <= 1.0, kAdvectiveCfl, "in (0, 1]", o.cfl);
   require(o.particle_divergence_rate >= 0 || o.particle_divergence_rate == -1, "-ppe_particle_divergence_rate",
@@ -93,7 +93,7 @@ template <int D> void IsphSolver<D>::set_from_options() {
   viscous_laplacian_ = static_cast<ViscousLaplacian>(o.viscous_laplacian);
   projection_corrections_ = o.projection_corrections, source_walls_at_rest_ = o.wall_velocity == 1;
   surface_condition_ = static_cast<SurfaceCondition>(o.surface_condition);
-  ppe_.wall_pressure = static_cast<WallPressure>(o.walls.pressure);
+  wall_pressure_ = static_cast<WallPressure>(o.walls.pressure);
   wall_impact_option_ = o.wall_impact_set ? (o.wall_impact ? 1 : 0) : -1;
   if (o.walls.bounding_set) wall_bounding_option_ = o.walls.bounding ? 1 : 0;
   shifting_model_.set_from_options();
@@ -115,7 +115,7 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
   if (walls_)
     models["walls"] = {{"model", "AdamiWall"},
                        {"ppe", phys.free_surface ? "extrapolation rows" : "extrapolation rows, diagonal regularised"},
-                       {"pressure", wall_pressure_names[static_cast<int>(ppe_.wall_pressure)]}};
+                       {"pressure", wall_pressure_names[static_cast<int>(wall_pressure_)]}};
   if (phys.free_surface) {
     models["free_surface"] = free_surface_model_.describe();
     models["free_surface"]["condition"] = surface_condition_names[static_cast<int>(surface_condition_)];

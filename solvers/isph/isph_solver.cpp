@@ -3,7 +3,7 @@
 #include <cmath>
 #include <utility>
 
-#include "src/boundary/adami_wall.hpp"
+#include "src/boundary/adami_wall_model.hpp"
 #include "src/core/log_events.hpp"
 #include "src/core/options.hpp"
 #include "src/sph/free_surface.hpp"
@@ -34,6 +34,8 @@ template <int D> void IsphSolver<D>::setup(Discretisation<D>& disc) {
   // Divergence-free ISPH: density stays at its reference value (walls included).
   for (std::size_t i = 0; i < P.n_owned; ++i) P.rho[i] = disc.physics.rho0;
   walls_ = has_walls(P);
+  disc.walls = make_wall_model<D>(wall_pressure_, disc.bodies);
+  ppe_.walls = disc.walls.get();
   energy_ = EnergyBudget(disc.physics.gravity, disc.neighbourhood.domain().periodic);
   // Inlet rows extrapolate as wall rows do; outlet rows hold their pressure.
   ppe_.use_nonsymmetric(walls_ || disc.physics.free_surface || operators_ == OperatorSet::Consistent ||
@@ -99,7 +101,7 @@ std::vector<Vector<D>> IsphSolver<D>::viscous_acceleration(const std::vector<Vec
   const Kernel<D>& K = disc_->kernel;
   // No-slip walls: the viscous term sees the mirrored wall velocity (Adami et al. 2012).
   std::vector<Vector<D>> u_wall;
-  if (walls_) u_wall = AdamiWall<D>::viscous_velocity(nh, K, P, &u, &disc_->bodies);
+  if (walls_) u_wall = disc_->walls->viscous_velocity(P, nh, K, u);
   const std::vector<Vector<D>>& uv = walls_ ? u_wall : u;
   if (operators_ != OperatorSet::Consistent) {
     std::vector<Vector<D>> lap = laplacian_morris(P, nh.list(), K, uv);
@@ -269,11 +271,10 @@ std::vector<double> IsphSolver<D>::ppe_source(const std::vector<Vector<D>>& u_st
 template <int D> void IsphSolver<D>::prepare_wall_impact(const std::vector<Vector<D>>& u_star, Projection& j) {
   const Particles<D>& P = disc_->particles;
   const NeighbourList<D>& list = disc_->neighbourhood.list();
-  const Kernel<D>& K = disc_->kernel;
   j.predicted = u_star;
   for (std::size_t i = 0; i < P.size(); ++i)
     if (P.kind[i] != kFluid) j.predicted[i] = P.v[i];
-  j.wall_normals = AdamiWall<D>::normals(P, disc_->neighbourhood, K, AdamiWall<D>::stencil(P, list, K));
+  j.wall_normals = disc_->walls->normals(P, disc_->neighbourhood, disc_->kernel);
   // An impact is a free surface meeting a wall. Fluid already against a wall moves along it, and the
   // term on its small normal velocity (zero at the wall, O(dx) at the first particles) damps smooth
   // flows along walls (docs/verification/free_surface.md, the standing wave).

@@ -164,8 +164,9 @@ template <int D> class IsphSolver : public Solver<D> {
   PetscInt projection_corrections_ = 1;      // correction passes after the projection
   bool source_walls_at_rest_ = true;         // -ppe_wall_velocity zero: the PPE source sees the walls at rest
   long solves_ = 0;
-  FieldId<double> mean_pressure_;  // pm^{n-1/2}, a particle field
-  bool walls_ = false;
+  FieldId<double> mean_pressure_;                     // pm^{n-1/2}, a particle field
+  bool walls_ = false;                                // any wall particles
+  WallPressure wall_pressure_ = WallPressure::Adami;  // -wall_pressure: the wall model
   FreeSurface<D> free_surface_model_;
   SurfaceCondition surface_condition_ = SurfaceCondition::Node;
   SurfaceNodes<D> nodes_;        // the free-surface nodes at the current positions (empty: none)

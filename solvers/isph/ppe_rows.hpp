@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "src/boundary/adami_wall.hpp"
+#include "src/boundary/wall_model.hpp"
 #include "src/sph/consistent_laplacian.hpp"
 #include "src/sph/pair_terms.hpp"
 
@@ -48,12 +48,11 @@ struct PpeRows {
   // holds its factors, else Cummins & Rudman's; wall and inlet rows hold the Adami extrapolation (with
   // wall_acceleration, per owned particle, where bodies move); rows flagged
   // in `dirichlet` hold only their diagonal (outlet rows their pressure, P.p, on the right-hand side).
-  template <int D> void build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
-                              const Vector<D>& body_force, const std::vector<char>& dirichlet,
-                              const std::vector<LaplacianCorrection<D>>* consistent = nullptr,
-                              const SurfaceNodes<D>* nodes = nullptr, const WallImpact<D>* impact = nullptr,
-                              const std::vector<Vector<D>>* wall_acceleration = nullptr,
-                              const typename AdamiWall<D>::Continuation* walls = nullptr);
+  template <int D>
+  void build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const Vector<D>& body_force,
+             const std::vector<char>& dirichlet, const std::vector<LaplacianCorrection<D>>* consistent = nullptr,
+             const SurfaceNodes<D>* nodes = nullptr, const WallImpact<D>* impact = nullptr,
+             const std::vector<Vector<D>>* wall_acceleration = nullptr, const WallContinuation<D>* walls = nullptr);
   // Gives the rows' storage back (their capacity too).
   void release() { *this = PpeRows(); }
 
@@ -63,8 +62,7 @@ struct PpeRows {
   template <int D> void add_pairs(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
                                   const Vector<D>& body_force, const std::vector<char>& dirichlet,
                                   const std::vector<LaplacianCorrection<D>>* consistent, const WallImpact<D>* impact,
-                                  const std::vector<Vector<D>>* wall_acceleration,
-                                  const typename AdamiWall<D>::Continuation* walls);
+                                  const std::vector<Vector<D>>* wall_acceleration, const WallContinuation<D>* walls);
   template <int D> void finish_rows(const Particles<D>& P, const Kernel<D>& K, const std::vector<char>& dirichlet,
                                     const std::vector<LaplacianCorrection<D>>* consistent,
                                     const SurfaceNodes<D>* nodes);
@@ -125,7 +123,7 @@ template <int D>
 void PpeRows::build(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const Vector<D>& body_force,
                     const std::vector<char>& dirichlet, const std::vector<LaplacianCorrection<D>>* consistent,
                     const SurfaceNodes<D>* nodes, const WallImpact<D>* impact,
-                    const std::vector<Vector<D>>* wall_acceleration, const typename AdamiWall<D>::Continuation* walls) {
+                    const std::vector<Vector<D>>* wall_acceleration, const WallContinuation<D>* walls) {
   lay_out(P, nl, K, dirichlet);
   add_pairs(P, nl, K, body_force, dirichlet, consistent, impact, wall_acceleration, walls);
   finish_rows(P, K, dirichlet, consistent, nodes);
@@ -157,7 +155,7 @@ template <int D> void PpeRows::add_pairs(const Particles<D>& P, const NeighbourL
                                          const Vector<D>& body_force, const std::vector<char>& dirichlet,
                                          const std::vector<LaplacianCorrection<D>>* consistent,
                                          const WallImpact<D>* impact, const std::vector<Vector<D>>* wall_acceleration,
-                                         const typename AdamiWall<D>::Continuation* walls) {
+                                         const WallContinuation<D>* walls) {
   const PetscInt first = P.first_gid;
   for_each_pair(P, nl, K, [&](int i, int j, const PairGeometry<D>& g) {
     if (P.gid[j] == P.gid[i]) return;
@@ -170,7 +168,7 @@ template <int D> void PpeRows::add_pairs(const Particles<D>& P, const NeighbourL
     if (detail::owned_column(P, j)) dj[di[i] + dlen_[i]] = P.gid[j] - first, da[di[i] + dlen_[i]++] = value;
     else oj[oi[i] + olen_[i]] = P.gid[j], oa[oi[i] + olen_[i]++] = value;
     if (extrapolates_pressure(P.kind[i])) {
-      // The fluid's pressure continued to the wall (AdamiWall::Continuation); a moving body's wall rows
+      // The fluid's pressure continued to the wall (the wall model's WallContinuation); a moving body's wall rows
       // take its acceleration, g - a_w (Adami et al. 2012).
       const Vector<D> g_eff = wall_acceleration ? Vector<D>(body_force - (*wall_acceleration)[i]) : body_force;
       double head =

@@ -80,11 +80,9 @@ void PressurePoisson<D>::assemble(const Particles<D>& P, const Neighbourhood<D>&
   // preconditioner's references to it).
   destroy_system();
   SPH_PETSC(KSPDestroy(&ksp_));
-  // -wall_pressure continued: the fluid's pressure gradient along the walls is the last pressure's (P.p).
-  const typename AdamiWall<D>::Continuation walls = wall_pressure == WallPressure::Continued
-                                                        ? AdamiWall<D>::continuation(P, nh, K, P.p)
-                                                        : typename AdamiWall<D>::Continuation();
-  rows_.build(P, nh.list(), K, body_force, dirichlet_, consistent, nodes, impact, wall_acceleration, &walls);
+  // The fluid's pressure gradient along the walls, where the wall model uses it, is the last pressure's (P.p).
+  const WallContinuation<D> continuation = walls ? walls->continuation(P, nh, K, P.p) : WallContinuation<D>();
+  rows_.build(P, nh.list(), K, body_force, dirichlet_, consistent, nodes, impact, wall_acceleration, &continuation);
   // A new KSP for each new matrix, made from the options database: every option, viewers included,
   // then acts on every solve. Keeping one KSP saves no set-up time (the preconditioner is rebuilt for
   // each new matrix either way), and some preconditioners cannot be set up again on another matrix

@@ -72,8 +72,8 @@ template <int D> class PressurePoisson {
   // The same before set_from_options, from what the options already say (the consistent operators),
   // so that -help shows the defaults a run gets (GMRES, right preconditioning); makes no KSP.
   void expect_nonsymmetric(bool nonsymmetric) { nonsymmetric_ = nonsymmetric; }
-  // How the wall rows continue the fluid's pressure (-wall_pressure, src/boundary/adami_wall.hpp).
-  WallPressure wall_pressure = WallPressure::Adami;
+  // How the wall rows continue the fluid's pressure (the scheme's wall model; null: as published).
+  const WallModel<D>* walls = nullptr;
 
   // Builds the matrix for the current particle positions (owned rows, global column indices).
   // Particles flagged in `dirichlet` (free surface) get the row p = 0.

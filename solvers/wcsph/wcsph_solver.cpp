@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "src/boundary/adami_wall.hpp"
+#include "src/boundary/adami_wall_model.hpp"
 #include "src/core/log_events.hpp"
 #include "src/core/options.hpp"
 #include "src/sph/consistent_laplacian.hpp"
@@ -23,6 +23,7 @@ template <int D> void WcsphSolver<D>::setup(Discretisation<D>& disc) {
   set_start_state(disc);
   walls_ = has_walls(P);
   extrapolated_ = walls_ || disc.open.any();
+  disc.walls = make_wall_model<D>(wall_pressure_, disc.bodies);
   if (outlet_pressure_ == OutletPressure::Transmissive && disc.open.has_outlet())
     disc.open.use_transmissive_outlets(P, disc.physics.rho0 * eos_.c0);
   acc_ = P.fields.declare_vector("acceleration", kCarried, P.size());
@@ -167,8 +168,7 @@ template <int D> void WcsphSolver<D>::update_pressure() {
   if (!extrapolated_) return;
   // Adami et al. (2012): wall (and inlet) pressure extrapolated from the fluid, their density from the EOS.
   const Neighbourhood<D>& nh = disc_->neighbourhood;
-  const std::vector<Vector<D>> wall_acceleration = disc_->bodies.accelerations(P, disc_->bodies.time());
-  AdamiWall<D>::extrapolate_pressure(P, nh, disc_->kernel, disc_->physics.gravity, &wall_acceleration, wall_pressure_);
+  disc_->walls->extrapolate_pressure(P, nh, disc_->kernel, disc_->physics.gravity);
   P.written(P.p);
   const bool outlets = disc_->open.transmit_outlet_pressure(P, nh.list(), disc_->kernel);
   for (std::size_t i = 0; i < P.n_owned; ++i)
@@ -201,7 +201,7 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   const LogEventScope log_forces(LogEvent::Forces);
   // No-slip walls: the viscous term sees the mirrored wall velocity (Adami et al. 2012).
   std::vector<Vector<D>> u_visc;
-  if (walls_ && phys.viscous()) u_visc = AdamiWall<D>::viscous_velocity(nh, K, P, nullptr, &disc_->bodies);
+  if (walls_ && phys.viscous()) u_visc = disc_->walls->viscous_velocity(P, nh, K, P.v);
   const std::vector<Vector<D>>& uv = u_visc.empty() ? P.v : u_visc;
   const std::vector<double>& diffused = diffusion.rho_fine.empty() ? P.rho : diffusion.rho_fine;
   wcsph::RatesInputs<D> in(P, uv, diffusion.grad_rho, diffused, eos_, av_);

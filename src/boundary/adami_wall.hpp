@@ -14,21 +14,13 @@
 #include <vector>
 
 #include "src/boundary/moving_bodies.hpp"
+#include "src/boundary/wall_model.hpp"
+#include "src/boundary/wall_pressure.hpp"
 #include "src/core/physics.hpp"
 #include "src/neighbours/neighbourhood.hpp"
 #include "src/sph/pair_loop.hpp"
 
 namespace sph {
-
-// -wall_pressure: how a wall particle's pressure continues the fluid's along the wall (AdamiWall).
-enum class WallPressure { Adami, Continued };
-inline const char* const wall_pressure_names[] = {"adami", "continued"};
-inline constexpr const char* wall_pressure_help =
-    "How the walls' pressure continues the fluid's: adami (the fluid's pressure plus rho (g - a_w) . r, "
-    "Adami et al. 2012: the fluid taken to accelerate with the wall along it too, so a lone particle on "
-    "a side wall is held up) or continued (rho (g - a_w) across the wall, the fluid's own pressure gradient "
-    "along it: a lone particle falls; not yet the default: docs/verification/free_surface.md, \"Walls that "
-    "continue the fluid's own pressure\")";
 
 template <int D> struct AdamiWall {
   // Shepard weights of wall particle w: the fluid neighbours f and W_wf / sum_f W_wf.
@@ -119,20 +111,8 @@ template <int D> struct AdamiWall {
   // (2012), who take the fluid to accelerate with the wall along it too. A lone particle on a side wall
   // then feels no hydrostatic column that is not there; the price is the fluid's own pressure error,
   // carried into the walls (-wall_pressure continued; docs/verification/free_surface.md, "Walls that
-  // continue the fluid's own pressure").
-  struct Continuation {
-    std::vector<Vector<D>> normal;    // owned walls' n into the fluid (zero: Adami's relation as published)
-    std::vector<Vector<D>> gradient;  // fluid particles' own pressure gradient, owned and ghost
-
-    // The head from fluid neighbour f to wall w, rho_f g_eff . r_wf along the normal and G_f along the
-    // wall; inlets, and walls with no normal, take rho_f g_eff . r_wf whole.
-    double head(std::size_t w, std::size_t f, const Vector<D>& g_eff, const Vector<D>& r_wf, double rho_f) const {
-      if (w >= normal.size() || normal[w].squaredNorm() == 0.0) return rho_f * g_eff.dot(r_wf);
-      const Vector<D>& n = normal[w];
-      const double across = n.dot(r_wf);
-      return rho_f * g_eff.dot(n) * across + gradient[f].dot(r_wf - across * n);
-    }
-  };
+  // continue the fluid's own pressure"). Empty: Adami's relation as published.
+  using Continuation = WallContinuation<D>;
 
   // The fluid's own pressure gradient (of `pressure`, owned and ghost values) at every fluid particle
   // with a wall in reach, from its fluid neighbours alone: B^-1 sum_j V_j (p_j - p_i) grad W_ij with
@@ -248,13 +228,5 @@ template <int D> struct AdamiWall {
     return 2.0 * P.v[w] - u_f;
   }
 };
-
-// True when any rank holds wall particles.
-template <int D> bool has_walls(const Particles<D>& P) {
-  int any = 0;
-  for (std::size_t i = 0; i < P.n_owned && !any; ++i) any = P.kind[i] == kWall;
-  MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
-  return any != 0;
-}
 
 }  // namespace sph

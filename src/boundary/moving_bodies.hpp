@@ -5,11 +5,13 @@
 // from a table (src/boundary/motion_table.hpp). Their wall particles are moved by the solvers at their drift, and the
 // wall condition sees the body's velocity and acceleration: Adami et al. (2012)'s pressure extrapolation takes (g -
 // a_w), the continuity equation (WCSPH) and the pressure source (ISPH) the wall's velocity. Membership is by permanent
-// particle id, as for the force groups (src/run/wall_groups.hpp). The same object says which wall particles are
-// free-slip (free_slip()), the other wall condition a case may ask of its wall particles. A body may instead be free
+// particle id, as for the force groups (src/run/wall_groups.hpp). The same object holds the other wall conditions a
+// case may ask of its wall groups: which wall particles are free-slip (free_slip()) and how a group's pressure
+// continues the fluid's (wall_pressure(), src/boundary/adami_wall_model.hpp). A body may instead be free
 // (src/boundary/free_body.hpp): the fluid moves it, and its state travels in the checkpoint (state(), restore()).
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -142,17 +144,22 @@ template <int D> class MovingBodies {
  public:
   MovingBodies() = default;
   // label: by particle id, the body's index into motions (-1: none); t: the time the particles are at;
-  // free_slip: by particle id, 1 for a free-slip wall particle (empty: every wall is no-slip).
+  // free_slip: by particle id, 1 for a free-slip wall particle (empty: every wall is no-slip);
+  // wall_pressure: by particle id, the WallPressure a wall particle's group chose (-1 or empty: the option's).
   MovingBodies(std::vector<PrescribedMotion<D>> motions, std::vector<int> label, double t,
-               std::vector<char> free_slip = {}, std::vector<FreeBody<D>> free = {})
+               std::vector<char> free_slip = {}, std::vector<FreeBody<D>> free = {},
+               std::vector<signed char> wall_pressure = {})
       : motions_(std::move(motions)),
         label_(std::move(label)),
         free_slip_(std::move(free_slip)),
+        wall_pressure_(std::move(wall_pressure)),
         free_(std::move(free)),
         t_(t) {
     for (const auto& m : motions_) any_ |= m.moves();
     for (const auto& f : free_) any_free_ |= f.active;
     any_ |= any_free_;
+    for (const signed char c : wall_pressure_)
+      if (c >= 0 && c < static_cast<signed char>(chosen_.size())) chosen_[static_cast<std::size_t>(c)] = true;
   }
 
   bool any() const { return any_; }
@@ -207,6 +214,16 @@ template <int D> class MovingBodies {
     return P.kind[i] == kWall && id >= 0 && static_cast<std::size_t>(id) < free_slip_.size() &&
            free_slip_[static_cast<std::size_t>(id)] != 0;
   }
+
+  // The form of pressure continuation wall particle i's group chose (a WallPressure), -1 for none.
+  int wall_pressure(const Particles<D>& P, std::size_t i) const {
+    const GlobalIndex id = P.id[i];
+    return P.kind[i] == kWall && id >= 0 && static_cast<std::size_t>(id) < wall_pressure_.size()
+               ? wall_pressure_[static_cast<std::size_t>(id)]
+               : -1;
+  }
+  // Whether some wall group chose form f (the same answer on every rank: the choices are by id).
+  bool wall_pressure_chosen(int f) const { return f >= 0 && f < static_cast<int>(chosen_.size()) && chosen_[f]; }
 
   // Moves the owned particles of moving bodies from the time they are at to time t, and gives them
   // the body's velocity there; free bodies drift with their current velocities. Every rank calls it
@@ -307,6 +324,8 @@ template <int D> class MovingBodies {
   std::vector<PrescribedMotion<D>> motions_;
   std::vector<int> label_;
   std::vector<char> free_slip_;
+  std::vector<signed char> wall_pressure_;
+  std::array<bool, 2> chosen_{};   // per WallPressure form: some particle's group chose it
   std::vector<FreeBody<D>> free_;  // per body; inactive where the motion is prescribed
   double t_ = 0.0;
   bool any_ = false, any_free_ = false;

@@ -56,6 +56,9 @@ template <int D> class Case {
   // By particle id, 1 for a free-slip wall particle (no shear: src/boundary/moving_bodies.hpp); empty
   // when every wall is no-slip.
   virtual std::vector<char> free_slip_of_particles() const { return {}; }
+  // By particle id, the form of pressure continuation a wall particle's group chose (a WallPressure,
+  // src/boundary/adami_wall_model.hpp; -1: -wall_pressure's); empty when no group chose one.
+  virtual std::vector<signed char> wall_pressure_of_particles() const { return {}; }
   // Inlets and outlets (src/boundary/open_boundaries.hpp; empty: none). Their buffer particles are
   // among create()'s, kinds kInlet and kOutlet.
   virtual std::vector<OpenBoundary<D>> open_boundaries() const { return {}; }

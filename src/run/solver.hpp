@@ -6,6 +6,7 @@
 
 #include "src/boundary/moving_bodies.hpp"
 #include "src/boundary/open_boundaries.hpp"
+#include "src/boundary/wall_model.hpp"
 #include "src/core/error.hpp"
 #include "src/core/options.hpp"
 #include "src/core/physics.hpp"
@@ -38,6 +39,9 @@ template <int D> struct Discretisation {
   MovingBodies<D> bodies = {};
   // Inlets and outlets; the solvers drift their buffers (src/boundary/open_boundaries.hpp).
   OpenBoundaries<D> open = {};
+  // The walls' boundary model, as the scheme's options chose it at setup (src/boundary/wall_model.hpp);
+  // null for a scheme without walls. The force on wall groups reads it too.
+  std::shared_ptr<const WallModel<D>> walls = {};
 };
 
 // A case that asks for a model the solver does not have is refused, not silently run without it.

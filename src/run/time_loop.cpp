@@ -55,7 +55,7 @@ template <int D> TimeLoop<D>::TimeLoop(const RunParts<D>& run)
   for (FreeBody<D>& f : free)
     if (f.active) f.added_mass_ratio = added * s_.disc.physics.rho0 * f.volume / f.mass;
   s_.disc.bodies = MovingBodies<D>(case_.body_motions(), case_.body_of_particles(), resumed_.t,
-                                   case_.free_slip_of_particles(), std::move(free));
+                                   case_.free_slip_of_particles(), std::move(free), case_.wall_pressure_of_particles());
   if (opt_.restarting() && resumed_run_.contains("free_bodies")) {
     s_.disc.bodies.restore(resumed_run_["free_bodies"].value("state", nlohmann::json::array()));
     contact_step_ = resumed_run_["free_bodies"].value("contact_step", 0.0);
@@ -115,7 +115,8 @@ template <int D> void TimeLoop<D>::run() {
   set_start_state();
   // Free bodies start with the load of the initial state; a restart has it from the checkpoint.
   if (s_.disc.bodies.any_free() && !opt_.restarting())
-    load_free_bodies(wall_groups_->forces(s_.P, s_.nh, s_.kernel, s_.disc.physics, s_.disc.bodies));
+    load_free_bodies(
+        wall_groups_->forces(s_.P, s_.nh, s_.kernel, s_.disc.physics, s_.disc.bodies, s_.disc.walls.get()));
   try {
     const TimeLoopLogStage log_stage;
     while (!time_reached(t_, opt_.t_end) && (opt_.max_steps < 0 || step_ < opt_.max_steps) && !steady_.reached()) {
@@ -220,7 +221,8 @@ template <int D> void TimeLoop<D>::advance() {
     row.insert(row.end(), energy.begin(), energy.end());
   }
   if (wall_groups_) {
-    const std::vector<GroupForce<D>> F = wall_groups_->forces(s_.P, s_.nh, s_.kernel, s_.disc.physics, s_.disc.bodies);
+    const std::vector<GroupForce<D>> F =
+        wall_groups_->forces(s_.P, s_.nh, s_.kernel, s_.disc.physics, s_.disc.bodies, s_.disc.walls.get());
     faces_t_ = t_;  // the frames' surface loads are these
     const std::vector<double> forces = wall_groups_->row(F);
     row.insert(row.end(), forces.begin(), forces.end());

@@ -12,8 +12,8 @@
 #include <optional>
 #include <sstream>
 
-#include "src/boundary/adami_wall.hpp"
 #include "src/boundary/body_contact.hpp"
+#include "src/boundary/wall_model.hpp"
 #include "src/core/log_events.hpp"
 #include "src/core/options.hpp"
 #include "src/io/checkpoint.hpp"

@@ -108,7 +108,7 @@ template <int D> void TimeLoop<D>::write_frame(bool derived) {
       continue;
     }
     const std::vector<Vector<D>> shear =
-        wall_groups_->face_shear(b, s_.P, s_.nh, s_.kernel, s_.disc.physics, s_.disc.bodies);
+        wall_groups_->face_shear(b, s_.P, s_.nh, s_.kernel, s_.disc.physics, s_.disc.bodies, s_.disc.walls.get());
     std::vector<std::array<double, 3>> shear3(shear.size(), {0.0, 0.0, 0.0});
     for (std::size_t q = 0; q < shear.size(); ++q)
       for (int a = 0; a < D; ++a) shear3[q][a] = shear[q][a];

@@ -67,14 +67,15 @@ template <int D> class WallGroups {
   // its faces, with the rotation's part (src/sph/surface_shear.hpp). For the surface files, so taken
   // when a frame is written, not every step. Refreshes the ghosts as forces() does.
   std::vector<Vector<D>> face_shear(std::size_t b, Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K,
-                                    const Physics<D>& physics, const MovingBodies<D>& bodies) const {
+                                    const Physics<D>& physics, const MovingBodies<D>& bodies,
+                                    const WallModel<D>* walls) const {
     if (b >= faces_.size() || faces_[b].centre.empty()) return {};
     nh.update(P);
     std::vector<int> group(P.n_owned, -1);
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (P.kind[i] == kWall && body_of(P.id[i]) == static_cast<int>(b)) group[i] = 0;
     std::vector<WallParticleShear<D>> forces;
-    wall_group_forces(P, nh.list(), K, P.p, P.rho, group, physics.nu, {about_now(bodies)[b]}, &bodies, &forces);
+    wall_group_forces(P, nh.list(), K, P.p, P.rho, group, physics.nu, {about_now(bodies)[b]}, walls, &forces);
     const Faces now = moved(b, bodies);
     std::vector<Vector<D>> shear = spread_shear(forces, K, now.centre, now.area_normal);
     if (b < motions_.size()) add_rotation_shear(shear, now.area_normal, rotation(b, bodies), physics.rho0 * physics.nu);
@@ -100,13 +101,14 @@ template <int D> class WallGroups {
   // velocities as the step left the owned ones (as the solvers do before their own pair loops); the
   // pressure's and density's ghosts are fresh (docs/developer.md, "Ghosts").
   std::vector<GroupForce<D>> forces(Particles<D>& P, Neighbourhood<D>& nh, const Kernel<D>& K,
-                                    const Physics<D>& physics, const MovingBodies<D>& bodies) {
+                                    const Physics<D>& physics, const MovingBodies<D>& bodies,
+                                    const WallModel<D>* walls) {
     nh.update(P);
     std::vector<int> group(P.n_owned, -1);
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (P.kind[i] == kWall) group[i] = body_of(P.id[i]) >= 0 ? body_of(P.id[i]) : walls_group_;
     const std::vector<Vector<D>> about = about_now(bodies);
-    std::vector<GroupForce<D>> F = wall_group_forces(P, nh.list(), K, P.p, P.rho, group, physics.nu, about, &bodies);
+    std::vector<GroupForce<D>> F = wall_group_forces(P, nh.list(), K, P.p, P.rho, group, physics.nu, about, walls);
     for (std::size_t b = 0; b < faces_.size() && b < F.size(); ++b) {
       if (faces_[b].centre.empty()) continue;
       const Faces now = moved(b, bodies);

@@ -14,7 +14,7 @@
 #include <Eigen/Dense>
 #include <vector>
 
-#include "src/boundary/adami_wall.hpp"
+#include "src/boundary/wall_model.hpp"
 #include "src/sph/pair_loop.hpp"
 #include "src/sph/pair_terms.hpp"
 
@@ -48,15 +48,17 @@ template <int D> struct WallParticleShear {
 // ranks. p, rho: the pressure and density with current ghost values; nu: the kinematic viscosity (0: no
 // viscous part); about[g]: group g's moment reference point. shear (if given): each owned wall
 // particle's viscous force in a group, on this rank.
-template <int D> std::vector<GroupForce<D>> wall_group_forces(
-    const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K, const std::vector<double>& p,
-    const std::vector<double>& rho, const std::vector<int>& group, double nu, const std::vector<Vector<D>>& about,
-    const MovingBodies<D>* bodies = nullptr, std::vector<WallParticleShear<D>>* shear = nullptr) {
+template <int D>
+std::vector<GroupForce<D>> wall_group_forces(const Particles<D>& P, const NeighbourList<D>& nl, const Kernel<D>& K,
+                                             const std::vector<double>& p, const std::vector<double>& rho,
+                                             const std::vector<int>& group, double nu,
+                                             const std::vector<Vector<D>>& about, const WallModel<D>* walls = nullptr,
+                                             std::vector<WallParticleShear<D>>* shear = nullptr) {
   const std::size_t n_groups = about.size();
   check_ghosts(nl, p, "the wall forces' pressure");
   check_ghosts(nl, rho, "the wall forces' density");
   // Per wall particle, in one pass over its fluid pairs: the pressure force, the viscous sums, with the
-  // Shepard averages that the mirror velocity needs (AdamiWall::viscous_velocity's, without gathering a
+  // Shepard averages that the wall's velocity needs (WallModel::viscous_velocity's, without gathering a
   // stencil), and the moments. Each pair's force acts halfway between its two particles, where the
   // wall meets the fluid: taken at the wall particle, the lever arm of a turning cylinder's viscous
   // torque was short by the depth of its layers (docs/verification/body_forces.md).
@@ -89,8 +91,9 @@ template <int D> std::vector<GroupForce<D>> wall_group_forces(
     GroupForce<D>& F = out[static_cast<std::size_t>(group[w])];
     F.pressure += s.pressure, F.moment += s.pressure_moment, F.pressure_moment += s.pressure_moment;
     if (s.shepard_weight > 0.0) {
-      const Vector<D> mirror =
-          AdamiWall<D>::mirror_velocity(P, w, s.shepard_u / s.shepard_weight, s.shepard_r / s.shepard_weight, bodies);
+      // The wall's velocity as the viscous term sees it (the scheme's wall model; without one, Adami's mirror).
+      const Vector<D> u_f = s.shepard_u / s.shepard_weight, r = s.shepard_r / s.shepard_weight;
+      const Vector<D> mirror = walls ? walls->wall_velocity(P, w, u_f, r) : Vector<D>(2.0 * P.v[w] - u_f);
       // sum_f m_w k_f (mirror - u_f), and its moment about the pairs' midpoints.
       const Vector<D> viscous = P.m[w] * (s.viscous_weight * mirror - s.viscous_u);
       F.viscous += viscous;

@@ -47,4 +47,34 @@ check(abs(speed["isph"] - speed["wcsph"]) < 0.005 * speed["isph"],
       f"ISPH and WCSPH with one kernel fall at one speed ({speed['isph']:.5f}, {speed['wcsph']:.5f})")
 finish()
 PY
+
+# The same wall condition chosen by one wall group (wall_pressure: continued on the left wall) while the
+# others keep the option's default (adami): a particle on the left wall falls as above, at the same
+# speed; one on the right wall is held up by Adami's column.
+for side in left right; do
+  x=$([ $side = left ] && echo "0, 0.05" || echo "0.95, 1")
+  cat > "$tmp/group_$side.yaml" <<YAML
+dimension: 2
+box: [-0.3, 1.3, -0.3, 1.3]
+physics: {gravity: [0, -1], nu: 0.01, rho0: 1, free_surface: true, t_end: 1.5}
+regions:
+  - {role: wall, shape: {box: [-0.3, 0, -0.3, 1.3]}, wall_pressure: continued}
+  - {role: wall, shape: {difference: [{box: [0, 1.3, -0.3, 1.3]}, {box: [0, 1, 0, 2]}]}}
+  - {role: fluid, shape: {box: [$x, 0.6, 0.65]}, pressure: 0}
+YAML
+  expect_ok -case scene -scene_file "$tmp/group_$side.yaml" -nx 20 -progress 0 -threads 1 -output_interval 0 \
+    -checkpoint_interval 0 -solver isph -output_dir "$tmp/group_$side"
+done
+PYTHONPATH="$(dirname "$0")/lib" /usr/bin/python3 -B - "$tmp" <<'PY' || fail=1
+import csv, sys
+tmp = sys.argv[1]
+from checks import check, finish
+def speed(run):
+    return -float(list(csv.DictReader(open(f"{tmp}/{run}/timeseries.csv")))[-1]["momentum_y"]) / 0.05 ** 2
+both, left, right = speed("isph"), speed("group_left"), speed("group_right")
+print(f"speed with every wall continued {both:.5f}, the left wall's group alone: on the left {left:.5f}, on the right {right:.5f}")
+check(abs(left - both) < 1e-6 * both, f"the left wall's own choice lets its particle fall as the option does ({left:.6f}, {both:.6f})")
+check(abs(right) < 0.1 * both, f"the right wall keeps the default and holds its particle ({right:.5f})")
+finish()
+PY
 exit $fail

@@ -90,5 +90,10 @@ printf 'dimension: 2\nregions:\n  - {role: fluid, shape: {box: [0, 1, 0, 1]}, sl
 expect_error "scene file '$tmp/slip_fluid.yaml': line 3, regions\[0\].slip: is given for fluid; only walls and bodies have a slip condition" $short -scene_file "$tmp/slip_fluid.yaml" -nx 10 -output_dir "$tmp/refused"
 printf 'dimension: 2\nregions:\n  - {role: wall, shape: {box: [0, 1, 0, 1]}, slip: sticky}\n' >"$tmp/slip_value.yaml"
 expect_error "scene file '$tmp/slip_value.yaml': line 3, regions\[0\].slip: is not free or no_slip; give one of those" $short -scene_file "$tmp/slip_value.yaml" -nx 10 -output_dir "$tmp/refused"
+# A wall group's own pressure form: adami or continued, and only on walls and bodies.
+printf 'dimension: 2\nregions:\n  - {role: fluid, shape: {box: [0, 1, 0, 1]}, wall_pressure: continued}\n' >"$tmp/form_fluid.yaml"
+expect_error "scene file '$tmp/form_fluid.yaml': line 3, regions\[0\].wall_pressure: is given for fluid; only walls and bodies continue the fluid's pressure" $short -scene_file "$tmp/form_fluid.yaml" -nx 10 -output_dir "$tmp/refused"
+printf 'dimension: 2\nregions:\n  - {role: wall, shape: {box: [0, 1, 0, 1]}, wall_pressure: mirror}\n' >"$tmp/form_value.yaml"
+expect_error "scene file '$tmp/form_value.yaml': line 3, regions\[0\].wall_pressure: is not adami or continued; give one of those \(-help, -wall_pressure\)" $short -scene_file "$tmp/form_value.yaml" -nx 10 -output_dir "$tmp/refused"
 [ -e "$tmp/refused" ] && { echo "FAIL: a refused scene created its output directory"; fail=1; }
 exit $fail
