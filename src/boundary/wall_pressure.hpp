@@ -12,6 +12,7 @@ inline constexpr const char* wall_pressure_help =
     "Adami et al. 2012: the fluid taken to accelerate with the wall along it too, so a lone particle on "
     "a side wall is held up) or continued (rho (g - a_w) across the wall, the fluid's own pressure gradient "
     "along it: a lone particle falls; not yet the default: docs/verification/free_surface.md, \"Walls that "
-    "continue the fluid's own pressure\"); a scene's wall group may choose its own, wall_pressure:)";
+    "continue the fluid's own pressure\"). A wall or body region of a YAML scene may choose its own "
+    "(wall_pressure:)";
 
 }  // namespace sph

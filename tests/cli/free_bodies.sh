@@ -3,7 +3,7 @@
 # density released above where it floats, both schemes at nx 20 in a viscous fluid (nu 0.1, so that it
 # comes to rest by t = 3): its draft at rest against Archimedes (scripts/floating-check); a disk settling
 # between two walls against Faxen's terminal velocity (scripts/settling-check); a box dropped on a dry
-# floor held by the contact (src/boundary/body_contact.hpp); a restart that
+# floor held by the contact (src/boundary/body_contact.hpp), and one dropped onto another; a restart that
 # equals the uninterrupted run bit for bit (ISPH and WCSPH), 2 ranks against 1, and one-line refusals
 # of free bodies that cannot be.   usage: free_bodies.sh <sph executable> <source dir>
 set -u
@@ -45,6 +45,17 @@ for s in isph wcsph; do
   expect_ok -case scene -scene_file "$tmp/drop.yaml" -nx 20 -progress 0 -threads 1 -solver $s -output_interval 1.5 \
     -output_dir "$tmp/drop_$s"
 done
+# Body on body: a box dropped onto another resting on the dry floor; the lower box's net contact is its
+# own weight (the floor carries both, the upper box presses down with its own: Newton's third law
+# between the two bodies' pair forces).
+sed -e 's/name: box, shape: box, bounds: \[1.0, 1.4, 0.3, 0.5\]/name: base, shape: box, bounds: [1.0, 1.4, 0.02, 0.22]/' \
+  "$tmp/drop.yaml" >"$tmp/stack.yaml"
+echo "  - {role: body, name: top, shape: box, bounds: [1.1, 1.3, 0.3, 0.5], density: 500, motion: {type: free}}" \
+  >>"$tmp/stack.yaml"
+for s in isph wcsph; do
+  expect_ok -case scene -scene_file "$tmp/stack.yaml" -nx 20 -progress 0 -threads 1 -solver $s -output_interval 1.5 \
+    -output_dir "$tmp/stack_$s"
+done
 "$mpiexec" -n 2 "$sph" $quick -solver isph -t_end 0.4 -output_interval 1 -output_dir "$tmp/ranks2" >"$tmp/ranks2.log" 2>&1 ||
   { echo "FAIL: 2 ranks"; tail -3 "$tmp/ranks2.log"; fail=1; }
 
@@ -79,6 +90,23 @@ for s in ("isph", "wcsph"):
     check(all(abs(b + 0.002) < 0.0025 for b in rest), f"{s} drop: at rest on the floor (bottom {rest[-1]:+.4f}, "
           "0.002 in by the contact's stiffness)")
     check(abs(carried / 392.4 - 1) < 0.01, f"{s} drop: the contact carries the weight, {carried:.1f} of 392.4 N")
+# The stack at rest (t > 1): each contact carries what rests on it, and each sinks as body_contact.hpp
+# says: rows times 1 % of dx times its load over the body's own weight, twice that between two free
+# bodies (the pair's reduced mass): the base 4 x 0.0005 x 1.5 = 0.003 into the floor, the top box
+# 4 x 0.0005 x 2 = 0.004 into the base.
+for s in ("isph", "wcsph"):
+    rows = list(csv.DictReader(open(f"{tmp}/stack_{s}/timeseries.csv")))
+    late = [r for r in rows if float(r["t"]) > 1.0]
+    mean = lambda key: sum(float(r[key]) for r in late) / len(late)
+    top, base = mean("top_contact_y"), mean("base_contact_y")
+    check(abs(top / 196.2 - 1) < 0.01, f"{s} stack: the base carries the top box's weight, {top:.1f} of 196.2 N")
+    check(abs(base / 392.4 - 1) < 0.01, f"{s} stack: the base's net contact is its own weight, {base:.1f} of 392.4 N")
+    gap = mean("top_y") - mean("base_y") - 0.2
+    check(abs(gap + 0.004) < 2e-4, f"{s} stack: the top box rests {-gap:.5f} into the base (0.004)")
+    check(abs(mean("base_y") - 0.1 + 0.003) < 2e-4, f"{s} stack: the base rests {0.1 - mean('base_y'):.5f} into the floor (0.003)")
+    check(min(float(r["top_y"]) - float(r["base_y"]) - 0.2 for r in rows) > -0.5 * 0.05,
+          f"{s} stack: the landing never takes the top box dx / 2 into the base")
+
 # The frames: the body's surface where the body is, and each particle's body.
 import glob, vtk
 from vtk.util.numpy_support import vtk_to_numpy
