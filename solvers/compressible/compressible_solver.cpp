@@ -136,6 +136,8 @@ template <int D> void CompressibleSolver<D>::prune_pairs() {
   const LogEventScope log_pairs(pairs_event());
   Particles<D>& P = disc_->particles;
   const Neighbourhood<D>& nh = disc_->neighbourhood;
+  // The pruning reads the neighbours' h, which the density iteration has just changed on the owned
+  // particles: no pair loop has refreshed their ghosts yet, so they are refreshed here, by hand.
   f.h.resize(P.n_owned);
   nh.halo().update(f.h);
   pairs_.build(P, nh.list(), f.h, kappa_, prune_margin);
