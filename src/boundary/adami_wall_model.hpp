@@ -39,8 +39,7 @@ template <int D> class AdamiWallModel : public WallModel<D> {
                           const Vector<D>& r) const override {
     return AdamiWall<D>::mirror_velocity(P, w, u_f, r, &this->bodies());
   }
-  std::vector<Vector<D>> normals(const Particles<D>& P, const Neighbourhood<D>& nh,
-                                 const Kernel<D>& K) const override {
+  std::vector<Vector<D>> normals(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K) const override {
     return AdamiWall<D>::normals(P, nh, K, AdamiWall<D>::stencil(P, nh.list(), K));
   }
 
@@ -56,8 +55,7 @@ template <int D> class AdamiWallModel : public WallModel<D> {
   }
   // The continued form's relation where some group takes it; Adami's (no normal) on the others.
   WallContinuation<D> continuation(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
-                                   const std::vector<double>& pressure,
-                                   const typename AdamiWall<D>::Stencil& s) const {
+                                   const std::vector<double>& pressure, const typename AdamiWall<D>::Stencil& s) const {
     if (!uses(WallPressure::Continued)) return {};
     WallContinuation<D> c = AdamiWall<D>::continuation(P, nh, K, pressure, s);
     if (uses(WallPressure::Adami))

@@ -51,8 +51,7 @@ template <int D> class WallModel {
                                            const std::vector<double>& pressure) const = 0;
   // The velocity field the viscous term reads: `field` on the fluid, the walls' condition (no-slip
   // mirror, free slip) on them; owned and ghost values.
-  virtual std::vector<Vector<D>> viscous_velocity(const Particles<D>& P, const Neighbourhood<D>& nh,
-                                                  const Kernel<D>& K,
+  virtual std::vector<Vector<D>> viscous_velocity(const Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
                                                   const std::vector<Vector<D>>& field) const = 0;
   // The same for one owned wall particle w, from the Shepard averages of its fluid neighbours'
   // velocity u_f and of x_w - x_f: what the force on a wall group reads (src/sph/wall_forces.hpp).
