@@ -137,16 +137,15 @@ template <int D> std::vector<std::vector<double>> IsphSolver<D>::ppe_divergences
   for (const auto* u : fields) check_ghosts(nl, *u, "the divergence's field");
   std::vector<std::vector<Vector<D>>> at_rest;
   std::vector<const std::vector<Vector<D>>*> us = fields;
+  const WallModel<D>& walls = *disc_->walls;
   if (source_walls_at_rest_ && walls_) {
     at_rest.reserve(fields.size());
     for (std::size_t f = 0; f < fields.size(); ++f) {
       at_rest.push_back(*fields[f]);
       for (std::size_t i = 0; i < at_rest[f].size(); ++i) {
         if (P.kind[i] != kWall) continue;
-        const bool body = disc_->bodies.moves(P, i);
-        const Vector<D> a = body ? disc_->bodies.point_acceleration(P, i, P.x[i]) : Vector<D>::Zero();
-        const Vector<D> head = f == 0 ? Vector<D>(tau * (g - a)) : Vector<D>::Zero();
-        at_rest[f][i] = (body ? Vector<D>(P.v[i]) : Vector<D>::Zero()) + head;
+        const Vector<D> head = f == 0 ? Vector<D>(tau * (g - walls.acceleration(P, i))) : Vector<D>::Zero();
+        at_rest[f][i] = walls.continuity_velocity(P, i) + head;
       }
       us[f] = &at_rest[f];
     }
@@ -186,7 +185,7 @@ template <int D> StepReport IsphSolver<D>::project(const std::vector<Vector<D>>&
   if (wall_impact_) prepare_wall_impact(u_star, j);
   set_dirichlet_rows(j);
   // Moving bodies' rows extrapolate with g - a_w (Adami et al. 2012).
-  j.wall_acceleration = disc_->bodies.accelerations(disc_->particles, disc_->bodies.time());
+  j.wall_acceleration = disc_->walls->accelerations(disc_->particles);
   assemble(j);
   // Only a surface particle released below assembles again: otherwise the factors go before the
   // solve, where the step's memory peaks (docs/performance.md, "Memory per particle").
@@ -389,8 +388,8 @@ template <int D> void IsphSolver<D>::bound_to_walls() {
   Particles<D>& P = disc_->particles;
   disc_->neighbourhood.update(P);
   const auto before = energy_.energies(P);
-  bounded_ +=
-      wall_bounding_.apply(P, disc_->neighbourhood, disc_->kernel, disc_->dx, disc_->physics.rho0, disc_->bodies.any());
+  bounded_ += wall_bounding_.apply(P, disc_->neighbourhood, disc_->kernel, disc_->dx, disc_->physics.rho0,
+                                   disc_->walls->moving());
   energy_.add_change(EnergyCause::WallBounding, before, energy_.energies(P));
 }
 

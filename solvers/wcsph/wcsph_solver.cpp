@@ -210,8 +210,8 @@ template <int D> void WcsphSolver<D>::compute_rates() {
   in.delta_h_c0 = delta_ * K.h() * eos_.c0;
   // Moving bodies push the fluid: the continuity equation sees their velocity (sliding walls at rest).
   std::vector<Vector<D>> wall_velocity;
-  if (disc_->bodies.any()) {
-    wall_velocity = disc_->bodies.wall_velocities(P, Vector<D>::Zero());
+  if (disc_->walls->moving()) {
+    wall_velocity = disc_->walls->continuity_velocities(P);
     in.wall_velocity = &wall_velocity;
   }
   if (phys.free_surface) {
@@ -431,7 +431,7 @@ template <int D> StepReport WcsphSolver<D>::step(double dt) {
     disc_->neighbourhood.update(disc_->particles);
     const auto before = energy_.energies(P);
     bounded_ += wall_bounding_.apply(disc_->particles, disc_->neighbourhood, disc_->kernel, disc_->dx, eos_.rho0,
-                                     disc_->bodies.any());
+                                     disc_->walls->moving());
     energy_.add_change(EnergyCause::WallBounding, before, energy_.energies(P));
   }
   const LogEventScope log_density(LogEvent::Density);

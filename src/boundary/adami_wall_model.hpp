@@ -22,7 +22,7 @@ template <int D> class AdamiWallModel : public WallModel<D> {
 
   void extrapolate_pressure(Particles<D>& P, const Neighbourhood<D>& nh, const Kernel<D>& K,
                             const Vector<D>& body_force) const override {
-    const std::vector<Vector<D>> a = this->bodies().accelerations(P, this->bodies().time());
+    const std::vector<Vector<D>> a = this->accelerations(P);
     const typename AdamiWall<D>::Stencil s = AdamiWall<D>::stencil(P, nh.list(), K);
     AdamiWall<D>::extrapolate_pressure(s, continuation(P, nh, K, P.p, s), P, body_force, &a);
   }

@@ -57,6 +57,28 @@ template <int D> class WallModel {
   // velocity u_f and of x_w - x_f: what the force on a wall group reads (src/sph/wall_forces.hpp).
   virtual Vector<D> wall_velocity(const Particles<D>& P, std::size_t w, const Vector<D>& u_f,
                                   const Vector<D>& r) const = 0;
+  // The walls' motion, whatever the model: a wall particle of a moving body (prescribed or free) moves
+  // with it, the other walls keep their place (a sliding lid's velocity is along it).
+  // Whether some wall moves.
+  bool moving() const { return bodies_->any(); }
+  // The velocity of wall particle i (owned or ghost) that the continuity equation and the pressure
+  // source see: a moving body's (P.v), zero on walls that keep their place.
+  Vector<D> continuity_velocity(const Particles<D>& P, std::size_t i) const {
+    return bodies_->moves(P, i) ? Vector<D>(P.v[i]) : Vector<D>::Zero();
+  }
+  // The same for every particle, owned and ghost (zero on the fluid); P.v's ghosts must be fresh.
+  std::vector<Vector<D>> continuity_velocities(const Particles<D>& P) const {
+    return bodies_->wall_velocities(P, Vector<D>::Zero());
+  }
+  // The acceleration of wall particle i (owned or ghost): a moving body's at its place, else zero.
+  Vector<D> acceleration(const Particles<D>& P, std::size_t i) const {
+    return bodies_->point_acceleration(P, i, P.x[i]);
+  }
+  // The owned walls' accelerations (empty when no wall moves).
+  std::vector<Vector<D>> accelerations(const Particles<D>& P) const {
+    return bodies_->accelerations(P, bodies_->time());
+  }
+
   // Unit normals into the fluid of the owned walls with fluid in reach (zero elsewhere).
   virtual std::vector<Vector<D>> normals(const Particles<D>& P, const Neighbourhood<D>& nh,
                                          const Kernel<D>& K) const = 0;
