@@ -57,6 +57,10 @@ template <int D> class WallModel {
   // velocity u_f and of x_w - x_f: what the force on a wall group reads (src/sph/wall_forces.hpp).
   virtual Vector<D> wall_velocity(const Particles<D>& P, std::size_t w, const Vector<D>& u_f,
                                   const Vector<D>& r) const = 0;
+  // Unit normals into the fluid of the owned walls with fluid in reach (zero elsewhere).
+  virtual std::vector<Vector<D>> normals(const Particles<D>& P, const Neighbourhood<D>& nh,
+                                         const Kernel<D>& K) const = 0;
+
   // The walls' motion, whatever the model: a wall particle of a moving body (prescribed or free) moves
   // with it, the other walls keep their place (a sliding lid's velocity is along it).
   // Whether some wall moves.
@@ -78,10 +82,6 @@ template <int D> class WallModel {
   std::vector<Vector<D>> accelerations(const Particles<D>& P) const {
     return bodies_->accelerations(P, bodies_->time());
   }
-
-  // Unit normals into the fluid of the owned walls with fluid in reach (zero elsewhere).
-  virtual std::vector<Vector<D>> normals(const Particles<D>& P, const Neighbourhood<D>& nh,
-                                         const Kernel<D>& K) const = 0;
 
  protected:
   const MovingBodies<D>& bodies() const { return *bodies_; }
