@@ -133,6 +133,37 @@ TEST(OpenBoundaries, FluidBeyondAnOutletHoldsItsPressureAndLeavesTheRunPastTheBu
   EXPECT_FALSE(c.open.exchange(c.P, 0.0, [](double) { return 1.0; }));
 }
 
+// An open channel's outlet keeps a level: below it each outlet particle holds the hydrostatic pressure
+// of its depth (with gravity along -y, or tilted), above it the outlet's own; as a particle drifts, its
+// pressure follows its place; fluid crossing into it takes that pressure and its density.
+TEST(OpenBoundaries, ALevelKeepingOutletHoldsTheHydrostaticPressureOfItsDepth) {
+  Channel c;
+  OpenBoundary<2> out = c.open.boundaries()[1];
+  out.keeps_level = true, out.level = 0.6, out.rho0 = 1000.0, out.gravity = V2(0, -9.81);
+  EXPECT_DOUBLE_EQ(out.pressure_at(V2(1.1, 0.2)), 2.0 + 1000.0 * 9.81 * 0.4);
+  EXPECT_DOUBLE_EQ(out.pressure_at(V2(1.1, 0.6)), 2.0);
+  EXPECT_DOUBLE_EQ(out.pressure_at(V2(1.1, 0.9)), 2.0);  // above the level: the outlet's pressure
+  OpenBoundary<2> tilted = out;                          // the level along -g, whichever way g points
+  tilted.gravity = V2(3, -4);                            // |g| = 5; up = (-0.6, 0.8)
+  EXPECT_NEAR(tilted.pressure_at(V2(1.0, 0.5)), 2.0 + 1000.0 * 5.0 * (0.6 - (-0.6 * 1.0 + 0.8 * 0.5)), 1e-9);
+  OpenBoundary<2> flat = out;  // no gravity (-gravity 0,0): no head
+  flat.gravity = V2::Zero();
+  EXPECT_EQ(flat.pressure_at(V2(1.1, 0.2)), 2.0);
+
+  OpenBoundary<2> in = c.open.boundaries()[0];
+  c.open = OpenBoundaries<2>({in, out});
+  const std::size_t crossing = c.add(V2(1.02, 0.25), kFluid, V2(1, 0));
+  const std::size_t drifting = c.add(V2(1.15, 0.45), kOutlet, V2(1, 0));
+  auto density = [](double p) { return 1000.0 + p / 1e4; };
+  ASSERT_TRUE(c.open.exchange(c.P, 0.0, density));
+  EXPECT_DOUBLE_EQ(c.P.p[crossing], out.pressure_at(V2(1.02, 0.25)));
+  EXPECT_DOUBLE_EQ(c.P.rho[crossing], density(c.P.p[crossing]));
+  c.P.x[drifting] = V2(1.2, 0.3);
+  c.open.hold_outlet_pressure(c.P, density);
+  EXPECT_DOUBLE_EQ(c.P.p[drifting], 2.0 + 1000.0 * 9.81 * 0.3);
+  EXPECT_DOUBLE_EQ(c.P.rho[drifting], density(c.P.p[drifting]));
+}
+
 // Outlet particles placed at rest three layers deep take the fluid's velocity, exactly, within three
 // steps (each carries it at least a layer outwards, and nothing comes back from deeper layers).
 TEST(OpenBoundaries, OutletParticlesTakeTheirFluidNeighboursVelocity) {

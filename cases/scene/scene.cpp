@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 #include "cases/common/lattice.hpp"
@@ -211,6 +212,7 @@ template <int D> void SceneCase<D>::read_file() {
     OpenBoundary<D> b;
     b.type = spec.inlet ? OpenBoundary<D>::Type::Inlet : OpenBoundary<D>::Type::Outlet;
     b.axis = spec.axis, b.side = spec.side, b.plane = spec.plane, b.depth = spec.depth, b.pressure = spec.pressure;
+    b.keeps_level = spec.keeps_level, b.level = spec.level;
     for (int a = 0; a < D; ++a)
       b.section_lo[a] = spec.section_lo[a], b.section_hi[a] = spec.section_hi[a],
       b.inflow.velocity[a] = spec.velocity[a];
@@ -462,6 +464,21 @@ template <int D> void SceneCase<D>::check_particles_in_box() const {
                                 "; enlarge the box (field data 'box' or -scene_box) or move the particle"));
       }
     }
+}
+
+// A level-keeping outlet's hydrostatic pressure takes the run's density and gravity (-rho0, -gravity
+// included), and its section reaches up without end: the water may rise above where it started.
+template <int D> std::vector<OpenBoundary<D>> SceneCase<D>::open_boundaries() const {
+  std::vector<OpenBoundary<D>> open = open_;
+  for (OpenBoundary<D>& b : open) {
+    b.rho0 = physics_.rho0, b.gravity = physics_.gravity;
+    if (!b.keeps_level) continue;
+    for (int a = 0; a < D; ++a) {
+      if (physics_.gravity[a] < 0) b.section_hi[a] = std::numeric_limits<double>::infinity();
+      if (physics_.gravity[a] > 0) b.section_lo[a] = -std::numeric_limits<double>::infinity();
+    }
+  }
+  return open;
 }
 
 template <int D> void SceneCase<D>::create(Particles<D>& P, Domain<D>& domain) const {

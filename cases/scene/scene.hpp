@@ -58,7 +58,7 @@ template <int D> class SceneCase : public Case<D> {
   std::vector<PrescribedMotion<D>> body_motions() const override { return motions_; }
   std::vector<FreeBody<D>> free_bodies() const override { return free_; }
   std::vector<SurfaceMesh> body_surfaces() const override { return surfaces_; }
-  std::vector<OpenBoundary<D>> open_boundaries() const override { return open_; }
+  std::vector<OpenBoundary<D>> open_boundaries() const override;
   std::vector<Probe<D>> probes() const override { return probes_; }
 
  private:

@@ -380,7 +380,9 @@ void Lattice::add_buffer_particle(const Point3& x, int o) {
   y[b.axis] = b.plane - b.side * 0.5 * dx_;
   const Fill inside = at(y);
   if (!inside.fluid) return;
-  const double p = b.inlet ? start_pressure(*inside.fluid, y) : b.pressure;
+  const double p = b.inlet         ? start_pressure(*inside.fluid, y)
+                   : b.keeps_level ? b.pressure + frame_.rho0 * frame_.g.norm() * std::max(b.level - up_.dot(x), 0.0)
+                                   : b.pressure;
   const Point3& u = inside.fluid->velocity;
   SceneFile& s = out_.file;
   s.x.push_back({x[0], x[1], x[2]});

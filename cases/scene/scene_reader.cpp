@@ -273,8 +273,8 @@ bool Reader::is_open_boundary(const YAML::Node& n) {
 }
 
 // {role: inlet, side: x-, velocity: [u, v] or {parabolic: U_max}, ramp: T, speed_table: FILE} or
-// {role: outlet, side: x+, pressure: p}: the side and the condition; the buffer's place and section
-// come with the lattice.
+// {role: outlet, side: x+, pressure: p, level: H}: the side and the condition; the buffer's place and
+// section come with the lattice.
 // Where it lies: on a side of the box (the box given, the axis not periodic, the side free), with a
 // buffer `depth` deep.
 OpenBoundarySpec Reader::open_boundary(const YAML::Node& n, const std::string& key, bool has_box, const Point3& box_lo,
@@ -315,7 +315,7 @@ OpenBoundarySpec Reader::open_boundary_condition(const YAML::Node& n, const std:
   OpenBoundarySpec b;
   b.inlet = n["role"].Scalar() == "inlet";
   if (b.inlet) only_keys(n, key, {"role", "side", "velocity", "ramp", "speed_table"});
-  else only_keys(n, key, {"role", "side", "pressure"});
+  else only_keys(n, key, {"role", "side", "pressure", "level"});
   const YAML::Node side = n["side"];
   const std::string sides = dim == 2 ? "x-, x+, y- or y+" : "x-, x+, y-, y+, z- or z+";
   if (!side.IsDefined()) fail(n, key, "has no side; add side: one of " + sides + " (the box's side it lies on)");
@@ -326,6 +326,7 @@ OpenBoundarySpec Reader::open_boundary_condition(const YAML::Node& n, const std:
   b.axis = static_cast<int>(axis), b.side = s[1] == '-' ? -1 : 1;
   if (!b.inlet) {
     if (n["pressure"].IsDefined()) b.pressure = number(n["pressure"], key + ".pressure");
+    if (n["level"].IsDefined()) b.keeps_level = true, b.level = number(n["level"], key + ".level");
     return b;
   }
   const YAML::Node v = n["velocity"];

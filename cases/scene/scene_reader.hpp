@@ -102,8 +102,8 @@ class Reader {
   // Whether region n is an inlet or an outlet (role: inlet / outlet).
   static bool is_open_boundary(const YAML::Node& n);
   // {role: inlet, side: x-, velocity: [u, v] or {parabolic: U_max}, ramp: T, speed_table: FILE} or
-  // {role: outlet, side: x+, pressure: p}: the side and the condition; the buffer's place and section
-  // come with the lattice.
+  // {role: outlet, side: x+, pressure: p, level: H}: the side and the condition; the buffer's place and
+  // section come with the lattice.
   // Where it lies: on a side of the box (the box given, the axis not periodic, the side free), with a
   // buffer `depth` deep.
   OpenBoundarySpec open_boundary(const YAML::Node& n, const std::string& key, bool has_box, const Point3& box_lo,

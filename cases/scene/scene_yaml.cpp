@@ -77,6 +77,9 @@ SceneRegions read_regions(Reader& r, const YAML::Node& root, const SceneFrame& f
       // The buffer as deep as the walls: the kernel's support.
       out.open.push_back(
           r.open_boundary(list[k], key, f.has_box, f.box_lo, f.box_hi, f.periodic, out.open, wall_layers * f.dx));
+      if (out.open.back().keeps_level && f.g.norm() == 0)
+        r.fail(list[k]["level"], key + ".level",
+               "keeps a water level, and the scene has no gravity; add gravity: [...] or drop level");
       g.open_nodes.emplace_back(list[k], key);
       continue;
     }

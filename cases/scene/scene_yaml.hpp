@@ -33,11 +33,11 @@
 //
 // Open boundaries: {role: inlet, side: x-, velocity: [u, v] or {parabolic: U_max}, ramp: T,
 // speed_table: FILE} and
-// {role: outlet, side: x+, pressure: p} (default 0) on sides of the box (x-, x+, y-, y+, z-, z+). Each
-// has a buffer beyond the side as deep as the walls (the kernel's support), over the section where a
-// fluid region meets the side: the box grows by it. A parabolic inflow spans the section between the
-// solids (a channel's or a duct's walls); a ramp starts it from rest, (1 - cos(pi t / T)) / 2, and
-// speed_table: FILE (t,factor) scales it in time.
+// {role: outlet, side: x+, pressure: p} (default 0; with level: H, p plus the hydrostatic pressure below
+// the water level H, measured along -gravity: an open channel's outlet) on sides of the box (x-, x+, y-, y+, z-, z+).
+// Each has a buffer beyond the side as deep as the walls (the kernel's support), over the section where a fluid region
+// meets the side: the box grows by it. A parabolic inflow spans the section between the solids (a channel's or a duct's
+// walls); a ramp starts it from rest, (1 - cos(pi t / T)) / 2, and speed_table: FILE (t,factor) scales it in time.
 //
 // Probes: probes: [{name: P1, at: [x, y]}, ...] adds the pressure at each point to timeseries.csv
 // (probe_P1_p, src/run/probes.hpp); a name is letters, digits and _, a point lies within the box.
@@ -93,7 +93,9 @@ struct OpenBoundarySpec {
   double top_speed = 0.0;                            // inlet: the expressions' largest speed across the section
   double ramp = 0.0;                                 // inlet: time to full speed from rest
   std::vector<double> speed_t, speed_factor;         // inlet: its speed table (t, factor), if any
-  double pressure = 0.0;                             // outlet
+  double pressure = 0.0;                             // outlet: its pressure (at the level, if it keeps one)
+  bool keeps_level = false;                          // outlet: hydrostatic below a water level (open channels)
+  double level = 0.0;                                // outlet: that level's height along -gravity
 };
 
 // A pressure probe (src/run/probes.hpp): {name: P1, at: [x, y(, z)]}.

@@ -296,6 +296,7 @@ template <int D> void IsphSolver<D>::set_dirichlet_rows(Projection& j) {
   }
   if (!j.nodes && j.surface_flags && disc_->open.has_outlet()) j.dirichlet = j.surface;
   j.outlets = disc_->open.mark_outlets(P, j.dirichlet);
+  disc_->open.hold_outlet_pressure(P, [this](double p) { return density_at_pressure(p); });
 }
 
 template <int D> void IsphSolver<D>::assemble(Projection& j) {
@@ -478,7 +479,7 @@ template <int D> StepReport IsphSolver<D>::project_and_update_pressure(double dt
   std::vector<double>& mean_pressure = P.fields[mean_pressure_];
   for (std::size_t i = 0; i < n; ++i) {
     if (P.kind[i] == kOutlet) {  // its own pressure, whatever it held as fluid
-      P.p[i] = mean_pressure[i] = disc_->open.boundary_of(P, i)->pressure;
+      P.p[i] = mean_pressure[i] = disc_->open.boundary_of(P, i)->pressure_at(P.x[i]);
       continue;
     }
     const double mean = s.have_pressure ? 0.5 * (p_start[i] + P.p[i]) : P.p[i];

@@ -165,6 +165,7 @@ template <int D> void WcsphSolver<D>::update_pressure() {
   for (std::size_t i = 0; i < P.n_owned; ++i)
     if (!transmissive || P.kind[i] != kOutlet) P.p[i] = eos_.pressure(P.rho[i]);
   P.written(P.p);
+  disc_->open.hold_outlet_pressure(P, [this](double p) { return eos_.density(p); });
   if (!extrapolated_) return;
   // Adami et al. (2012): wall (and inlet) pressure extrapolated from the fluid, their density from the EOS.
   const Neighbourhood<D>& nh = disc_->neighbourhood;

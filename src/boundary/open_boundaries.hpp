@@ -84,7 +84,14 @@ template <int D> struct OpenBoundary {
   double depth = 0.0;  // the buffer's depth beyond the plane
   Vector<D> section_lo = Vector<D>::Zero(), section_hi = Vector<D>::Zero();  // the section's extent (other axes)
   InletVelocity<D> inflow;                                                   // Inlet
-  double pressure = 0.0;                                                     // Outlet
+  double pressure = 0.0;                                                     // Outlet (at its level, if it keeps one)
+  // An open channel's outlet keeps a water level: below it the pressure is hydrostatic, p + rho0 |g|
+  // (level - height), the height measured along -g; above it, p. The fluid's surface at the outlet
+  // settles where this pressure holds it, as a weir or a downstream reservoir would.
+  bool keeps_level = false;
+  double level = 0.0;
+  double rho0 = 1.0;
+  Vector<D> gravity = Vector<D>::Zero();
 
   int kind() const { return type == Type::Inlet ? kInlet : kOutlet; }
   // How far x lies beyond the plane, outwards (negative inside the box).
@@ -94,6 +101,27 @@ template <int D> struct OpenBoundary {
     for (int a = 0; a < D; ++a)
       if (a != axis && (x[a] < section_lo[a] || x[a] > section_hi[a])) return false;
     return true;
+  }
+  // An outlet's pressure at x.
+  double pressure_at(const Vector<D>& x) const {
+    const double g = gravity.norm();
+    if (!keeps_level || g == 0.0) return pressure;
+    return pressure + rho0 * g * std::max(level + gravity.dot(x) / g, 0.0);
+  }
+  // A level-keeping outlet's section below its level (2D: the depth; 3D: the area), gravity along an
+  // axis across it.
+  double section_below_level() const {
+    double area = 1.0;
+    for (int a = 0; a < D; ++a) {
+      if (a == axis) continue;
+      if (gravity[a] == 0.0) {
+        area *= section_hi[a] - section_lo[a];
+        continue;
+      }
+      const double up = gravity[a] < 0.0 ? 1.0 : -1.0, bottom = std::min(up * section_lo[a], up * section_hi[a]);
+      area *= std::max(level - bottom, 0.0);
+    }
+    return area;
   }
   Vector<D> inward() const {
     Vector<D> n = Vector<D>::Zero();
@@ -183,6 +211,17 @@ template <int D> class OpenBoundaries {
     return true;
   }
 
+  // Fixed outlets: each outlet particle's pressure where it is now (a level-keeping outlet's varies
+  // with depth as the particle drifts), and that pressure's density.
+  template <class DensityOf> void hold_outlet_pressure(Particles<D>& P, DensityOf&& density_of) const {
+    if (!has_outlet() || outlet_pressure_ != OutletPressure::Fixed) return;
+    for (std::size_t i = 0; i < P.n_owned; ++i)
+      if (P.kind[i] == kOutlet)
+        if (const OpenBoundary<D>* b = boundary_of(P, i))
+          P.p[i] = b->pressure_at(P.x[i]), P.rho[i] = density_of(P.p[i]);
+    P.written(P.p), P.written(P.rho);
+  }
+
   // The inlets' velocity at time t on their owned particles.
   void prescribe(Particles<D>& P, double t) const {
     for (std::size_t i = 0; i < P.n_owned; ++i)
@@ -218,6 +257,28 @@ template <int D> class OpenBoundaries {
         });
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (P.kind[i] == kOutlet && mean[i].weight > 0.0) P.v[i] = mean[i].sum / mean[i].weight;
+    keep_levels(P, K.support_radius());
+  }
+
+  // A level-keeping outlet lets out what keeps its level: its particles' outward velocity, carried from
+  // the fluid, times the fluid's wetted section beside the plane over the section below the level. Fluid
+  // shallower than the level then leaves slower than it comes and rises, deeper fluid falls; at the level
+  // the factor is 1, the zero-gradient outlet. Carried as it is, the outflow follows whatever the fluid
+  // brings, and the level drifts with it (docs/verification/open_boundaries.md, the bump channel).
+  // Collective.
+  void keep_levels(Particles<D>& P, double slab) const {
+    if (std::none_of(b_.begin(), b_.end(), [](const auto& b) { return b.keeps_level; })) return;
+    const std::vector<double> wetted = wetted_sections(P, slab);
+    for (std::size_t i = 0; i < P.n_owned; ++i) {
+      if (P.kind[i] != kOutlet) continue;
+      const OpenBoundary<D>* b = boundary_of(P, i);
+      if (!b || !b->keeps_level) continue;
+      const double target = b->section_below_level();
+      if (target <= 0.0) continue;
+      const double factor = wetted[static_cast<std::size_t>(b - b_.data())] / target;
+      const Vector<D> n = -b->inward();
+      P.v[i] += ((factor - 1.0) * P.v[i].dot(n)) * n;
+    }
   }
 
   // Transmissive outlets: on the outlet particles that just left the fluid, the mean pressure of the
@@ -262,7 +323,7 @@ template <int D> class OpenBoundaries {
     for (std::size_t i = 0; i < P.n_owned; ++i)
       if (P.kind[i] == kOutlet)
         if (const OpenBoundary<D>* b = boundary_of(P, i))
-          P.p[i] -= std::min(1.0, sigma_c0 / box_length[b->axis] * dt) * (P.p[i] - b->pressure);
+          P.p[i] -= std::min(1.0, sigma_c0 / box_length[b->axis] * dt) * (P.p[i] - b->pressure_at(P.x[i]));
     P.written(P.p);
   }
 
@@ -302,7 +363,8 @@ template <int D> class OpenBoundaries {
         for (const OpenBoundary<D>& b : b_)
           if (b.type == OpenBoundary<D>::Type::Outlet && b.beyond(P.x[i]) >= 0.0) {
             P.kind[i] = kOutlet, changed = 1;
-            if (outlet_pressure_ == OutletPressure::Fixed) P.p[i] = b.pressure, P.rho[i] = density_of(b.pressure);
+            if (outlet_pressure_ == OutletPressure::Fixed)
+              P.p[i] = b.pressure_at(P.x[i]), P.rho[i] = density_of(P.p[i]);
             else P.fields[entered_][i] = 1.0;
             out[0] += 1.0, out[1] += P.m[i];
             break;
@@ -397,6 +459,25 @@ template <int D> class OpenBoundaries {
     for (std::size_t k = 0; k < b_.size(); ++k)
       if (sums[2 * k + 1] > 0.0) mean[k] = sums[2 * k] / sums[2 * k + 1];
     return mean;
+  }
+
+  // Per boundary, the fluid's wetted section beside its plane: the volume of the fluid within `slab`
+  // inside it, each particle weighted by (1 - distance / slab)^2, over the weight's integral slab / 3
+  // (2D: the depth; 3D: the area). Zero where the boundary keeps no level. Collective.
+  std::vector<double> wetted_sections(const Particles<D>& P, double slab) const {
+    std::vector<double> volume(b_.size(), 0.0);
+    for (std::size_t i = 0; i < P.n_owned; ++i) {
+      if (P.kind[i] != kFluid) continue;
+      for (std::size_t k = 0; k < b_.size(); ++k) {
+        const OpenBoundary<D>& b = b_[k];
+        const double d = -b.beyond(P.x[i]);
+        if (!b.keeps_level || d < 0.0 || d >= slab || !b.in_section(P.x[i])) continue;
+        volume[k] += (1.0 - d / slab) * (1.0 - d / slab) * P.m[i] / P.rho[i];
+      }
+    }
+    MPI_Allreduce(MPI_IN_PLACE, volume.data(), static_cast<int>(volume.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    for (double& v : volume) v *= 3.0 / slab;
+    return volume;
   }
 
   OutletPressure outlet_pressure_ = OutletPressure::Fixed;

@@ -55,17 +55,26 @@ void refuse_unmodelled(const Physics<D>& phys, const std::string& solver, bool g
                 " does not model; use -solver compressible");
 }
 
-// Inlets and outlets (src/boundary/open_boundaries.hpp) are built for single-phase flows without a free
-// surface: a scheme or a scene beyond that is refused, not run with a buffer it does not model.
+// Inlets and outlets (src/boundary/open_boundaries.hpp) are built for the liquid schemes; with a free
+// surface an outlet keeps a water level (its pressure hydrostatic below it): a scheme or a scene beyond
+// that is refused, not run with a buffer it does not model.
 template <int D>
 void refuse_unmodelled_open_boundaries(const Discretisation<D>& disc, const std::string& solver, bool modelled) {
   if (!disc.open.any()) return;
   if (!modelled)
     throw Error("-solver " + solver + " has no inlets or outlets; use -solver isph or wcsph, or close the scene");
-  if (disc.physics.free_surface)
-    throw Error(
-        "inlets and outlets with a free surface are not built yet (the outlet would need the level's "
-        "hydrostatic pressure); give free_surface: false or close the scene");
+  const Vector<D>& g = disc.physics.gravity;
+  for (const OpenBoundary<D>& b : disc.open.boundaries())
+    if (b.keeps_level && (g.norm() == 0 || g[b.axis] != 0 || g.cwiseAbs().maxCoeff() != g.norm()))
+      throw Error(
+          "a level-keeping outlet needs gravity along an axis across it (the level is a height above its "
+          "bed); give gravity along one axis, not along the outlet's, or drop level");
+  if (!disc.physics.free_surface) return;
+  for (const OpenBoundary<D>& b : disc.open.boundaries())
+    if (b.type == OpenBoundary<D>::Type::Outlet && !(b.keeps_level && disc.physics.gravity.norm() > 0))
+      throw Error(
+          "an outlet in a free-surface scene needs the water level it keeps (and gravity); add level: H to "
+          "the outlet, or give free_surface: false");
 }
 
 template <int D> class Solver {
