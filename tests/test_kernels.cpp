@@ -230,3 +230,27 @@ TEST(KernelProperties, SelfSimilarInH) {
 }
 
 }  // namespace
+
+// The kernel sum over a lattice (what -ppe_density_relaxation compares a particle's number density
+// with) is a midpoint rule for the kernel's integral, 1: it tends to 1 as the lattice refines against h,
+// and equals the sum over explicit lattice points.
+TEST(KernelProperties, LatticeSumTendsToTheIntegral) {
+  for (KernelType type : all_types()) {
+    const Kernel<2> K2(type, kH);
+    const Kernel<3> K3(type, kH);
+    double previous = 1.0;
+    for (double ratio : {1.5, 3.0, 6.0}) {
+      const double error = std::abs(lattice_kernel_sum(K2, kH / ratio) - 1.0);
+      EXPECT_LT(error, std::max(previous, 1e-12)) << kernel_names()[static_cast<int>(type)] << " h/dx " << ratio;
+      previous = error;
+    }
+    EXPECT_LT(previous, 1e-3) << kernel_names()[static_cast<int>(type)];
+    EXPECT_LT(std::abs(lattice_kernel_sum(K3, kH / 6.0) - 1.0), 1e-3) << kernel_names()[static_cast<int>(type)];
+    // Against the points themselves, 2D, h = 1.5 dx.
+    const double dx = kH / 1.5;
+    double sum = 0.0;
+    for (int a = -10; a <= 10; ++a)
+      for (int b = -10; b <= 10; ++b) sum += K2.W(std::hypot(a * dx, b * dx)) * dx * dx;
+    EXPECT_NEAR(lattice_kernel_sum(K2, dx), sum, 1e-14);
+  }
+}

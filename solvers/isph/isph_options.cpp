@@ -15,7 +15,7 @@ const char* const wall_velocity_names[] = {"prescribed", "zero"};
 const char* const surface_condition_names[] = {"node", "particle"};
 
 struct RawOptions {
-  PetscReal cfl, particle_divergence_rate;
+  PetscReal cfl, particle_divergence_rate, density_relaxation;
   PetscInt gradient, operators, viscous_laplacian, projection_corrections, wall_velocity, surface_condition;
   PetscBool wall_impact, wall_impact_set;
   WallOptions walls;
@@ -41,6 +41,13 @@ PetscErrorCode read_options(RawOptions* o) {
                         "step, at most all, so the default 10 removes all of it at CFL 0.2 and keeps that rate "
                         "at smaller steps; -1: all of it every step, whatever dt; 0: never)",
                         o->particle_divergence_rate, &o->particle_divergence_rate, nullptr, OptionLevel::expert));
+  PetscCall(option_real(PetscOptionsObject, "-ppe_density_relaxation",
+                        "Rate, in U/h, at which the PPE returns the fluid's number density (its kernel sum, where "
+                        "the support holds no free surface) to the lattice's: the projection keeps the velocity "
+                        "divergence-free, not the particles' volume, whose error grows along a through-flow's "
+                        "path (docs/verification/open_boundaries.md, the bump channel); 0: off; default 1 in "
+                        "scenes with inlets or outlets, else 0",
+                        o->density_relaxation, &o->density_relaxation, nullptr, OptionLevel::expert));
   PetscCall(option_int(PetscOptionsObject, "-projection_corrections",
                        "Passes after the projection that remove the resolved-scale divergence it leaves (its "
                        "Laplacian is not the divergence of its gradient): each solves the same matrix again; 0: "
@@ -74,6 +81,7 @@ template <int D> void IsphSolver<D>::set_from_options() {
   RawOptions o{
       cfl_,
       particle_divergence_rate_,
+      density_relaxation_option_,
       static_cast<PetscInt>(gradient_),
       static_cast<PetscInt>(operators_),
       static_cast<PetscInt>(viscous_laplacian_),
@@ -88,7 +96,10 @@ template <int D> void IsphSolver<D>::set_from_options() {
   require(o.particle_divergence_rate >= 0 || o.particle_divergence_rate == -1, "-ppe_particle_divergence_rate",
           "non-negative (or -1: all of it every step)", o.particle_divergence_rate);
   require(o.projection_corrections >= 0, "-projection_corrections", "non-negative", o.projection_corrections);
+  require(o.density_relaxation >= 0 || o.density_relaxation == -1, "-ppe_density_relaxation", "non-negative",
+          o.density_relaxation);
   cfl_ = o.cfl, particle_divergence_rate_ = o.particle_divergence_rate;
+  density_relaxation_option_ = o.density_relaxation;
   gradient_ = static_cast<PressureGradient>(o.gradient), operators_ = static_cast<OperatorSet>(o.operators);
   viscous_laplacian_ = static_cast<ViscousLaplacian>(o.viscous_laplacian);
   projection_corrections_ = o.projection_corrections, source_walls_at_rest_ = o.wall_velocity == 1;
@@ -109,6 +120,7 @@ template <int D> nlohmann::json IsphSolver<D>::describe() const {
   models["pressure_laplacian"] = consistent ? "ConsistentLaplacian" : "CumminsRudman";
   models["ppe_source"] = {{"divergence", consistent ? "corrected" : "plain"},
                           {"particle_divergence_rate", particle_divergence_rate_},
+                          {"density_relaxation", density_relaxation_},
                           {"wall_velocity", wall_velocity_names[source_walls_at_rest_ ? 1 : 0]}};
   models["projection_corrections"] = projection_corrections_;
   models["time_integration"] = "kick-drift-kick, projection as the closing kick";

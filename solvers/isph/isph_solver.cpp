@@ -50,6 +50,8 @@ template <int D> void IsphSolver<D>::setup(Discretisation<D>& disc) {
   // that comes at a wall (docs/verification/free_surface.md, "The time step moves ISPH's answer").
   wall_impact_ = walls_ && wall_impact_option_ > 0;
   bound_to_walls_ = walls_ && (wall_bounding_option_ < 0 ? disc.physics.free_surface : wall_bounding_option_ > 0);
+  // Along a through-flow the particles' volume error grows with their path; in a closed box it cannot.
+  density_relaxation_ = density_relaxation_option_ < 0 ? (disc.open.any() ? 1.0 : 0.0) : density_relaxation_option_;
   disc.neighbourhood.update(P, true);
 }
 
@@ -262,8 +264,39 @@ std::vector<double> IsphSolver<D>::ppe_source(const std::vector<Vector<D>>& u_st
         kernel_average_in_fluid(P, disc_->neighbourhood, disc_->kernel, div_u, j.surface_flags, average_cut);
     for (std::size_t i = 0; i < P.n_owned; ++i) source[i] -= (1.0 - kept) * (div_u[i] - resolved.average[i]);
   }
+  relax_number_density(source, j);
   for (double& s : source) s /= tau;
   return source;
+}
+
+// -ppe_density_relaxation R: the projection asks for the divergence (theta - 1) r instead of zero, theta
+// the number density's ratio to a lattice's (its kernel sum over the particles' volumes m / rho0 against
+// the lattice's sum), r = R U / h at most 1 / tau: expanded fluid is drawn together over 1 / r, as in
+// density-invariant ISPH (Asai et al. 2012). Only where the support is whole: not on or beside the
+// free surface, where the kernel sum is cut.
+template <int D> void IsphSolver<D>::relax_number_density(std::vector<double>& source, const Projection& j) const {
+  if (density_relaxation_ <= 0) return;
+  const Particles<D>& P = disc_->particles;
+  const Kernel<D>& K = disc_->kernel;
+  const double rho0 = disc_->physics.rho0;
+  const double rate = std::min(density_relaxation_ * disc_->physics.U / K.h(), 1.0 / j.tau);
+  const std::vector<double> flags = j.surface_flags ? surface_flags_with_ghosts(j.surface, P, disc_->neighbourhood)
+                                                    : std::vector<double>(P.size(), 0.0);
+  struct Sum {
+    double volume = 0.0;
+    bool cut = false;
+  };
+  const std::vector<Sum> sums =
+      sum_over_pairs(P, disc_->neighbourhood.list(), K, Sum{}, [&](Sum& s, int, int b, const PairGeometry<D>& g) {
+        s.volume += P.m[b] / rho0 * g.W;
+        s.cut |= flags[b] != 0.0;
+      });
+  const double lattice = lattice_kernel_sum(K, disc_->dx);
+  for (std::size_t i = 0; i < P.n_owned; ++i) {
+    if (P.kind[i] != kFluid || flags[i] != 0.0 || sums[i].cut) continue;
+    const double theta = (sums[i].volume + P.m[i] / rho0 * K.W(0.0)) / lattice;
+    source[i] -= (theta - 1.0) * rate;
+  }
 }
 
 // -ppe_wall_impact: the velocities and wall normals of the walls' impact term.

@@ -143,6 +143,7 @@ template <int D> class IsphSolver : public Solver<D> {
   };
   void detect_free_surface(Projection& j);
   std::vector<double> ppe_source(const std::vector<Vector<D>>& u_star, const Projection& j) const;
+  void relax_number_density(std::vector<double>& source, const Projection& j) const;
   void prepare_wall_impact(const std::vector<Vector<D>>& u_star, Projection& j);
   void set_dirichlet_rows(Projection& j);
   void assemble(Projection& j);
@@ -160,9 +161,11 @@ template <int D> class IsphSolver : public Solver<D> {
   PressureGradient gradient_ = PressureGradient::Corrected;
   OperatorSet operators_ = OperatorSet::Consistent;
   ViscousLaplacian viscous_laplacian_ = ViscousLaplacian::Fourth;
-  PetscReal particle_divergence_rate_ = 10;  // in U/h; -1: all of it every step; 10: all of it at CFL 0.2
-  PetscInt projection_corrections_ = 1;      // correction passes after the projection
-  bool source_walls_at_rest_ = true;         // -ppe_wall_velocity zero: the PPE source sees the walls at rest
+  PetscReal particle_divergence_rate_ = 10;   // in U/h; -1: all of it every step; 10: all of it at CFL 0.2
+  PetscReal density_relaxation_option_ = -1;  // -ppe_density_relaxation: -1 unset (1 with open boundaries, else 0)
+  double density_relaxation_ = 0;             // in U/h (0: off)
+  PetscInt projection_corrections_ = 1;       // correction passes after the projection
+  bool source_walls_at_rest_ = true;          // -ppe_wall_velocity zero: the PPE source sees the walls at rest
   long solves_ = 0;
   FieldId<double> mean_pressure_;                     // pm^{n-1/2}, a particle field
   bool walls_ = false;                                // any wall particles

@@ -158,4 +158,20 @@ template <int D> inline void Kernel<D>::evaluate(std::size_t n, const double* r,
   }
 }
 
+// The kernel sum of a square (cubic) lattice of spacing dx about one of its points, sum_k dx^D W(|k| dx)
+// (self included): what a particle's number density reads, in volumes, where the particles lie on one.
+// Near 1, not 1: the sum's error on a lattice.
+template <int D> double lattice_kernel_sum(const Kernel<D>& K, double dx) {
+  const int n = static_cast<int>(std::ceil(K.support_radius() / dx));
+  double sum = 0.0;
+  for (int a = -n; a <= n; ++a)
+    for (int b = -n; b <= n; ++b)
+      for (int c = D == 3 ? -n : 0; c <= (D == 3 ? n : 0); ++c) {
+        const double r2 = D == 1 ? double(a * a) : D == 2 ? double(a * a + b * b) : double(a * a + b * b + c * c);
+        if (D == 1 && b != 0) continue;
+        sum += K.W(std::sqrt(r2) * dx);
+      }
+  return sum * std::pow(dx, D);
+}
+
 }  // namespace sph
