@@ -131,8 +131,7 @@ PY
 
 # A lake at rest beside an outlet that keeps its level: the buffer's hydrostatic pressure holds the
 # water as a wall would, both schemes. Nothing crosses the outlet's plane and the fluid stays at rest:
-# its RMS speed under 1 % of the long waves' speed sqrt(g h) (measured: 7.7e-3 and 7e-4 m/s in
-# ISPH and WCSPH at t = 3, against 0.022; ISPH's 2.8e-3 with -ppe_density_relaxation 0).
+# its RMS speed under 1 % of the long waves' speed sqrt(g h) (the figures: docs/verification/open_boundaries.md).
 cat > "$tmp/lake.yaml" <<'YAML'
 dimension: 2
 box: [-0.2, 2, -0.2, 1.0]
@@ -167,10 +166,9 @@ finish()
 PY
 
 # An open channel over a bump (cases/scenes/bump_channel.yaml), ISPH nx 20 to t = 8: the particles keep
-# their volume along the through-flow (-ppe_density_relaxation, on by default with open boundaries).
-# Measured over t = 6 to 8: the number density a metre downstream of the bump 0.999 of a lattice's
-# (0.842 without the relaxation) and the surface there by the fluid's volume and by its top particles
-# 0.488 and 0.489 (0.430 and 0.504 without); docs/verification/open_boundaries.md.
+# their volume along the through-flow (-ppe_density_relaxation, on by default with open boundaries), so
+# a metre past the bump their number density is a lattice's and the surfaces by the fluid's volume and
+# by its top particles agree (without it they spread apart; docs/verification/open_boundaries.md).
 expect_ok -case scene -scene_file "$src/cases/scenes/bump_channel.yaml" -nx 20 -t_end 8 -output_interval 0.5 \
   -progress 0 -threads 1 -solver isph -output_dir "$tmp/bump"
 "$src/scripts/bump-check" "$tmp/bump" --window 2 > "$tmp/bump.json" || { echo "FAIL: bump-check"; fail=1; }
